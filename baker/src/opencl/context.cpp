@@ -1,0 +1,185 @@
+#include "iblbake/error.h"
+#include "iblbake/opencl_context.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+
+namespace ibl::ocl {
+namespace {
+
+std::string clFailure(const cl::Error& e) {
+    return std::string(e.what()) + " failed: " + errorName(e.err()) + " (" + std::to_string(e.err()) + ")";
+}
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
+
+std::string typeName(cl_device_type type) {
+    if (type & CL_DEVICE_TYPE_GPU) return "GPU";
+    if (type & CL_DEVICE_TYPE_CPU) return "CPU";
+    if (type & CL_DEVICE_TYPE_ACCELERATOR) return "ACCELERATOR";
+    return "OTHER";
+}
+
+struct Candidate {
+    cl::Device device;
+    DeviceInfo info;
+};
+
+std::vector<Candidate> enumerate() {
+    std::vector<Candidate> out;
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error&) {
+        return out; // no ICD / no platform: the caller falls back or reports "no device"
+    }
+    for (std::size_t p = 0; p < platforms.size(); ++p) {
+        std::vector<cl::Device> devices;
+        try {
+            platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error&) {
+            continue;
+        }
+        for (std::size_t d = 0; d < devices.size(); ++d) {
+            DeviceInfo info;
+            info.platformIndex = p;
+            info.deviceIndex = d;
+            info.platformName = platforms[p].getInfo<CL_PLATFORM_NAME>();
+            info.deviceName = devices[d].getInfo<CL_DEVICE_NAME>();
+            info.deviceType = typeName(devices[d].getInfo<CL_DEVICE_TYPE>());
+            info.deviceVersion = devices[d].getInfo<CL_DEVICE_VERSION>();
+            info.computeUnits = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+            info.globalMemBytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+            out.push_back({devices[d], info});
+        }
+    }
+    return out;
+}
+
+} // namespace
+
+std::vector<DeviceInfo> listDevices() {
+    std::vector<DeviceInfo> out;
+    for (const Candidate& c : enumerate()) out.push_back(c.info);
+    return out;
+}
+
+std::shared_ptr<Context> Context::create(const std::string& requested) {
+    std::string selector = requested;
+    if (selector.empty())
+        if (const char* env = std::getenv("IBLBAKE_CL_DEVICE")) selector = env;
+    std::vector<Candidate> all = enumerate();
+    if (all.empty()) throw Error("OpenCL: no platform or device found (is an ICD such as pocl-opencl-icd installed?)");
+
+    const Candidate* chosen = nullptr;
+    if (selector.empty()) {
+        auto gpu = std::find_if(all.begin(), all.end(), [](const Candidate& c) { return c.info.deviceType == "GPU"; });
+        chosen = gpu != all.end() ? &*gpu : &all.front();
+    } else {
+        for (const Candidate& c : all)
+            if (c.info.id() == selector || lower(c.info.deviceName).find(lower(selector)) != std::string::npos ||
+                lower(c.info.platformName).find(lower(selector)) != std::string::npos) {
+                chosen = &c;
+                break;
+            }
+        if (!chosen)
+            throw Error("OpenCL: no device matches '" + selector + "' (see 'iblbake devices' for the list)");
+    }
+    return std::shared_ptr<Context>(new Context(chosen->device, chosen->info));
+}
+
+Context::Context(cl::Device device, DeviceInfo info) : device_(device), info_(std::move(info)) {
+    baseOptions_ = "-cl-std=CL1.2";
+    if (info_.deviceType == "CPU") baseOptions_ += " -DIBL_UNIFORM_LOOP_BARRIER";
+    try {
+        context_ = cl::Context(device_);
+        queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL device " + info_.deviceName + ": " + clFailure(e));
+    }
+}
+
+cl::Program Context::buildProgram(const std::string& name, const std::string& source, const std::string& options) {
+    cl::Program program;
+    try {
+        program = cl::Program(context_, source);
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL program " + name + ": " + clFailure(e));
+    }
+    try {
+        program.build({device_}, options.c_str());
+    } catch (const cl::Error& e) {
+        std::string log;
+        try {
+            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+        } catch (const cl::Error&) {
+            log = "(build log unavailable)";
+        }
+        // The log is multi-line by nature; it is the one message allowed to span lines.
+        throw Error("OpenCL program " + name + " failed to build on " + info_.deviceName + " with options '" +
+                    options + "': " + errorName(e.err()) + "\n" + log);
+    }
+    return program;
+}
+
+cl::Program& Context::program(const std::string& file, const std::string& options) {
+    std::lock_guard lock(mutex_);
+    std::string key = file + '\n' + options;
+    auto it = programs_.find(key);
+    if (it == programs_.end())
+        it = programs_.emplace(key, buildProgram(file, assembleProgramSource(file), baseOptions_ + " " + options)).first;
+    return it->second;
+}
+
+cl::Kernel Context::kernel(const std::string& file, const std::string& kernelName, const std::string& options) {
+    cl::Program& prog = program(file, options);
+    try {
+        return cl::Kernel(prog, kernelName.c_str());
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL kernel " + kernelName + " in " + file + ": " + clFailure(e));
+    }
+}
+
+cl::Buffer Context::createBuffer(cl_mem_flags flags, std::size_t bytes, const void* hostData) {
+    try {
+        return cl::Buffer(context_, flags, std::max<std::size_t>(bytes, 16), const_cast<void*>(hostData));
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL buffer of " + std::to_string(bytes) + " bytes on " + info_.deviceName + ": " +
+                    clFailure(e));
+    }
+}
+
+void Context::download(const cl::Buffer& buffer, std::size_t bytes, void* destination) {
+    try {
+        queue_.enqueueReadBuffer(buffer, CL_TRUE, 0, bytes, destination);
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL read of " + std::to_string(bytes) + " bytes from " + info_.deviceName + ": " +
+                    clFailure(e));
+    }
+}
+
+void Context::run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
+    std::string name = kernel.getInfo<CL_KERNEL_FUNCTION_NAME>();
+    try {
+        cl::Event event;
+        queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
+        event.wait();
+        double ms = double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                           event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6;
+        std::lock_guard lock(mutex_);
+        timings_.push_back({name, ms});
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL kernel " + name + " on " + info_.deviceName + ": " + clFailure(e));
+    }
+}
+
+std::vector<DispatchTiming> Context::takeTimings() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(timings_, {});
+}
+
+} // namespace ibl::ocl

@@ -1,0 +1,15 @@
+// Subcommand registration: each adds itself to the app and returns the action to run when chosen.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace ibl::cli {
+
+using Action = std::function<int()>;
+
+Action addDevicesCommand(CLI::App& app);
+Action addDfgCommand(CLI::App& app);
+
+} // namespace ibl::cli

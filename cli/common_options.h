@@ -1,0 +1,23 @@
+// Options every baking subcommand shares: backend, device and timing.
+#pragma once
+
+#include <iblbake/executor.h>
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace ibl::cli {
+
+struct BackendOptions {
+    std::string backend = "auto";
+    std::string device;
+    bool timing = false;
+
+    void addTo(CLI::App& command);
+    Executor makeExecutor() const; // warnings go to stderr
+    // With --timing: prints the device time of every OpenCL dispatch, and the stage's wall time.
+    void printTiming(const Executor& executor, const char* stage, double wallMs) const;
+};
+
+} // namespace ibl::cli

@@ -1,0 +1,89 @@
+// Cube-map and lat-long addressing (DESIGN.md "Conventions"). Faces are in KTX2/Vulkan/OpenGL order
+// +X, -X, +Y, -Y, +Z, -Z with the OpenGL orientation; within a face, s runs along a row and t down the
+// rows (t = 0 is the first row in memory), texel (i, j) of an N-texel face has its centre at
+// s = (i + 0.5) / N, t = (j + 0.5) / N.
+#ifndef IBL_CUBE_H
+#define IBL_CUBE_H
+
+#include "portable.h"
+
+IBL_BEGIN_NAMESPACE
+
+typedef struct {
+    int face;  // 0..5: +X, -X, +Y, -Y, +Z, -Z
+    float s;   // [0, 1] along the face's row
+    float t;   // [0, 1] down the face's rows
+} CubeCoord;
+
+// Unnormalized direction through (s, t) of a face (OpenGL table "Selection of cube map images").
+IBL_FN vec3 cubeFaceDirection(int face, float s, float t) {
+    float sc = 2.0f * s - 1.0f, tc = 2.0f * t - 1.0f;
+    vec3 d = v3(-sc, -tc, -1.0f); // -Z
+    d = face == 0 ? v3(1.0f, -tc, -sc) : d;
+    d = face == 1 ? v3(-1.0f, -tc, sc) : d;
+    d = face == 2 ? v3(sc, 1.0f, tc) : d;
+    d = face == 3 ? v3(sc, -1.0f, -tc) : d;
+    d = face == 4 ? v3(sc, -tc, 1.0f) : d;
+    return d;
+}
+
+// Face and (s, t) hit by a direction (need not be normalized; must not be zero). Ties between
+// axes of equal magnitude go to X, then Y, as in the OpenGL selection rule.
+IBL_FN CubeCoord cubeCoordFromDirection(vec3 d) {
+    float ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
+    CubeCoord c;
+    float ma, sc, tc;
+    if (ax >= ay && ax >= az) {
+        c.face = d.x >= 0.0f ? 0 : 1;
+        ma = ax;
+        sc = d.x >= 0.0f ? -d.z : d.z;
+        tc = -d.y;
+    } else if (ay >= az) {
+        c.face = d.y >= 0.0f ? 2 : 3;
+        ma = ay;
+        sc = d.x;
+        tc = d.y >= 0.0f ? d.z : -d.z;
+    } else {
+        c.face = d.z >= 0.0f ? 4 : 5;
+        ma = az;
+        sc = d.z >= 0.0f ? d.x : -d.x;
+        tc = -d.y;
+    }
+    c.s = 0.5f * (sc / ma + 1.0f);
+    c.t = 0.5f * (tc / ma + 1.0f);
+    return c;
+}
+
+// Solid angle of the face region [0, x] x [0, y] in face-plane coordinates (x, y in [-1, 1] measured
+// from the face centre): atan2(x y, sqrt(x^2 + y^2 + 1)). Differences of it give a texel's exact
+// solid angle (the area-element integral of the cube face).
+IBL_FN float cubeAreaElement(float x, float y) { return atan2(x * y, sqrt(x * x + y * y + 1.0f)); }
+
+// Exact solid angle of texel (i, j) of an N-texel face.
+IBL_FN float cubeTexelSolidAngle(int i, int j, int n) {
+    float inv = 2.0f / (float)n;
+    float x0 = (float)i * inv - 1.0f, x1 = x0 + inv;
+    float y0 = (float)j * inv - 1.0f, y1 = y0 + inv;
+    return cubeAreaElement(x0, y0) - cubeAreaElement(x0, y1) - cubeAreaElement(x1, y0) + cubeAreaElement(x1, y1);
+}
+
+// Lat-long (equirect) mapping of OpenEXR's ImfEnvmap LatLongMap: longitude = atan2(x, z),
+// latitude = asin(y); u = 0.5 - longitude / (2 pi), v = 0.5 - latitude / pi. The image centre looks
+// toward +Z, the first scanline is +Y, +X is at u = 0.25.
+IBL_FN float2 latlongFromDirection(vec3 d) {
+    vec3 n = v3normalize(d);
+    float longitude = atan2(n.x, n.z);
+    float latitude = asin(clamp(n.y, -1.0f, 1.0f));
+    return make_float2(0.5f - longitude * (0.5f * IBL_INV_PI), 0.5f - latitude * IBL_INV_PI);
+}
+
+IBL_FN vec3 directionFromLatlong(float u, float v) {
+    float longitude = (0.5f - u) * 2.0f * IBL_PI;
+    float latitude = (0.5f - v) * IBL_PI;
+    float c = cos(latitude);
+    return v3(c * sin(longitude), sin(latitude), c * cos(longitude));
+}
+
+IBL_END_NAMESPACE
+
+#endif

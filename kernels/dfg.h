@@ -1,0 +1,64 @@
+// DFG / diffuse LUT texel integration (Frostbite 2014, Listing 18 and eq. 55-58; layout in DESIGN.md).
+#ifndef IBL_DFG_H
+#define IBL_DFG_H
+
+#include "brdf.h"
+#include "sampling.h"
+
+IBL_BEGIN_NAMESPACE
+
+// Kernel arguments of the DFG stage: fixed-width scalars only (layout checked on the host).
+typedef struct {
+    uint32_t size;        // N: the LUT is N x N
+    uint32_t sampleCount; // entries of the sample table
+} DfgParams;
+
+// One sample-table entry (4 floats): unit-disk points for the specular VNDF sample (xy) and for the
+// cosine-weighted diffuse sample (zw), decorrelated by frac(u + 0.5) as in Listing 18. They depend only
+// on the sample index, so the host computes them once per sample count.
+IBL_FN float4 dfgSampleEntry(uint i, uint sampleCount) {
+    float2 u = hammersley(i, sampleCount);
+    float2 w = make_float2(u.x + 0.5f, u.y + 0.5f);
+    w = w - make_float2(floor(w.x), floor(w.y));
+    float2 specular = unitDiskPoint(u), diffuse = unitDiskPoint(w);
+    return make_float4(specular.x, specular.y, diffuse.x, diffuse.y);
+}
+
+// LUT axes (DESIGN.md): x <-> NoV = (x + 0.5) / N, y <-> perceptual roughness (y + 0.5) / N.
+IBL_FN float dfgTexelCenter(uint i, uint size) { return ((float)i + 0.5f) / (float)size; }
+
+// Returns (DFG1, DFG2, Disney) for one (NoV, perceptual roughness); `table` holds 4 floats per sample.
+// Specular: visible normals are importance sampled (Heitz 2018); that estimator of the directional
+// albedo is G2/G1(V), the same expectation as Listing 18's GVis under NDF sampling with far less
+// variance. DFG1 = E[(1 - Fc) G2/G1], DFG2 = E[Fc G2/G1], Fc = (1 - VoH)^5.
+// Diffuse: E[Fr_DisneyDiffuse] under cosine sampling (Listing 18: the pdf cancels the 1/pi and NoL).
+IBL_FN vec3 integrateDfg(float NoV, float perceptualRoughness, IBL_GLOBAL const float* table, uint sampleCount) {
+    float alpha = alphaFromPerceptual(perceptualRoughness);
+    NoV = clamp(NoV, 1e-4f, 1.0f);
+    vec3 v = v3(sqrt(1.0f - NoV * NoV), 0.0f, NoV);
+    VndfView view = vndfPrepareXZ(v, alpha);
+    float invG1V = 1.0f / G1_SmithGGX(NoV, alpha);
+
+    float dfg1 = 0.0f, dfg2 = 0.0f, diffuse = 0.0f;
+    for (uint i = 0; i < sampleCount; ++i) {
+        IBL_UNIFORM_LOOP_HEAD();
+        const IBL_GLOBAL float* e = table + 4 * i;
+        vec3 h = vndfSample(view, e[0], e[1]);
+        float VoH = saturate(v3dot(v, h));
+        float NoL = 2.0f * VoH * h.z - NoV; // z of reflect(v, h)
+        float weight = G_SmithGGXCorrelated(NoV, fmax(NoL, 0.0f), alpha) * invG1V;
+        float Fc = pow5(1.0f - VoH);
+        dfg1 += (1.0f - Fc) * weight;
+        dfg2 += Fc * weight;
+
+        vec3 l = cosineSampleFromDisk(e[2], e[3]);
+        float LoH = sqrt(0.5f * (1.0f + v3dot(v, l))); // cos of the half angle between v and l
+        diffuse += Fr_DisneyDiffuse(NoV, l.z, LoH, perceptualRoughness);
+    }
+    float inv = 1.0f / (float)sampleCount;
+    return v3(dfg1 * inv, dfg2 * inv, diffuse * inv);
+}
+
+IBL_END_NAMESPACE
+
+#endif
