@@ -16,8 +16,9 @@ Action addDevicesCommand(CLI::App& app) {
             return 0;
         }
         for (const ocl::DeviceInfo& d : devices)
-            std::printf("%s  %-11s %s | %s | %s | %u compute units | %.1f GiB\n", d.id().c_str(), d.deviceType.c_str(),
-                        d.deviceName.c_str(), d.platformName.c_str(), d.deviceVersion.c_str(), d.computeUnits,
+            std::printf("%s  %-11s %s | %s | %s | %u compute units | %.1f GiB\n", d.id().c_str(),
+                        d.deviceType.c_str(), d.deviceName.c_str(), d.platformName.c_str(),
+                        d.deviceVersion.c_str(), d.computeUnits,
                         double(d.globalMemBytes) / (1024.0 * 1024.0 * 1024.0));
         return 0;
     };

@@ -22,7 +22,8 @@ struct DfgOptions {
 
 Action addDfgCommand(CLI::App& app) {
     auto opts = std::make_shared<DfgOptions>();
-    CLI::App* cmd = app.add_subcommand("dfg", "bake the DFG / diffuse LUT (R = DFG1, G = DFG2, B = Disney diffuse)");
+    CLI::App* cmd =
+        app.add_subcommand("dfg", "bake the DFG / diffuse LUT (R = DFG1, G = DFG2, B = Disney diffuse)");
     cmd->add_option("-o,--output", opts->output, "output OpenEXR file")->required();
     cmd->add_option("--size", opts->settings.size, "texels per side (x: NoV, y: perceptual roughness)")
         ->capture_default_str()
@@ -38,19 +39,20 @@ Action addDfgCommand(CLI::App& app) {
         Executor executor = opts->backend.makeExecutor();
         auto start = std::chrono::steady_clock::now();
         ImageRGBA lut = bakeDfgLut(opts->settings, executor);
-        double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
         ExrOutputOptions exr;
         exr.channels = 3;
         exr.pixelType = opts->half ? PixelType::Half : PixelType::Float;
-        exr.attributes = {
-            {"iblbake:product", "dfg-lut"},
-            {"iblbake:layout", "x: NoV=(x+0.5)/N; y: perceptualRoughness=(y+0.5)/N from the first scanline; "
-                               "R=DFG1=E[(1-Fc)GVis] G=DFG2=E[Fc GVis] (Frostbite Listing 18, height-correlated "
-                               "Smith GGX); B=renormalized Disney diffuse (Frostbite Listing 1)"},
-            {"iblbake:samples", std::to_string(opts->settings.sampleCount)},
-            {"iblbake:version", IBLBAKE_VERSION},
-            {"Software", "iblbake " IBLBAKE_VERSION}};
+        exr.attributes = {{"iblbake:product", "dfg-lut"},
+                          {"iblbake:layout",
+                           "x: NoV=(x+0.5)/N; y: perceptualRoughness=(y+0.5)/N from the first scanline; "
+                           "R=DFG1=E[(1-Fc)GVis] G=DFG2=E[Fc GVis] (Frostbite Listing 18, height-correlated "
+                           "Smith GGX); B=renormalized Disney diffuse (Frostbite Listing 1)"},
+                          {"iblbake:samples", std::to_string(opts->settings.sampleCount)},
+                          {"iblbake:version", IBLBAKE_VERSION},
+                          {"Software", "iblbake " IBLBAKE_VERSION}};
         writeExr(opts->output, lut, exr);
         std::printf("wrote %s (%ux%u DFG LUT, %u samples/texel, %s, %.1f ms)\n", opts->output.c_str(),
                     opts->settings.size, opts->settings.size, opts->settings.sampleCount,

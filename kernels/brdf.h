@@ -8,7 +8,9 @@
 
 IBL_BEGIN_NAMESPACE
 
-IBL_FN float alphaFromPerceptual(float perceptualRoughness) { return perceptualRoughness * perceptualRoughness; }
+IBL_FN float alphaFromPerceptual(float perceptualRoughness) {
+    return perceptualRoughness * perceptualRoughness;
+}
 
 // GGX / Trowbridge-Reitz NDF including the 1/pi (Frostbite Listing 2 omits it; we keep D normalized
 // so that pdfs built from it integrate to one).
@@ -44,7 +46,9 @@ IBL_FN float V_SmithGGXCorrelated(float NoV, float NoL, float alpha) {
 }
 
 // Schlick Fresnel with an explicit f90 (Frostbite Listing 1, eq. 54).
-IBL_FN float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * pow5(1.0f - u); }
+IBL_FN float F_Schlick(float f0, float f90, float u) {
+    return f0 + (f90 - f0) * pow5(1.0f - u);
+}
 IBL_FN float3 F_Schlick3(float3 f0, float f90, float u) {
     return f0 + (make_float3(f90, f90, f90) - f0) * pow5(1.0f - u);
 }

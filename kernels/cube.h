@@ -10,9 +10,9 @@
 IBL_BEGIN_NAMESPACE
 
 typedef struct {
-    int face;  // 0..5: +X, -X, +Y, -Y, +Z, -Z
-    float s;   // [0, 1] along the face's row
-    float t;   // [0, 1] down the face's rows
+    int face; // 0..5: +X, -X, +Y, -Y, +Z, -Z
+    float s;  // [0, 1] along the face's row
+    float t;  // [0, 1] down the face's rows
 } CubeCoord;
 
 // Unnormalized direction through (s, t) of a face (OpenGL table "Selection of cube map images").
@@ -57,14 +57,17 @@ IBL_FN CubeCoord cubeCoordFromDirection(vec3 d) {
 // Solid angle of the face region [0, x] x [0, y] in face-plane coordinates (x, y in [-1, 1] measured
 // from the face centre): atan2(x y, sqrt(x^2 + y^2 + 1)). Differences of it give a texel's exact
 // solid angle (the area-element integral of the cube face).
-IBL_FN float cubeAreaElement(float x, float y) { return atan2(x * y, sqrt(x * x + y * y + 1.0f)); }
+IBL_FN float cubeAreaElement(float x, float y) {
+    return atan2(x * y, sqrt(x * x + y * y + 1.0f));
+}
 
 // Exact solid angle of texel (i, j) of an N-texel face.
 IBL_FN float cubeTexelSolidAngle(int i, int j, int n) {
     float inv = 2.0f / (float)n;
     float x0 = (float)i * inv - 1.0f, x1 = x0 + inv;
     float y0 = (float)j * inv - 1.0f, y1 = y0 + inv;
-    return cubeAreaElement(x0, y0) - cubeAreaElement(x0, y1) - cubeAreaElement(x1, y0) + cubeAreaElement(x1, y1);
+    return cubeAreaElement(x0, y0) - cubeAreaElement(x0, y1) - cubeAreaElement(x1, y0) +
+           cubeAreaElement(x1, y1);
 }
 
 // Lat-long (equirect) mapping of OpenEXR's ImfEnvmap LatLongMap: longitude = atan2(x, z),

@@ -10,8 +10,11 @@ IBL_BEGIN_NAMESPACE
 // Kernel arguments of the DFG stage: fixed-width scalars only (layout checked on the host).
 typedef struct {
     uint32_t size;        // N: the LUT is N x N
-    uint32_t sampleCount; // entries of the sample table
+    uint32_t firstSample; // this dispatch integrates samples [firstSample, endSample) ...
+    uint32_t endSample;   // ... and adds their sums to the output (which starts at zero)
 } DfgParams;
+
+#define kDfgChunkSamples 4096u
 
 // One sample-table entry (4 floats): unit-disk points for the specular VNDF sample (xy) and for the
 // cosine-weighted diffuse sample (zw), decorrelated by frac(u + 0.5) as in Listing 18. They depend only
@@ -25,14 +28,20 @@ IBL_FN float4 dfgSampleEntry(uint i, uint sampleCount) {
 }
 
 // LUT axes (DESIGN.md): x <-> NoV = (x + 0.5) / N, y <-> perceptual roughness (y + 0.5) / N.
-IBL_FN float dfgTexelCenter(uint i, uint size) { return ((float)i + 0.5f) / (float)size; }
+IBL_FN float dfgTexelCenter(uint i, uint size) {
+    return ((float)i + 0.5f) / (float)size;
+}
 
-// Returns (DFG1, DFG2, Disney) for one (NoV, perceptual roughness); `table` holds 4 floats per sample.
+// Returns the sums of (DFG1, DFG2, Disney) over samples [firstSample, endSample) for one (NoV,
+// perceptual roughness); `table` holds 4 floats per sample. Callers sum chunks of at most
+// kDfgChunkSamples in fp32 and divide by the sample count: chunking bounds the fp32 rounding of a
+// mean over millions of samples to about 1e-6 while the loop stays simple enough to vectorize.
 // Specular: visible normals are importance sampled (Heitz 2018); that estimator of the directional
 // albedo is G2/G1(V), the same expectation as Listing 18's GVis under NDF sampling with far less
 // variance. DFG1 = E[(1 - Fc) G2/G1], DFG2 = E[Fc G2/G1], Fc = (1 - VoH)^5.
 // Diffuse: E[Fr_DisneyDiffuse] under cosine sampling (Listing 18: the pdf cancels the 1/pi and NoL).
-IBL_FN vec3 integrateDfg(float NoV, float perceptualRoughness, IBL_GLOBAL const float* table, uint sampleCount) {
+IBL_FN vec3 integrateDfgChunk(float NoV, float perceptualRoughness, IBL_GLOBAL const float* table,
+                              uint firstSample, uint endSample) {
     float alpha = alphaFromPerceptual(perceptualRoughness);
     NoV = clamp(NoV, 1e-4f, 1.0f);
     vec3 v = v3(sqrt(1.0f - NoV * NoV), 0.0f, NoV);
@@ -40,9 +49,11 @@ IBL_FN vec3 integrateDfg(float NoV, float perceptualRoughness, IBL_GLOBAL const 
     float invG1V = 1.0f / G1_SmithGGX(NoV, alpha);
 
     float dfg1 = 0.0f, dfg2 = 0.0f, diffuse = 0.0f;
-    for (uint i = 0; i < sampleCount; ++i) {
+    const IBL_GLOBAL float* chunk = table + 4 * firstSample;
+    uint count = endSample - firstSample;
+    for (uint i = 0; i < count; ++i) {
         IBL_UNIFORM_LOOP_HEAD();
-        const IBL_GLOBAL float* e = table + 4 * i;
+        const IBL_GLOBAL float* e = chunk + 4 * i;
         vec3 h = vndfSample(view, e[0], e[1]);
         float VoH = saturate(v3dot(v, h));
         float NoL = 2.0f * VoH * h.z - NoV; // z of reflect(v, h)
@@ -55,8 +66,7 @@ IBL_FN vec3 integrateDfg(float NoV, float perceptualRoughness, IBL_GLOBAL const 
         float LoH = sqrt(0.5f * (1.0f + v3dot(v, l))); // cos of the half angle between v and l
         diffuse += Fr_DisneyDiffuse(NoV, l.z, LoH, perceptualRoughness);
     }
-    float inv = 1.0f / (float)sampleCount;
-    return v3(dfg1 * inv, dfg2 * inv, diffuse * inv);
+    return v3(dfg1, dfg2, diffuse);
 }
 
 IBL_END_NAMESPACE

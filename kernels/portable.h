@@ -56,22 +56,32 @@ using glm::dot;
 using glm::length;
 using glm::mix;
 using glm::normalize;
+using std::asin;
+using std::atan2;
 using std::copysign;
 using std::cos;
 using std::fabs;
 using std::floor;
 using std::fmax;
 using std::fmin;
-using std::asin;
-using std::atan2;
 using std::log2;
+using std::max;
+using std::min;
 using std::sin;
 using std::sqrt;
-inline float2 make_float2(float x, float y) { return float2(x, y); }
-inline float3 make_float3(float x, float y, float z) { return float3(x, y, z); }
-inline float4 make_float4(float x, float y, float z, float w) { return float4(x, y, z, w); }
+inline float2 make_float2(float x, float y) {
+    return float2(x, y);
+}
+inline float3 make_float3(float x, float y, float z) {
+    return float3(x, y, z);
+}
+inline float4 make_float4(float x, float y, float z, float w) {
+    return float4(x, y, z, w);
+}
 // OpenCL's select(a, b, c) returns b where c is true, a otherwise.
-inline float select(float a, float b, bool c) { return c ? b : a; }
+inline float select(float a, float b, bool c) {
+    return c ? b : a;
+}
 IBL_END_NAMESPACE
 
 #endif
@@ -81,12 +91,16 @@ IBL_BEGIN_NAMESPACE
 #define IBL_PI 3.14159265358979323846f
 #define IBL_INV_PI 0.31830988618379067154f
 
-IBL_FN float saturate(float x) { return clamp(x, 0.0f, 1.0f); }
+IBL_FN float saturate(float x) {
+    return clamp(x, 0.0f, 1.0f);
+}
 IBL_FN float pow5(float x) {
     float x2 = x * x;
     return x2 * x2 * x;
 }
-IBL_FN float sq(float x) { return x * x; }
+IBL_FN float sq(float x) {
+    return x * x;
+}
 
 // vec3 helpers: written out per component so that they scalarize in OpenCL C.
 IBL_FN vec3 v3(float x, float y, float z) {
@@ -96,13 +110,27 @@ IBL_FN vec3 v3(float x, float y, float z) {
     r.z = z;
     return r;
 }
-IBL_FN vec3 v3add(vec3 a, vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-IBL_FN vec3 v3sub(vec3 a, vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-IBL_FN vec3 v3scale(vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
-IBL_FN vec3 v3madd(vec3 a, float s, vec3 b) { return v3(a.x * s + b.x, a.y * s + b.y, a.z * s + b.z); } // a*s + b
-IBL_FN float v3dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-IBL_FN vec3 v3cross(vec3 a, vec3 b) { return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
-IBL_FN vec3 v3normalize(vec3 a) { return v3scale(a, 1.0f / sqrt(v3dot(a, a))); }
+IBL_FN vec3 v3add(vec3 a, vec3 b) {
+    return v3(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+IBL_FN vec3 v3sub(vec3 a, vec3 b) {
+    return v3(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+IBL_FN vec3 v3scale(vec3 a, float s) {
+    return v3(a.x * s, a.y * s, a.z * s);
+}
+IBL_FN vec3 v3madd(vec3 a, float s, vec3 b) {
+    return v3(a.x * s + b.x, a.y * s + b.y, a.z * s + b.z);
+} // a*s + b
+IBL_FN float v3dot(vec3 a, vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+IBL_FN vec3 v3cross(vec3 a, vec3 b) {
+    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+IBL_FN vec3 v3normalize(vec3 a) {
+    return v3scale(a, 1.0f / sqrt(v3dot(a, a)));
+}
 
 IBL_END_NAMESPACE
 

@@ -20,7 +20,9 @@ IBL_FN float radicalInverse2(uint bits) {
 }
 
 // Hammersley point i of n in [0,1)^2 (first coordinate centred in its stratum).
-IBL_FN float2 hammersley(uint i, uint n) { return make_float2(((float)i + 0.5f) / (float)n, radicalInverse2(i)); }
+IBL_FN float2 hammersley(uint i, uint n) {
+    return make_float2(((float)i + 0.5f) / (float)n, radicalInverse2(i));
+}
 
 // Point of the unit disk with area-uniform density: sqrt(u1) (cos 2 pi u2, sin 2 pi u2).
 IBL_FN float2 unitDiskPoint(float2 u) {
@@ -47,8 +49,12 @@ IBL_FN Frame frameFromNormal(vec3 n) {
     return f;
 }
 
-IBL_FN vec3 frameToWorld(Frame f, vec3 v) { return v3madd(f.t, v.x, v3madd(f.b, v.y, v3scale(f.n, v.z))); }
-IBL_FN vec3 frameToLocal(Frame f, vec3 v) { return v3(v3dot(v, f.t), v3dot(v, f.b), v3dot(v, f.n)); }
+IBL_FN vec3 frameToWorld(Frame f, vec3 v) {
+    return v3madd(f.t, v.x, v3madd(f.b, v.y, v3scale(f.n, v.z)));
+}
+IBL_FN vec3 frameToLocal(Frame f, vec3 v) {
+    return v3(v3dot(v, f.t), v3dot(v, f.b), v3dot(v, f.n));
+}
 
 // cos(theta_h) of a GGX NDF sample: inverting the CDF of D(h) cos(theta_h) (Walter et al. 2007).
 IBL_FN float ggxSampleCosTheta(float u1, float alpha) {
@@ -110,7 +116,9 @@ IBL_FN vec3 cosineSampleFromDisk(float diskX, float diskY) {
 }
 
 // Mirror of v about h (both unit): 2 (v.h) h - v.
-IBL_FN vec3 reflectAbout(vec3 v, vec3 h) { return v3sub(v3scale(h, 2.0f * v3dot(v, h)), v); }
+IBL_FN vec3 reflectAbout(vec3 v, vec3 h) {
+    return v3sub(v3scale(h, 2.0f * v3dot(v, h)), v);
+}
 
 IBL_END_NAMESPACE
 

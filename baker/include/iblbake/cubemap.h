@@ -15,7 +15,8 @@ struct CubeMap {
 
     CubeMap() = default;
     explicit CubeMap(int size) : faceSize(size) {
-        for (ImageRGBA& f : faces) f = ImageRGBA(size, size);
+        for (ImageRGBA& f : faces)
+            f = ImageRGBA(size, size);
     }
 };
 

@@ -9,7 +9,7 @@
 namespace ibl {
 
 struct DfgSettings {
-    std::uint32_t size = 128;        // N: texels per side
+    std::uint32_t size = 128;         // N: texels per side
     std::uint32_t sampleCount = 1024; // samples per texel (specular and diffuse each)
 };
 

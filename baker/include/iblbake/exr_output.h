@@ -13,7 +13,7 @@ namespace ibl {
 enum class PixelType { Half, Float };
 
 struct ExrOutputOptions {
-    int channels = 4;                  // 3 writes R, G, B; 4 adds A
+    int channels = 4; // 3 writes R, G, B; 4 adds A
     PixelType pixelType = PixelType::Float;
     std::vector<std::pair<std::string, std::string>> attributes; // string metadata, e.g. "iblbake:layout"
 };

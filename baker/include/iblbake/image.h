@@ -16,7 +16,9 @@ struct ImageRGBA {
     ImageRGBA() = default;
     ImageRGBA(int w, int h) : width(w), height(h), pixels(std::size_t(w) * std::size_t(h)) {}
     glm::vec4& at(int x, int y) { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
-    const glm::vec4& at(int x, int y) const { return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; }
+    const glm::vec4& at(int x, int y) const {
+        return pixels[std::size_t(y) * std::size_t(width) + std::size_t(x)];
+    }
 };
 
 } // namespace ibl

@@ -58,7 +58,8 @@ class Context {
     const std::string& baseOptions() const { return baseOptions_; }
     // Program from the embedded kernels/<file>, built once per process and options string.
     cl::Program& program(const std::string& file, const std::string& options = "");
-    cl::Kernel kernel(const std::string& file, const std::string& kernelName, const std::string& options = "");
+    cl::Kernel kernel(const std::string& file, const std::string& kernelName,
+                      const std::string& options = "");
     // Builds arbitrary source; on failure throws ibl::Error with program name, device, options and log.
     cl::Program buildProgram(const std::string& name, const std::string& source, const std::string& options);
 

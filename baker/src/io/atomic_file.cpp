@@ -13,9 +13,11 @@ namespace fs = std::filesystem;
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
     fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
     std::error_code ec;
-    if (!fs::is_directory(dir, ec)) throw Error(target_.string() + ": directory " + dir.string() + " does not exist");
+    if (!fs::is_directory(dir, ec))
+        throw Error(target_.string() + ": directory " + dir.string() + " does not exist");
     if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(target_.string() + ": cannot write to directory " + dir.string() + ": " + std::strerror(errno));
+        throw Error(target_.string() + ": cannot write to directory " + dir.string() + ": " +
+                    std::strerror(errno));
     if (fs::is_directory(target_, ec)) throw Error(target_.string() + ": is a directory");
     static std::atomic<unsigned> counter{0};
     temp_ = dir / ("." + target_.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +

@@ -9,13 +9,15 @@
 namespace ibl {
 
 void writeExr(const std::filesystem::path& path, const ImageRGBA& image, const ExrOutputOptions& options) {
-    if (image.width <= 0 || image.height <= 0) throw Error(path.string() + ": refusing to write an empty image");
+    if (image.width <= 0 || image.height <= 0)
+        throw Error(path.string() + ": refusing to write an empty image");
     AtomicFile file(path);
     const int channels = std::clamp(options.channels, 1, 4);
     OIIO::ImageSpec spec(image.width, image.height, channels,
                          options.pixelType == PixelType::Half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
     spec.attribute("compression", "zip");
-    for (const auto& [key, value] : options.attributes) spec.attribute(key, value);
+    for (const auto& [key, value] : options.attributes)
+        spec.attribute(key, value);
 
     auto out = OIIO::ImageOutput::create(file.tempPath().string());
     if (!out) throw Error(path.string() + ": cannot create an OpenEXR writer: " + OIIO::geterror());

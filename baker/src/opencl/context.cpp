@@ -64,7 +64,8 @@ std::vector<Candidate> enumerate() {
 
 std::vector<DeviceInfo> listDevices() {
     std::vector<DeviceInfo> out;
-    for (const Candidate& c : enumerate()) out.push_back(c.info);
+    for (const Candidate& c : enumerate())
+        out.push_back(c.info);
     return out;
 }
 
@@ -73,15 +74,18 @@ std::shared_ptr<Context> Context::create(const std::string& requested) {
     if (selector.empty())
         if (const char* env = std::getenv("IBLBAKE_CL_DEVICE")) selector = env;
     std::vector<Candidate> all = enumerate();
-    if (all.empty()) throw Error("OpenCL: no platform or device found (is an ICD such as pocl-opencl-icd installed?)");
+    if (all.empty())
+        throw Error("OpenCL: no platform or device found (is an ICD such as pocl-opencl-icd installed?)");
 
     const Candidate* chosen = nullptr;
     if (selector.empty()) {
-        auto gpu = std::find_if(all.begin(), all.end(), [](const Candidate& c) { return c.info.deviceType == "GPU"; });
+        auto gpu = std::find_if(all.begin(), all.end(),
+                                [](const Candidate& c) { return c.info.deviceType == "GPU"; });
         chosen = gpu != all.end() ? &*gpu : &all.front();
     } else {
         for (const Candidate& c : all)
-            if (c.info.id() == selector || lower(c.info.deviceName).find(lower(selector)) != std::string::npos ||
+            if (c.info.id() == selector ||
+                lower(c.info.deviceName).find(lower(selector)) != std::string::npos ||
                 lower(c.info.platformName).find(lower(selector)) != std::string::npos) {
                 chosen = &c;
                 break;
@@ -103,7 +107,8 @@ Context::Context(cl::Device device, DeviceInfo info) : device_(device), info_(st
     }
 }
 
-cl::Program Context::buildProgram(const std::string& name, const std::string& source, const std::string& options) {
+cl::Program Context::buildProgram(const std::string& name, const std::string& source,
+                                  const std::string& options) {
     cl::Program program;
     try {
         program = cl::Program(context_, source);
@@ -131,11 +136,14 @@ cl::Program& Context::program(const std::string& file, const std::string& option
     std::string key = file + '\n' + options;
     auto it = programs_.find(key);
     if (it == programs_.end())
-        it = programs_.emplace(key, buildProgram(file, assembleProgramSource(file), baseOptions_ + " " + options)).first;
+        it = programs_
+                 .emplace(key, buildProgram(file, assembleProgramSource(file), baseOptions_ + " " + options))
+                 .first;
     return it->second;
 }
 
-cl::Kernel Context::kernel(const std::string& file, const std::string& kernelName, const std::string& options) {
+cl::Kernel Context::kernel(const std::string& file, const std::string& kernelName,
+                           const std::string& options) {
     cl::Program& prog = program(file, options);
     try {
         return cl::Kernel(prog, kernelName.c_str());
@@ -169,7 +177,8 @@ void Context::run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRan
         queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
         event.wait();
         double ms = double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
-                           event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) * 1e-6;
+                           event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
+                    1e-6;
         std::lock_guard lock(mutex_);
         timings_.push_back({name, ms});
     } catch (const cl::Error& e) {

@@ -1,0 +1,130 @@
+// The CLI as a user meets it: exit codes, one-line errors, no partial output, intact existing files.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct CliRun {
+    int exitCode;
+    std::string out;
+    std::string err;
+};
+
+CliRun run(const std::string& args) {
+    fs::path errFile = fs::temp_directory_path() / ("iblbake_cli_err_" + std::to_string(::getpid()));
+    std::string cmd = std::string(IBLBAKE_CLI) + " " + args + " 2>" + errFile.string();
+    CliRun r{};
+    FILE* pipe = ::popen(cmd.c_str(), "r");
+    std::array<char, 4096> buf;
+    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe))
+        r.out.append(buf.data(), n);
+    int status = ::pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(errFile);
+    r.err.assign(std::istreambuf_iterator<char>(in), {});
+    fs::remove(errFile);
+    return r;
+}
+
+int lineCount(const std::string& s) {
+    return int(std::count(s.begin(), s.end(), '\n'));
+}
+
+fs::path tempDir(const std::string& name) {
+    fs::path dir = fs::temp_directory_path() / ("iblbake_" + name + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+TEST(Cli, DfgWritesLayoutMetadata) {
+    fs::path dir = tempDir("dfg");
+    CliRun r = run("dfg --size 16 --samples 64 --backend cpu -o " + (dir / "lut.exr").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    auto in = OIIO::ImageInput::open((dir / "lut.exr").string());
+    ASSERT_TRUE(in);
+    const OIIO::ImageSpec& spec = in->spec();
+    EXPECT_EQ(spec.width, 16);
+    EXPECT_EQ(spec.nchannels, 3);
+    EXPECT_EQ(spec.channelnames, (std::vector<std::string>{"R", "G", "B"}));
+    EXPECT_NE(spec.get_string_attribute("iblbake:layout").find("DFG1"), std::string::npos);
+    EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
+    // Only the output, no temporary file left beside it.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    fs::remove_all(dir);
+}
+
+TEST(Cli, HalfOutput) {
+    fs::path dir = tempDir("half");
+    ASSERT_EQ(run("dfg --size 8 --samples 16 --half --backend cpu -o " + (dir / "lut.exr").string()).exitCode,
+              0);
+    auto in = OIIO::ImageInput::open((dir / "lut.exr").string());
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().format, OIIO::TypeDesc::HALF);
+    fs::remove_all(dir);
+}
+
+TEST(Cli, BadOptionIsOneLineAndNonZero) {
+    for (std::string args :
+         {"dfg --size banana -o x.exr", "dfg --size 0 -o x.exr", "dfg", "dfg --bogus -o x.exr", "frobnicate",
+          "dfg --backend quantum -o x.exr", "dfg --half --float -o x.exr"}) {
+        CliRun r = run(args);
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("iblbake: error:", 0), 0u) << r.err;
+    }
+    EXPECT_FALSE(fs::exists("x.exr"));
+}
+
+TEST(Cli, UnwritableOutputIsOneLineNonZeroAndNothingPartial) {
+    CliRun r = run("dfg --size 8 --samples 16 --backend cpu -o /nonexistent-dir/lut.exr");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("/nonexistent-dir/lut.exr"), std::string::npos) << r.err;
+
+    // A read-only directory (skipped as root, who may write anywhere).
+    fs::path dir = tempDir("ro");
+    fs::permissions(dir, fs::perms::owner_read | fs::perms::owner_exec);
+    if (::geteuid() != 0) {
+        CliRun ro = run("dfg --size 8 --samples 16 --backend cpu -o " + (dir / "lut.exr").string());
+        EXPECT_NE(ro.exitCode, 0);
+        EXPECT_EQ(lineCount(ro.err), 1) << ro.err;
+    }
+    fs::permissions(dir, fs::perms::owner_all);
+    fs::remove_all(dir);
+}
+
+TEST(Cli, FailedWriteKeepsExistingFile) {
+    // The target exists as a directory: the write fails and the user's data stays as it was.
+    fs::path dir = tempDir("keep");
+    fs::create_directories(dir / "lut.exr");
+    std::ofstream(dir / "lut.exr" / "precious.txt") << "keep me";
+    CliRun r = run("dfg --size 8 --samples 16 --backend cpu -o " + (dir / "lut.exr").string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_EQ(lineCount(r.err), 1) << r.err;
+    EXPECT_TRUE(fs::exists(dir / "lut.exr" / "precious.txt"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    fs::remove_all(dir);
+}
+
+TEST(Cli, DevicesAndTiming) {
+    CliRun devices = run("devices");
+    EXPECT_EQ(devices.exitCode, 0);
+    EXPECT_FALSE(devices.out.empty());
+    fs::path dir = tempDir("timing");
+    CliRun timed = run("dfg --size 16 --samples 64 --timing -o " + (dir / "lut.exr").string());
+    EXPECT_EQ(timed.exitCode, 0) << timed.err;
+    EXPECT_NE(timed.out.find("timing: stage"), std::string::npos) << timed.out;
+    fs::remove_all(dir);
+}
+
+} // namespace
