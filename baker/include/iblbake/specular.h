@@ -1,0 +1,51 @@
+// The specular LD chain (DESIGN.md "LD mip <-> roughness"): level 0 is the unconvolved source, level m
+// holds the GGX pre-integration (N = V = R) for the perceptual roughness the mip mapping gives it.
+#pragma once
+
+#include "iblbake/cube_pyramid.h"
+#include "iblbake/cubemap.h"
+#include "iblbake/executor.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+enum class MipMapping {
+    Frostbite, // m = sqrt(r) (L - 1), r_m = (m / (L - 1))^2 (Frostbite eq. 63; the default)
+    Linear,    // r_m = m / (L - 1)
+};
+MipMapping parseMipMapping(const std::string& name); // "frostbite" | "linear"
+const char* mipMappingName(MipMapping mapping);
+float perceptualRoughnessForLevel(int level, int levelCount, MipMapping mapping);
+
+enum class Quality { Draft, Production, Reference };
+Quality parseQuality(const std::string& name);
+const char* qualityName(Quality quality);
+
+struct SpecularSettings {
+    int levels = 0; // 0: down to 1x1 (log2(face size) + 1)
+    MipMapping mapping = MipMapping::Frostbite;
+    std::uint32_t samples = 0; // per texel and level; 0: from the quality preset
+    Quality quality = Quality::Production;
+    float lodBias = 0.0f; // added to Listing 19's 0.5 log2(omegaS / omegaP); 0 measured best (see README)
+};
+
+std::uint32_t samplesFor(const SpecularSettings& settings);
+int levelCountFor(int faceSize, const SpecularSettings& settings);
+
+struct SpecularLevelTiming {
+    int level;
+    float perceptualRoughness;
+    double milliseconds;
+};
+
+// Bakes the chain from a source cube whose face size is the output's (a power of two).
+CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
+                          std::vector<SpecularLevelTiming>* timings = nullptr);
+
+// Brute-force reference for one level: every source texel, solid-angle weighted, fp64 accumulation.
+CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness);
+
+} // namespace ibl

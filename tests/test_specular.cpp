@@ -1,0 +1,126 @@
+// Specular LD chain: analytic cases, the brute-force reference, and backend agreement.
+#include <iblbake/error.h>
+#include <iblbake/specular.h>
+
+#include <cube.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace {
+
+using namespace ibl;
+
+Executor openclOrCpu() {
+    std::ostringstream warnings;
+    return Executor::create(Backend::Auto, "", warnings);
+}
+
+template <class F>
+CubeMap makeCube(int n, F radiance) {
+    CubeMap c(n);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                c.faces[f].at(x, y) = glm::vec4(
+                    radiance(glm::normalize(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n))), 1.0f);
+    return c;
+}
+
+// A sky-like environment: bright upper hemisphere with a gradient, a warm lobe, a dark ground.
+glm::vec3 skyLike(glm::vec3 d) {
+    glm::vec3 sky = glm::vec3(0.4f, 0.6f, 1.0f) * (0.5f + 0.5f * std::max(d.y, 0.0f));
+    glm::vec3 ground = glm::vec3(0.1f, 0.08f, 0.05f);
+    float lobe = std::pow(std::max(glm::dot(d, glm::normalize(glm::vec3(0.5f, 0.4f, 0.6f))), 0.0f), 32.0f);
+    return (d.y > 0 ? sky : ground) + glm::vec3(20.0f, 15.0f, 10.0f) * lobe;
+}
+
+double relativeMeanAbsError(const CubeMap& a, const CubeMap& ref) {
+    double err = 0.0, sum = 0.0;
+    for (int f = 0; f < 6; ++f)
+        for (std::size_t i = 0; i < a.faces[f].pixels.size(); ++i)
+            for (int c = 0; c < 3; ++c) {
+                err += std::abs(a.faces[f].pixels[i][c] - ref.faces[f].pixels[i][c]);
+                sum += std::abs(ref.faces[f].pixels[i][c]);
+            }
+    return err / sum;
+}
+
+TEST(Specular, WhiteFurnaceEveryLevelEveryTexel) {
+    CubeMap constant = makeCube(32, [](glm::vec3) { return glm::vec3(0.75f); });
+    for (Executor executor : {Executor::cpu(), openclOrCpu()}) {
+        CubeMapChain chain = bakeSpecular(constant, SpecularSettings{}, executor);
+        ASSERT_EQ(chain.levels.size(), 6u);
+        for (const CubeMap& level : chain.levels)
+            for (const ImageRGBA& face : level.faces)
+                for (const glm::vec4& p : face.pixels)
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_NEAR(p[c], 0.75f, 0.75f * 1e-4f) << executor.description();
+    }
+}
+
+TEST(Specular, MirrorLevelIsTheSourceAndMappingIsEq63) {
+    CubeMap source = makeCube(16, skyLike);
+    CubeMapChain chain = bakeSpecular(source, SpecularSettings{}, Executor::cpu());
+    ASSERT_EQ(chain.levels.size(), 5u);
+    for (int f = 0; f < 6; ++f)
+        EXPECT_EQ(chain.levels[0].faces[f].pixels, source.faces[f].pixels);
+    for (int m = 0; m < 5; ++m)
+        EXPECT_EQ(chain.levels[m].faceSize, 16 >> m);
+    EXPECT_FLOAT_EQ(perceptualRoughnessForLevel(2, 5, MipMapping::Frostbite), 0.25f);
+    EXPECT_FLOAT_EQ(perceptualRoughnessForLevel(4, 5, MipMapping::Frostbite), 1.0f);
+    EXPECT_FLOAT_EQ(perceptualRoughnessForLevel(2, 5, MipMapping::Linear), 0.5f);
+}
+
+TEST(Specular, OpenCLAgreesWithCpu) {
+    Executor cl = openclOrCpu();
+    if (!cl.usesOpenCL()) GTEST_SKIP() << "no OpenCL device";
+    CubeMap source = makeCube(32, skyLike);
+    CubeMapChain a = bakeSpecular(source, SpecularSettings{}, Executor::cpu());
+    CubeMapChain b = bakeSpecular(source, SpecularSettings{}, cl);
+    // Same functions and tables; FMA contraction and summation order differ between the compilers.
+    for (std::size_t m = 0; m < a.levels.size(); ++m)
+        EXPECT_LT(relativeMeanAbsError(b.levels[m], a.levels[m]), 1e-5) << m;
+}
+
+TEST(Specular, ProductionPresetWithin2PercentOfBruteForce) {
+    CubeMap source = makeCube(32, skyLike);
+    CubeMapChain chain = bakeSpecular(source, SpecularSettings{}, openclOrCpu());
+    for (int m = 1; m < int(chain.levels.size()); ++m) {
+        float r = perceptualRoughnessForLevel(m, int(chain.levels.size()), MipMapping::Frostbite);
+        CubeMap ref = referenceSpecularLevel(source, chain.levels[m].faceSize, r);
+        double error = relativeMeanAbsError(chain.levels[m], ref);
+        std::printf("level %d r=%.3f relative MAE %.4f\n", m, r, error);
+        EXPECT_LT(error, 0.02) << "level " << m;
+    }
+}
+
+TEST(Specular, BrightSunStaysFiniteAndBounded) {
+    const float sun = 1e6f;
+    CubeMap source = makeCube(32, [](glm::vec3) { return glm::vec3(1.0f); });
+    source.faces[4].at(20, 9) = glm::vec4(sun, sun, sun, 1.0f);
+    CubeMapChain chain = bakeSpecular(source, SpecularSettings{}, openclOrCpu());
+    for (const CubeMap& level : chain.levels)
+        for (const ImageRGBA& face : level.faces)
+            for (const glm::vec4& p : face.pixels)
+                for (int c = 0; c < 3; ++c) {
+                    ASSERT_TRUE(std::isfinite(p[c]));
+                    ASSERT_GE(p[c], 0.0f);
+                    ASSERT_LE(p[c], sun);
+                }
+}
+
+TEST(Specular, TinyFacesAndBadSizes) {
+    CubeMap one = makeCube(1, [](glm::vec3 d) { return glm::abs(d); });
+    EXPECT_EQ(bakeSpecular(one, SpecularSettings{}, Executor::cpu()).levels.size(), 1u);
+    CubeMap two = makeCube(2, [](glm::vec3) { return glm::vec3(2.0f); });
+    CubeMapChain chain = bakeSpecular(two, SpecularSettings{}, openclOrCpu());
+    ASSERT_EQ(chain.levels.size(), 2u);
+    for (const ImageRGBA& face : chain.levels[1].faces)
+        EXPECT_NEAR(face.pixels[0].x, 2.0f, 2e-4f);
+    EXPECT_THROW(bakeSpecular(makeCube(12, skyLike), SpecularSettings{}, Executor::cpu()), Error);
+}
+
+} // namespace
