@@ -11,5 +11,6 @@ using Action = std::function<int()>;
 
 Action addDevicesCommand(CLI::App& app);
 Action addDfgCommand(CLI::App& app);
+Action addSpecularCommand(CLI::App& app);
 
 } // namespace ibl::cli

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
     auto add = [&](ibl::cli::Action action) { actions[app.get_subcommands({}).back()] = std::move(action); };
     add(ibl::cli::addDevicesCommand(app));
     add(ibl::cli::addDfgCommand(app));
+    add(ibl::cli::addSpecularCommand(app));
 
     try {
         app.parse(argc, argv);

@@ -28,29 +28,21 @@ IBL_FN vec3 cubeFaceDirection(int face, float s, float t) {
 }
 
 // Face and (s, t) hit by a direction (need not be normalized; must not be zero). Ties between
-// axes of equal magnitude go to X, then Y, as in the OpenGL selection rule.
+// axes of equal magnitude go to X, then Y, as in the OpenGL selection rule. Written with selects
+// only, so that work-items taking different faces stay vectorized together.
 IBL_FN CubeCoord cubeCoordFromDirection(vec3 d) {
     float ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
+    int xMajor = ax >= ay && ax >= az;
+    int yMajor = !xMajor && ay >= az;
+    int zMajor = !xMajor && !yMajor;
     CubeCoord c;
-    float ma, sc, tc;
-    if (ax >= ay && ax >= az) {
-        c.face = d.x >= 0.0f ? 0 : 1;
-        ma = ax;
-        sc = d.x >= 0.0f ? -d.z : d.z;
-        tc = -d.y;
-    } else if (ay >= az) {
-        c.face = d.y >= 0.0f ? 2 : 3;
-        ma = ay;
-        sc = d.x;
-        tc = d.y >= 0.0f ? d.z : -d.z;
-    } else {
-        c.face = d.z >= 0.0f ? 4 : 5;
-        ma = az;
-        sc = d.z >= 0.0f ? d.x : -d.x;
-        tc = -d.y;
-    }
-    c.s = 0.5f * (sc / ma + 1.0f);
-    c.t = 0.5f * (tc / ma + 1.0f);
+    c.face = xMajor ? (d.x >= 0.0f ? 0 : 1) : yMajor ? (d.y >= 0.0f ? 2 : 3) : (d.z >= 0.0f ? 4 : 5);
+    float ma = xMajor ? ax : yMajor ? ay : az;
+    float sc = xMajor ? (d.x >= 0.0f ? -d.z : d.z) : (zMajor && d.z < 0.0f ? -d.x : d.x);
+    float tc = yMajor ? (d.y >= 0.0f ? d.z : -d.z) : -d.y;
+    float inv = 0.5f / ma;
+    c.s = sc * inv + 0.5f;
+    c.t = tc * inv + 0.5f;
     return c;
 }
 

@@ -12,27 +12,46 @@ IBL_BEGIN_NAMESPACE
 
 #define IBL_MAX_CUBE_LEVELS 16
 
+// A pyramid's shape: a power-of-two base face size and levels down to 1x1, so level m has faces of
+// n_m = base >> m and every offset has a closed form (no per-level arrays, which PoCL cannot keep in
+// registers across work-items).
 typedef struct {
+    uint32_t baseFaceSize;
     uint32_t levelCount;
-    uint32_t faceSize[IBL_MAX_CUBE_LEVELS];    // texels per face side, without border
-    uint32_t levelOffset[IBL_MAX_CUBE_LEVELS]; // first float of the level
 } CubePyramidLayout;
 
+IBL_FN uint cubeLevelFaceSize(CubePyramidLayout layout, uint level) {
+    return layout.baseFaceSize >> level;
+}
+
+// First float of level m: 18 sum_{k<m} (n_k + 2)^2 with n_k = N / 2^k, i.e.
+// 18 [ (4/3)(N^2 - n_m^2) + 8 (N - n_m) + 4 m ] (a geometric series; N^2 - n_m^2 is divisible by 3).
+IBL_FN uint cubeLevelOffset(CubePyramidLayout layout, uint level) {
+    uint big = layout.baseFaceSize, n = big >> level;
+    return 18u * ((4u * (big * big - n * n)) / 3u + 8u * (big - n) + 4u * level);
+}
+
+IBL_FN uint cubePyramidFloatCount(CubePyramidLayout layout) {
+    return cubeLevelOffset(layout, layout.levelCount);
+}
+
 IBL_FN uint cubeBorderedTexelIndex(CubePyramidLayout layout, uint level, int face, int x, int y) {
-    uint stride = layout.faceSize[level] + 2u;
-    return layout.levelOffset[level] + 3u * (((uint)face * stride + (uint)(y + 1)) * stride + (uint)(x + 1));
+    uint stride = cubeLevelFaceSize(layout, level) + 2u;
+    return cubeLevelOffset(layout, level) +
+           3u * (((uint)face * stride + (uint)(y + 1)) * stride + (uint)(x + 1));
 }
 
 // Bilinear lookup of one level at (face, s, t). Texel centres sit at (i + 0.5) / n; the border makes
 // the taps at -1 and n valid.
 IBL_FN vec3 cubeSampleLevel(IBL_GLOBAL const float* pyramid, CubePyramidLayout layout, uint level,
                             CubeCoord c) {
-    float n = (float)layout.faceSize[level];
+    uint size = cubeLevelFaceSize(layout, level);
+    float n = (float)size;
     float x = c.s * n - 0.5f, y = c.t * n - 0.5f;
     float x0f = clamp(floor(x), -1.0f, n - 1.0f), y0f = clamp(floor(y), -1.0f, n - 1.0f);
     float fx = clamp(x - x0f, 0.0f, 1.0f), fy = clamp(y - y0f, 0.0f, 1.0f);
     int x0 = (int)x0f, y0 = (int)y0f;
-    uint stride = layout.faceSize[level] + 2u;
+    uint stride = size + 2u;
     uint i00 = cubeBorderedTexelIndex(layout, level, c.face, x0, y0);
     uint i10 = i00 + 3u, i01 = i00 + 3u * stride, i11 = i01 + 3u;
     float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;

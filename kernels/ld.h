@@ -12,9 +12,12 @@ IBL_BEGIN_NAMESPACE
 // Kernel arguments of one LD level (fixed-width scalars; layout checked on the host).
 typedef struct {
     CubePyramidLayout source;
-    uint32_t faceSize;    // output face size of this level
-    uint32_t sampleCount; // table entries
-    float invWeightSum;   // 1 / sum of the table's weights
+    uint32_t faceSize;     // output face size of this level
+    uint32_t sampleCount;  // table entries
+    float invWeightSum;    // 1 / sum of the table's weights
+    uint32_t brightCount;  // entries of the bright-texel list
+    float alpha;           // GGX alpha of this level
+    float invLobeIntegral; // 1 / W(alpha), W = integral of D(h) NoL dl (N = V)
 } LdParams;
 
 // One sample of a level's table, in the texel's tangent frame: light direction, its weight NoL, and
@@ -53,7 +56,6 @@ IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayo
     Frame f = frameFromNormal(n);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint i = 0; i < sampleCount; ++i) {
-        IBL_UNIFORM_LOOP_HEAD();
         const IBL_GLOBAL float* e = table + 5 * i;
         vec3 l = frameToWorld(f, v3(e[0], e[1], e[2]));
         vec3 c = cubeSampleLod(pyramid, layout, l, e[4]);
@@ -62,6 +64,101 @@ IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayo
         b += c.z * e[3];
     }
     return v3(r * invWeightSum, g * invWeightSum, b * invWeightSum);
+}
+
+// Bright texels are taken out of the pre-filtered source and integrated exactly: with a sun 10^5 times
+// brighter than the sky, the few samples of filtered importance sampling that land near it decide the
+// result (noise, ghosts), and the long GGX tail carries visible energy even at low roughness. The source
+// is split linearly, L = R + B: R is the source with bright texels scaled down to the threshold (filtered
+// importance sampling handles it well), B the sparse excess, whose contribution
+// sum_b B_b integral_texel D(h) NoL dl / W(alpha) is summed here over every bright texel.
+// A list entry has 10 floats: centre direction (3), solid angle, excess radiance (3), face, x, y.
+#define IBL_BRIGHT_ENTRY_FLOATS 10
+
+// D(h) NoL over a sub-rectangle [u0, u0 + step] x [v0, v0 + step] (face-plane coordinates in [-1, 1])
+// of one face, evaluated at its centre with its exact solid angle.
+IBL_FN float lobeWeightOfPatch(vec3 n, int face, float u0, float v0, float step, float alpha) {
+    float omega = fabs(cubeAreaElement(u0, v0) - cubeAreaElement(u0, v0 + step) -
+                       cubeAreaElement(u0 + step, v0) + cubeAreaElement(u0 + step, v0 + step));
+    vec3 l = v3normalize(
+        cubeFaceDirection(face, 0.5f * (u0 + 0.5f * step + 1.0f), 0.5f * (v0 + 0.5f * step + 1.0f)));
+    float NoL = v3dot(n, l);
+    vec3 h = v3normalize(v3add(n, l));
+    return NoL > 0.0f ? D_GGX(v3dot(n, h), alpha) * NoL * omega : 0.0f;
+}
+
+// Integral of f(q) = alpha^2 / (pi (alpha^2 + |q|^2)^2) over the triangle (0, a, b) of the plane,
+// signed by the triangle's orientation. In polar form along the edge's line at distance d:
+// (1 / 2 pi) (d / sqrt(alpha^2 + d^2)) [atan(d T / sqrt(alpha^2 + d^2))] between the edge's ends, T the
+// tangent of the angle from the foot of the perpendicular.
+IBL_FN float lobeTriangleIntegral(float2 a, float2 b, float alpha) {
+    float2 e = make_float2(b.x - a.x, b.y - a.y);
+    float len = sqrt(e.x * e.x + e.y * e.y);
+    float cr = a.x * b.y - a.y * b.x; // twice the signed triangle area
+    float d = len > 0.0f ? fabs(cr) / len : 0.0f;
+    if (d <= 0.0f) return 0.0f;
+    float ex = e.x / len, ey = e.y / len;
+    float k = sqrt(alpha * alpha + d * d);
+    float ta = (a.x * ex + a.y * ey) / d, tb = (b.x * ex + b.y * ey) / d;
+    float value = (d / k) * (atan(d * tb / k) - atan(d * ta / k)) * (0.5f * IBL_INV_PI);
+    return cr >= 0.0f ? value : -value;
+}
+
+// integral_texel D(h) NoL dl for a lobe much narrower than one radian around n, texel [u0, u0 + size] x
+// [v0, v0 + size] of `face` (face-plane coordinates), all of it in front of n. Small-angle form: with
+// the gnomonic offset p of l in the tangent plane and q = p / 2 the half-vector offset, D(h) NoL dl ~
+// 4 alpha^2 / (pi (alpha^2 + |q|^2)^2) d^2q (the total is 4 = W(0)); the texel's projection is a
+// quadrilateral, integrated exactly as four signed triangles from the lobe centre.
+IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, float size, float alpha) {
+    float2 q[4];
+    for (int k = 0; k < 4; ++k) {
+        float u = u0 + ((k == 1 || k == 2) ? size : 0.0f), v = v0 + (k >= 2 ? size : 0.0f);
+        vec3 l = cubeFaceDirection(face, 0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
+        vec3 inFrame = frameToLocal(frame, l);
+        q[k] = make_float2(0.5f * inFrame.x / inFrame.z, 0.5f * inFrame.y / inFrame.z);
+    }
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k)
+        sum += lobeTriangleIntegral(q[k], q[(k + 1) & 3], alpha);
+    return 4.0f * fabs(sum);
+}
+
+IBL_FN vec3 brightTexelsLd(vec3 n, IBL_GLOBAL const float* bright, uint count, float alpha,
+                           float invLobeIntegral, uint sourceFaceSize) {
+    // Face-plane size of a texel, about its angle. Away from the lobe centre, D changes across a texel
+    // by ~4 size / max(angle, alpha): such texels are integrated on an S x S grid that keeps the change
+    // under ~0.1. Texels within three texels of a lobe under a quarter texel wide use the closed form.
+    float texelSize = 2.0f / (float)sourceFaceSize;
+    Frame frame = frameFromNormal(n);
+    float r = 0.0f, g = 0.0f, b = 0.0f;
+    for (uint i = 0; i < count; ++i) {
+        const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
+        vec3 d = v3(e[0], e[1], e[2]);
+        float cosAngle = v3dot(n, d);
+        float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chord: the angle where it matters (small)
+        float subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
+        int face = (int)e[7];
+        float u0 = -1.0f + e[8] * texelSize, v0 = -1.0f + e[9] * texelSize;
+        float weight;
+        if (4.0f * alpha < texelSize && angle < 3.0f * texelSize) {
+            weight = narrowLobeTexelWeight(frame, face, u0, v0, texelSize, alpha);
+        } else if (subdivisions <= 1.0f || cosAngle < 0.0f) {
+            vec3 h = v3normalize(v3add(n, d));
+            weight = cosAngle > 0.0f ? D_GGX(v3dot(n, h), alpha) * cosAngle * e[3] : 0.0f;
+        } else {
+            int S = (int)fmin(subdivisions, 32.0f);
+            float step = texelSize / (float)S;
+            weight = 0.0f;
+            for (int j = 0; j < S; ++j)
+                for (int k = 0; k < S; ++k)
+                    weight +=
+                        lobeWeightOfPatch(n, face, u0 + (float)k * step, v0 + (float)j * step, step, alpha);
+        }
+        r += weight * e[4];
+        g += weight * e[5];
+        b += weight * e[6];
+    }
+    return v3(r * invLobeIntegral, g * invLobeIntegral, b * invLobeIntegral);
 }
 
 IBL_END_NAMESPACE

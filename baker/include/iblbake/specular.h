@@ -29,6 +29,10 @@ struct SpecularSettings {
     MipMapping mapping = MipMapping::Frostbite;
     std::uint32_t samples = 0; // per texel and level; 0: from the quality preset
     Quality quality = Quality::Production;
+    // Texels brighter than brightThreshold x the solid-angle-weighted mean luminance (at most
+    // maxBrightTexels of them, the brightest) are integrated exactly instead of by sampling (ld.h).
+    float brightThreshold = 32.0f;
+    std::uint32_t maxBrightTexels = 256;
     float lodBias = 0.0f; // added to Listing 19's 0.5 log2(omegaS / omegaP); 0 measured best (see README)
 };
 

@@ -153,6 +153,11 @@ cl::Kernel Context::kernel(const std::string& file, const std::string& kernelNam
 }
 
 cl::Buffer Context::createBuffer(cl_mem_flags flags, std::size_t bytes, const void* hostData) {
+    // OpenCL has no empty buffers: an empty upload becomes a 16-byte placeholder with nothing to copy.
+    if (bytes == 0) {
+        flags &= ~cl_mem_flags(CL_MEM_COPY_HOST_PTR | CL_MEM_USE_HOST_PTR);
+        hostData = nullptr;
+    }
     try {
         return cl::Buffer(context_, flags, std::max<std::size_t>(bytes, 16), const_cast<void*>(hostData));
     } catch (const cl::Error& e) {

@@ -52,20 +52,16 @@ void storeLevel(const CubeMap& level, uint32_t index, CubePyramid& pyramid) {
 } // namespace
 
 CubePyramid buildCubePyramid(const CubeMap& base) {
-    if (base.faceSize <= 0) throw Error("cube pyramid: empty source cube");
+    if (base.faceSize <= 0 || (base.faceSize & (base.faceSize - 1)) != 0 || base.faceSize > 8192)
+        throw Error("cube pyramid: face size " + std::to_string(base.faceSize) +
+                    " is not a power of two up to 8192");
     CubePyramid pyramid;
     std::vector<CubeMap> levels{base};
     while (levels.back().faceSize > 1 && levels.size() < IBL_MAX_CUBE_LEVELS)
         levels.push_back(downsample(levels.back()));
+    pyramid.layout.baseFaceSize = uint32_t(base.faceSize);
     pyramid.layout.levelCount = uint32_t(levels.size());
-    uint32_t offset = 0;
-    for (uint32_t m = 0; m < levels.size(); ++m) {
-        uint32_t n = uint32_t(levels[m].faceSize);
-        pyramid.layout.faceSize[m] = n;
-        pyramid.layout.levelOffset[m] = offset;
-        offset += 6u * (n + 2u) * (n + 2u) * 3u;
-    }
-    pyramid.data.assign(offset, 0.0f);
+    pyramid.data.assign(cubePyramidFloatCount(pyramid.layout), 0.0f);
     for (uint32_t m = 0; m < levels.size(); ++m)
         storeLevel(levels[m], m, pyramid);
     return pyramid;

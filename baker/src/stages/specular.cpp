@@ -1,6 +1,8 @@
 #include "iblbake/specular.h"
 #include "iblbake/error.h"
 
+#include "bright_split.h"
+
 #include <ld.h>
 
 #include <tbb/parallel_for.h>
@@ -11,9 +13,9 @@
 namespace ibl {
 namespace {
 
-static_assert(sizeof(CubePyramidLayout) == 4 * (1 + 2 * IBL_MAX_CUBE_LEVELS), "CubePyramidLayout must match");
-static_assert(sizeof(LdParams) == sizeof(CubePyramidLayout) + 12 &&
-                  offsetof(LdParams, invWeightSum) == sizeof(CubePyramidLayout) + 8,
+static_assert(sizeof(CubePyramidLayout) == 8, "CubePyramidLayout must match cube_sample.h");
+static_assert(sizeof(LdParams) == sizeof(CubePyramidLayout) + 24 &&
+                  offsetof(LdParams, invLobeIntegral) == sizeof(CubePyramidLayout) + 20,
               "LdParams must match ld.h");
 
 struct LevelTable {
@@ -36,7 +38,22 @@ LevelTable levelTable(std::uint32_t n, float alpha, int sourceFaceSize, float lo
     return t;
 }
 
-CubeMap levelCpu(const CubePyramid& pyramid, const LevelTable& table, int n) {
+// W(alpha) = integral of D(h) NoL dl over the hemisphere with N = V. With dl = 4 VoH dh and the GGX
+// sampling variable u (D(h) cos(theta_h) dh = du dphi / 2 pi), W = 4 integral_0^1 max(0, cos 2theta_h(u)) du,
+// a smooth 1D integral.
+double lobeIntegral(double alpha) {
+    const int steps = 1 << 16;
+    double sum = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        double u = (i + 0.5) / steps;
+        double cos2 = (1.0 - u) / (1.0 + (alpha * alpha - 1.0) * u);
+        sum += std::max(0.0, 2.0 * cos2 - 1.0);
+    }
+    return 4.0 * sum / steps;
+}
+
+CubeMap levelCpu(const CubePyramid& pyramid, const LevelTable& table, const BrightTexels& bright,
+                 const LdParams& p, int n) {
     CubeMap out(n);
     tbb::parallel_for(0, 6 * n, [&](int row) {
         int face = row / n, y = row % n;
@@ -44,25 +61,27 @@ CubeMap levelCpu(const CubePyramid& pyramid, const LevelTable& table, int n) {
             vec3 d = glm::normalize(
                 cubeFaceDirection(face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
             vec3 c = integrateLd(d, pyramid.data.data(), pyramid.layout, table.samples.data(), table.count(),
-                                 table.invWeightSum);
+                                 table.invWeightSum) +
+                     brightTexelsLd(d, bright.entries.data(), bright.count(), p.alpha, p.invLobeIntegral,
+                                    pyramid.layout.baseFaceSize);
             out.faces[face].at(x, y) = glm::vec4(c, 1.0f);
         }
     });
     return out;
 }
 
-CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const CubePyramid& pyramid,
-                    const LevelTable& table, int n) {
+CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const cl::Buffer& brightBuffer,
+                    const LevelTable& table, const LdParams& params, int n) {
     CubeMap out(n);
     cl::Kernel kernel = cl.kernel("ld.cl", "ldLevel");
     cl::Buffer tableBuffer = cl.upload(table.samples);
     const std::size_t faceTexels = std::size_t(n) * std::size_t(n);
     cl::Buffer outBuffer = cl.createBuffer(CL_MEM_WRITE_ONLY, 6 * faceTexels * sizeof(glm::vec4));
-    LdParams params{pyramid.layout, std::uint32_t(n), table.count(), table.invWeightSum};
     kernel.setArg(0, params);
     kernel.setArg(1, pyramidBuffer);
     kernel.setArg(2, tableBuffer);
-    kernel.setArg(3, outBuffer);
+    kernel.setArg(3, brightBuffer);
+    kernel.setArg(4, outBuffer);
     // Groups of up to 16 adjacent texels of one row: same face, nearby fetches, uniform loop.
     const std::size_t groupWidth = std::min<std::size_t>(16, std::size_t(n));
     const std::size_t width = (std::size_t(n) + groupWidth - 1) / groupWidth * groupWidth;
@@ -73,6 +92,17 @@ CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const Cub
         std::copy(pixels.begin() + f * faceTexels, pixels.begin() + (f + 1) * faceTexels,
                   out.faces[f].pixels.begin());
     return out;
+}
+
+// A lobe much narrower than a source texel needs few samples: they all land in one bilinear
+// footprint. The GGX lobe of reflected directions covers about 4 pi alpha^2 sr (small alpha), a source
+// texel 4 pi / (6 w^2), so the lobe spans 6 w^2 alpha^2 texels; we take 16 samples per texel it
+// spans, at least 8 and at most the preset's count (beyond that, pre-filtered lookups cover the lobe).
+std::uint32_t samplesForLobe(std::uint32_t maxSamples, float alpha, int sourceFaceSize) {
+    double texelsSpanned = 6.0 * double(sourceFaceSize) * sourceFaceSize * double(alpha) * alpha;
+    double wanted = std::ceil(16.0 * texelsSpanned);
+    return std::uint32_t(
+        std::clamp(wanted, double(std::min<std::uint32_t>(8, maxSamples)), double(maxSamples)));
 }
 
 bool isPowerOfTwo(int v) {
@@ -132,22 +162,37 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
                     " is not a power of two up to 8192");
     const int levelCount = levelCountFor(source.faceSize, settings);
     const std::uint32_t samples = samplesFor(settings);
-    CubePyramid pyramid = buildCubePyramid(source);
+    BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
+    CubePyramid pyramid = buildCubePyramid(split.residual);
     const float maxLod = float(pyramid.layout.levelCount - 1);
-    cl::Buffer pyramidBuffer;
-    if (executor.usesOpenCL()) pyramidBuffer = executor.cl().upload(pyramid.data);
+    cl::Buffer pyramidBuffer, brightBuffer;
+    if (executor.usesOpenCL()) {
+        pyramidBuffer = executor.cl().upload(pyramid.data);
+        brightBuffer = executor.cl().upload(split.bright.entries);
+    }
 
     CubeMapChain chain;
     chain.levels.push_back(source); // level 0: the mirror, unconvolved (Frostbite footnote 43)
     for (int m = 1; m < levelCount; ++m) {
         auto start = std::chrono::steady_clock::now();
         float r = perceptualRoughnessForLevel(m, levelCount, settings.mapping);
-        LevelTable table =
-            levelTable(samples, alphaFromPerceptual(r), source.faceSize, settings.lodBias, maxLod);
-        int n = std::max(1, source.faceSize >> m);
+        float alpha = alphaFromPerceptual(r);
+        const int n = std::max(1, source.faceSize >> m);
+        // Rough levels are small (a 16-texel face has 1/64 of the texels of a 128 one) and their wide
+        // lobes want more samples, so faces under 32 texels get 32/n times the preset's count, up to 16x.
+        const std::uint32_t levelSamples = samples * std::uint32_t(std::clamp(32 / n, 1, 16));
+        LevelTable table = levelTable(samplesForLobe(levelSamples, alpha, source.faceSize), alpha,
+                                      source.faceSize, settings.lodBias, maxLod);
+        LdParams params{pyramid.layout,
+                        std::uint32_t(n),
+                        table.count(),
+                        table.invWeightSum,
+                        split.bright.count(),
+                        alpha,
+                        float(1.0 / lobeIntegral(alpha))};
         chain.levels.push_back(executor.usesOpenCL()
-                                   ? levelOpenCL(executor.cl(), pyramidBuffer, pyramid, table, n)
-                                   : levelCpu(pyramid, table, n));
+                                   ? levelOpenCL(executor.cl(), pyramidBuffer, brightBuffer, table, params, n)
+                                   : levelCpu(pyramid, table, split.bright, params, n));
         if (timings)
             timings->push_back(
                 {m, r,
@@ -155,44 +200,6 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
                      .count()});
     }
     return chain;
-}
-
-CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness) {
-    const int w = source.faceSize, n = outputFaceSize;
-    const double alpha = double(perceptualRoughness) * perceptualRoughness;
-    std::vector<glm::dvec3> dirs(6 * std::size_t(w) * w);
-    std::vector<double> solidAngles(dirs.size());
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < w; ++y)
-            for (int x = 0; x < w; ++x) {
-                std::size_t k = (std::size_t(f) * w + y) * w + x;
-                dirs[k] = glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / w, (y + 0.5f) / w)));
-                solidAngles[k] = cubeTexelSolidAngle(x, y, w);
-            }
-    CubeMap out(n);
-    tbb::parallel_for(0, 6 * n, [&](int row) {
-        int face = row / n, y = row % n;
-        for (int x = 0; x < n; ++x) {
-            glm::dvec3 nrm =
-                glm::normalize(glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / n, (y + 0.5f) / n)));
-            glm::dvec3 sum(0.0);
-            double weightSum = 0.0;
-            for (std::size_t k = 0; k < dirs.size(); ++k) {
-                double NoL = glm::dot(nrm, dirs[k]);
-                if (NoL <= 0.0) continue;
-                // Expectation of Listing 19's estimator: samples l with pdf D(h) / 4 (N = V), weighted by
-                // NoL.
-                double NoH = glm::dot(nrm, glm::normalize(nrm + dirs[k]));
-                double a2 = alpha * alpha, d = NoH * NoH * (a2 - 1.0) + 1.0;
-                double weight = a2 / (d * d) * NoL * solidAngles[k];
-                const glm::vec4& c = source.faces[k / (std::size_t(w) * w)].pixels[k % (std::size_t(w) * w)];
-                sum += weight * glm::dvec3(c);
-                weightSum += weight;
-            }
-            out.faces[face].at(x, y) = glm::vec4(glm::vec3(sum / weightSum), 1.0f);
-        }
-    });
-    return out;
 }
 
 } // namespace ibl

@@ -1,0 +1,96 @@
+// The ingest pipeline: read -> repair -> colour-convert -> repair -> resample into the source cube.
+// Non-finite values are repaired before the colour matrix (which would smear an Inf into NaNs across
+// channels); negatives are repaired on both sides of it, since a gamut change can create them.
+#include "iblbake/ingest.h"
+#include "ingest_internal.h"
+
+#include "iblbake/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace ibl {
+
+namespace {
+
+constexpr int kMaxFaceSize = 8192;
+
+// A lat-long's width / 4 (its resolution at the equator) rounded to the nearest power of two.
+int defaultLatLongFaceSize(int width) {
+    const int target = std::max(1, width / 4);
+    int p = 1;
+    while (p <= target / 2)
+        p *= 2;
+    return std::min(kMaxFaceSize, target - p < 2 * p - target ? p : 2 * p);
+}
+
+void add(IngestReport& report, const ingest::RepairCounts& n) {
+    report.nanRepaired += n.nan;
+    report.infRepaired += n.inf;
+    report.negativeRepaired += n.negative;
+}
+
+} // namespace
+
+SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& files,
+                                    const IngestSettings& settings) {
+    const bool six = settings.layout == EnvLayout::SixFiles;
+    if (six && files.size() != 6)
+        throw Error("layout six-files needs 6 files (+X, -X, +Y, -Y, +Z, -Z), got " +
+                    std::to_string(files.size()));
+    if (!six && files.size() != 1)
+        throw Error("expected one input file, got " + std::to_string(files.size()) +
+                    (files.size() == 6 ? " (six faces need --layout six-files)" : ""));
+    if (!std::isfinite(settings.rotateDegrees)) throw Error("--rotate: the angle must be a finite number");
+    if (settings.sourceFaceSize < 0 || settings.sourceFaceSize > kMaxFaceSize)
+        throw Error("--face-size: " + std::to_string(settings.sourceFaceSize) + " is not in 0.." +
+                    std::to_string(kMaxFaceSize));
+
+    std::vector<ingest::RawImage> images;
+    for (const auto& file : files)
+        images.push_back(ingest::readImage(file));
+
+    SourceEnvironment env;
+    IngestReport& report = env.report;
+    const ingest::RawImage& first = images.front();
+    report.file = first.file;
+    report.width = first.pixels.width;
+    report.height = first.pixels.height;
+    report.layout = ingest::resolveLayout(first, settings.layout);
+    for (const auto& image : images) {
+        if (image.pixels.width != first.pixels.width || image.pixels.height != first.pixels.height)
+            throw Error(image.file + ": is " + std::to_string(image.pixels.width) + "x" +
+                        std::to_string(image.pixels.height) + ", but " + first.file + " is " +
+                        std::to_string(first.pixels.width) + "x" + std::to_string(first.pixels.height));
+        ingest::resolveLayout(image, report.layout); // six files: each must be square
+    }
+
+    report.inputColorSpace = ingest::resolveInputColorSpace(first, settings.inputColorSpace);
+    const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace); // also checks linearity
+    report.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);
+    for (auto& image : images) {
+        add(report, ingest::sanitize(image.pixels));
+        ingest::convertColor(image.pixels, report.inputColorSpace, report.workingColorSpace, image.file);
+        add(report, ingest::sanitize(image.pixels));
+        report.maxLuminanceIn = std::max(report.maxLuminanceIn, ingest::maxLuminance(image.pixels, weights));
+    }
+
+    const double rotate = double(settings.rotateDegrees) * std::numbers::pi / 180.0;
+    if (report.layout == EnvLayout::LatLong) {
+        report.faceSize = settings.sourceFaceSize > 0 ? settings.sourceFaceSize
+                                                      : defaultLatLongFaceSize(first.pixels.width);
+        env.cube = ingest::resampleLatLongToCubeRotated(first.pixels, report.faceSize, rotate);
+    } else {
+        const ingest::SourceFaces faces = report.layout == EnvLayout::ExrCube
+                                              ? ingest::facesFromExrCube(first)
+                                              : ingest::facesFromLayout(images, report.layout);
+        report.faceSize =
+            settings.sourceFaceSize > 0 ? settings.sourceFaceSize : ingest::sourceFaceSizeOf(faces);
+        env.cube = ingest::resampleFacesToCube(faces, report.faceSize);
+        if (rotate != 0.0) env.cube = ingest::rotateCube(env.cube, rotate);
+    }
+    return env;
+}
+
+} // namespace ibl

@@ -1,0 +1,100 @@
+// Pieces of the ingest front end shared between its translation units (not part of the public API).
+#pragma once
+
+#include "iblbake/cubemap.h"
+#include "iblbake/image.h"
+#include "iblbake/ingest.h"
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <cube.h>
+#include <glm/geometric.hpp>
+#include <glm/vec3.hpp>
+
+namespace ibl::ingest {
+
+// Face-plane frame of one of our cube faces: the direction through face-plane point (a, b), with
+// a = 2s - 1 and b = 2t - 1 of kernels/cube.h, is o + a u + b v (o, u, v orthonormal axes).
+struct FaceFrame {
+    glm::dvec3 o, u, v;
+    glm::dvec3 at(double a, double b) const { return o + a * u + b * v; }
+};
+
+inline FaceFrame faceFrame(int face) {
+    const vec3 c = cubeFaceDirection(face, 0.5f, 0.5f);
+    const vec3 pu = cubeFaceDirection(face, 1.0f, 0.5f);
+    const vec3 pv = cubeFaceDirection(face, 0.5f, 1.0f);
+    return {glm::dvec3(c), glm::dvec3(pu - c), glm::dvec3(pv - c)};
+}
+
+// ---- reading (read_image.cpp) ----
+struct RawImage {
+    std::string file;
+    ImageRGBA pixels;                  // R, G, B of the file's level 0 (grey replicated), alpha = 1
+    std::string colorSpace;            // oiio:ColorSpace, "" if absent
+    std::vector<float> chromaticities; // EXR chromaticities (8 values) if present
+    std::string textureFormat;         // OIIO "textureformat" (from the EXR envmap attribute), "" if absent
+    std::string upDirection;           // OIIO "oiio:updirection", "" if absent
+    bool integerPixels = false;        // stored as integers (8-bit PNG/JPEG, 16-bit TIFF...): display-encoded
+};
+
+// Reads level 0 of the first subimage. Throws ibl::Error "<file>: ..." when it cannot.
+RawImage readImage(const std::filesystem::path& file);
+
+// ---- layout (layout.cpp) ----
+// The layout of a single image: `requested` if not Auto (checked against the size), else detected from
+// metadata and aspect ratio. Throws ibl::Error naming the file when it cannot tell or the size does not fit.
+EnvLayout resolveLayout(const RawImage& image, EnvLayout requested);
+
+// ---- colour (color.cpp) ----
+// The input colour space: `requested` if given, else from metadata; returned as the config's name.
+std::string resolveInputColorSpace(const RawImage& image, const std::string& requested);
+// The config's own name of a colour space given by name or alias, "" if it has none.
+std::string colorSpaceName(const std::string& nameOrAlias);
+// Converts in place (RGB; alpha untouched). Throws ibl::Error naming `file` on OCIO errors.
+void convertColor(ImageRGBA& image, const std::string& from, const std::string& to, const std::string& file);
+// Luminance weights of a linear colour space: the Y row of its RGB -> XYZ (via lin_rec709 in the config).
+glm::dvec3 luminanceWeights(const std::string& linearSpace);
+// Path of the OCIO config in use: $OCIO if set, else the one shipped in data/ocio.
+std::string ocioConfigPath();
+
+// ---- sanitize (sanitize.cpp) ----
+struct RepairCounts {
+    std::uint64_t nan = 0, inf = 0, negative = 0;
+};
+// NaN -> 0, +Inf -> largest finite value of the image (65504 if none), -Inf and negatives -> 0 (RGB only).
+RepairCounts sanitize(ImageRGBA& image);
+float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
+
+// ---- cube faces (faces_to_cube.cpp) ----
+// One face of a cube-like input, already in our face's orientation: cell (c, r) spans face-plane
+// coordinates [edgesA[c], edgesA[c+1]] x [edgesB[r], edgesB[r+1]] where a = 2s - 1, b = 2t - 1 of
+// kernels/cube.h. The edges increase from -1 to 1 and the cells cover the face exactly.
+struct SourceFace {
+    int cols = 0, rows = 0;
+    std::vector<glm::vec3> values; // row-major, rows along b
+    std::vector<double> edgesA, edgesB;
+};
+using SourceFaces = std::array<SourceFace, 6>;
+
+// Faces of a strip, cross or six-file input (uniform cells, faces already in our orientation).
+SourceFaces facesFromLayout(const std::vector<RawImage>& images, EnvLayout layout);
+// Faces of an OpenEXR cube map (ImfEnvmap CubeMap): pixel centres span the face edge to edge.
+SourceFaces facesFromExrCube(const RawImage& image);
+// Exact area-weighted resampling: each texel gets the solid-angle average of the source cells over it.
+CubeMap resampleFacesToCube(const SourceFaces& faces, int faceSize);
+int sourceFaceSizeOf(const SourceFaces& faces);
+
+// ---- lat-long (latlong_to_cube.cpp) ----
+// resampleLatLongToCube with the environment rotated by `rotateRadians` about +Y (see IngestSettings).
+CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, double rotateRadians);
+
+// ---- rotation of a cube (rotate_cube.cpp) ----
+// Rotates about +Y by supersampled bilinear lookups (approximate; used only for cube inputs).
+CubeMap rotateCube(const CubeMap& cube, double rotateRadians);
+
+} // namespace ibl::ingest

@@ -1,0 +1,251 @@
+// Lat-long -> cube resampling that is exact in area.
+//
+// In the coordinates (longitude phi, z = sin(latitude)) the solid angle is dphi * dz (Lambert's
+// cylindrical equal-area projection), and a lat-long pixel is an axis-aligned rectangle in which the
+// image is constant (pixel grid of ImfEnvmap's LatLongMap, see LatLongGrid). A cube texel, seen from the
+// centre, is a convex spherical quadrilateral: every meridian crosses it in one arc [z_lo(phi), z_hi(phi)],
+// found by clipping the meridian's half-plane against the texel square on the face plane. So
+//
+//     energy(texel) = integral over phi of  integral_{z_lo(phi)}^{z_hi(phi)} L(phi, z) dz  dphi,
+//
+// where the inner integral is a sum over the pixel column's rows (exact), and the outer one is split at
+// pixel column edges and at the texel corners' longitudes (where z_lo, z_hi have kinks) and done by
+// Gauss-Legendre quadrature on each piece. The texel's value is energy / area, the area being the same
+// quadrature of z_hi - z_lo: a constant environment gives a constant cube to rounding, and a one-pixel
+// sun keeps its energy (vertical texel edges on the side faces are meridians, so there the split of a
+// pixel between texels is exact; elsewhere only the quadrature of a smooth edge curve is approximate).
+#include "ingest_internal.h"
+
+#include "iblbake/error.h"
+
+#include <cube.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace ibl {
+
+namespace ingest {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// 2-point Gauss-Legendre rule on [-1, 1] (exact for cubics; Abramowitz & Stegun, table 25.4).
+constexpr int kOrder = 2;
+constexpr double kNodes[kOrder] = {-0.5773502691896258, 0.5773502691896258};
+constexpr double kWeights[kOrder] = {1.0, 1.0};
+
+double longitude(const glm::dvec3& d) {
+    return std::atan2(d.x, d.z);
+}
+
+struct Square {
+    double a0, a1, b0, b1;
+};
+
+// The arc [zLo, zHi] of the meridian at longitude phi inside the texel; false when they do not meet.
+bool clipMeridian(const FaceFrame& f, const Square& sq, double phi, double& zLo, double& zHi) {
+    const glm::dvec3 n(std::cos(phi), 0.0, -std::sin(phi)); // normal of the meridian's plane
+    const glm::dvec3 m(std::sin(phi), 0.0, std::cos(phi));  // the meridian's horizontal direction
+    // Plane: A a + B b + C = 0 on the face plane; half-plane: P + Q a + R b >= 0.
+    const double A = glm::dot(n, f.u), B = glm::dot(n, f.v), C = glm::dot(n, f.o);
+    const double P = glm::dot(m, f.o), Q = glm::dot(m, f.u), R = glm::dot(m, f.v);
+    const double len2 = A * A + B * B;
+    if (len2 < 1e-24) return false; // meridian plane parallel to the face
+    const double pa = -C * A / len2, pb = -C * B / len2, ta = -B, tb = A;
+    double lo = -1e300, hi = 1e300;
+    // Constraint alpha + beta * tau >= 0 (Liang-Barsky).
+    auto limit = [&](double alpha, double beta) {
+        if (std::fabs(beta) < 1e-300) {
+            if (alpha < 0.0) hi = -1e300;
+        } else if (beta > 0.0) {
+            lo = std::max(lo, -alpha / beta);
+        } else {
+            hi = std::min(hi, -alpha / beta);
+        }
+    };
+    limit(pa - sq.a0, ta);
+    limit(sq.a1 - pa, -ta);
+    limit(pb - sq.b0, tb);
+    limit(sq.b1 - pb, -tb);
+    limit(P + Q * pa + R * pb, Q * ta + R * tb);
+    if (!(lo < hi)) return false;
+    const glm::dvec3 d0 = f.at(pa + lo * ta, pb + lo * tb), d1 = f.at(pa + hi * ta, pb + hi * tb);
+    const double z0 = d0.y / glm::length(d0), z1 = d1.y / glm::length(d1);
+    zLo = std::min(z0, z1);
+    zHi = std::max(z0, z1);
+    return true;
+}
+
+// Pixel grid of ImfEnvmap's LatLongMap: pixel (x, y) is centred at u = x / (W - 1), v = y / (H - 1), so the
+// first and last columns both sit on the 180-degree seam and the first and last rows on the poles. Each
+// pixel covers the half-way points to its neighbours: edge k (0 < k < n) is at (k - 0.5) / (n - 1), and
+// the seam columns and pole rows are half as wide as the others.
+std::vector<double> latLongEdges(int n) {
+    std::vector<double> e(std::size_t(n) + 1);
+    for (int k = 1; k < n; ++k)
+        e[std::size_t(k)] = (k - 0.5) / (n - 1);
+    e.front() = 0.0;
+    e.back() = 1.0;
+    return e;
+}
+
+class LatLongGrid {
+  public:
+    explicit LatLongGrid(const ImageRGBA& image)
+        : image_(image), uEdge_(latLongEdges(image.width)), zEdge_(latLongEdges(image.height)) {
+        // Row edges as z = sin(latitude) = cos(pi v).
+        for (double& z : zEdge_)
+            z = std::cos(kPi * z);
+        zEdge_.front() = 1.0;
+        zEdge_.back() = -1.0;
+    }
+
+    const std::vector<double>& uEdges() const { return uEdge_; }
+
+    // Column holding u in [0, 1).
+    int column(double u) const {
+        const int w = image_.width;
+        int c = w == 1 ? 0 : std::clamp(int(std::floor(u * (w - 1) + 0.5)), 0, w - 1);
+        while (c > 0 && u < uEdge_[std::size_t(c)])
+            --c;
+        while (c < w - 1 && u >= uEdge_[std::size_t(c) + 1])
+            ++c;
+        return c;
+    }
+
+    // Integral of column c over z in [zLo, zHi], per channel.
+    glm::dvec3 integrate(int c, double zLo, double zHi) const {
+        const int rTop = row(zHi), rBottom = row(zLo);
+        if (rTop == rBottom) return value(c, rTop) * (zHi - zLo);
+        glm::dvec3 sum = value(c, rTop) * (zHi - zEdge(rTop + 1));
+        for (int r = rTop + 1; r < rBottom; ++r)
+            sum += value(c, r) * (zEdge(r) - zEdge(r + 1));
+        return sum + value(c, rBottom) * (zEdge(rBottom) - zLo);
+    }
+
+  private:
+    double zEdge(int r) const { return zEdge_[std::size_t(r)]; }
+    glm::dvec3 value(int c, int r) const { return glm::dvec3(glm::vec3(image_.at(c, r))); }
+    // Row r spans z in [zEdge(r + 1), zEdge(r)].
+    int row(double z) const {
+        const int h = image_.height;
+        const double v = std::acos(std::clamp(z, -1.0, 1.0)) / kPi;
+        int r = h == 1 ? 0 : std::clamp(int(std::floor(v * (h - 1) + 0.5)), 0, h - 1);
+        while (r > 0 && z > zEdge(r))
+            --r;
+        while (r < h - 1 && z < zEdge(r + 1))
+            ++r;
+        return r;
+    }
+
+    const ImageRGBA& image_;
+    std::vector<double> uEdge_, zEdge_;
+};
+
+struct TexelIntegral {
+    glm::dvec3 energy{0.0};
+    double area = 0.0;
+};
+
+TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq, double rotate,
+                             std::vector<double>& cuts) {
+    // Longitude range of the texel: its corners' longitudes unwrapped around the centre's; a texel that
+    // holds a pole inside sees every longitude. A corner at a pole has no longitude and is skipped.
+    const glm::dvec3 centre = frame.at(0.5 * (sq.a0 + sq.a1), 0.5 * (sq.b0 + sq.b1));
+    cuts.clear();
+    double phiMin, phiMax;
+    const bool holdsPole =
+        std::fabs(frame.o.y) == 1.0 && sq.a0 < 0.0 && 0.0 < sq.a1 && sq.b0 < 0.0 && 0.0 < sq.b1;
+    if (holdsPole) {
+        phiMin = -kPi;
+        phiMax = kPi;
+        for (double a : {sq.a0, sq.a1})
+            for (double b : {sq.b0, sq.b1})
+                cuts.push_back(longitude(frame.at(a, b)));
+    } else {
+        const double phiC = longitude(centre);
+        phiMin = 1e300;
+        phiMax = -1e300;
+        for (double a : {sq.a0, sq.a1})
+            for (double b : {sq.b0, sq.b1}) {
+                const glm::dvec3 d = frame.at(a, b);
+                if (d.x * d.x + d.z * d.z < 1e-24) continue;
+                const double phi = phiC + std::remainder(longitude(d) - phiC, kTwoPi);
+                cuts.push_back(phi);
+                phiMin = std::min(phiMin, phi);
+                phiMax = std::max(phiMax, phi);
+            }
+    }
+    // Source u of a target longitude, not wrapped: u = 0.5 - (phi - rotate) / (2 pi) (DESIGN.md).
+    auto uOf = [&](double phi) { return 0.5 - (phi - rotate) / kTwoPi; };
+    auto phiOf = [&](double u) { return (0.5 - u) * kTwoPi + rotate; };
+    // Pixel column edges inside the range, in every period of u it spans (the seam u = 0 is one of them).
+    const double uLo = uOf(phiMax), uHi = uOf(phiMin);
+    const std::vector<double>& edges = grid.uEdges();
+    for (double period = std::floor(uLo); period <= uHi; period += 1.0) {
+        const auto first = std::upper_bound(edges.begin(), edges.end() - 1, uLo - period);
+        const auto last = std::lower_bound(edges.begin(), edges.end() - 1, uHi - period);
+        for (auto it = first; it < last; ++it)
+            cuts.push_back(phiOf(period + *it));
+    }
+    cuts.push_back(phiMin);
+    cuts.push_back(phiMax);
+    std::sort(cuts.begin(), cuts.end());
+
+    TexelIntegral sum;
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+        const double p0 = std::max(cuts[i], phiMin), p1 = std::min(cuts[i + 1], phiMax);
+        if (!(p1 - p0 > 1e-15)) continue;
+        const double half = 0.5 * (p1 - p0), mid = 0.5 * (p0 + p1);
+        const double u = uOf(mid);
+        const int column = grid.column(u - std::floor(u));
+        for (int k = 0; k < kOrder; ++k) {
+            double zLo, zHi;
+            if (!clipMeridian(frame, sq, mid + half * kNodes[k], zLo, zHi)) continue;
+            const double w = half * kWeights[k];
+            sum.area += w * (zHi - zLo);
+            sum.energy += w * grid.integrate(column, zLo, zHi);
+        }
+    }
+    return sum;
+}
+
+} // namespace
+
+CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, double rotateRadians) {
+    if (latlong.width <= 0 || latlong.height <= 0) throw Error("lat-long resampling: empty image");
+    if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
+    const LatLongGrid grid(latlong);
+    CubeMap cube(faceSize);
+    const double step = 2.0 / faceSize;
+    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * faceSize), [&](const tbb::blocked_range<int>& rows) {
+        std::vector<double> cuts; // scratch, reused across texels
+        for (int fr = rows.begin(); fr != rows.end(); ++fr) {
+            const int face = fr / faceSize, j = fr % faceSize;
+            const FaceFrame frame = faceFrame(face);
+            for (int i = 0; i < faceSize; ++i) {
+                const Square sq{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step,
+                                -1.0 + (j + 1) * step};
+                const TexelIntegral t = integrateTexel(grid, frame, sq, rotateRadians, cuts);
+                const glm::dvec3 v = t.area > 0.0 ? t.energy / t.area : glm::dvec3(0.0);
+                cube.faces[std::size_t(face)].at(i, j) = glm::vec4(glm::vec3(v), 1.0f);
+            }
+        }
+    });
+    return cube;
+}
+
+} // namespace ingest
+
+CubeMap resampleLatLongToCube(const ImageRGBA& latlong, int faceSize) {
+    return ingest::resampleLatLongToCubeRotated(latlong, faceSize, 0.0);
+}
+
+} // namespace ibl

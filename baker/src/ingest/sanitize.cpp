@@ -1,0 +1,79 @@
+// Repair of pixel values that must not reach the bake (DESIGN.md "Failure behaviour": NaN/Inf/negative
+// pixels are repaired and counted, never propagated).
+#include "ingest_internal.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ibl::ingest {
+
+namespace {
+
+// fp16's largest finite value: what +Inf becomes when the image has no finite value to borrow.
+constexpr float kHalfMax = 65504.0f;
+
+using Range = tbb::blocked_range<std::size_t>;
+
+float largestFinite(const ImageRGBA& image) {
+    return tbb::parallel_reduce(
+        Range(0, image.pixels.size(), 4096), -std::numeric_limits<float>::infinity(),
+        [&](const Range& r, float m) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    if (std::isfinite(image.pixels[i][c])) m = std::max(m, image.pixels[i][c]);
+            return m;
+        },
+        [](float a, float b) { return std::max(a, b); });
+}
+
+} // namespace
+
+RepairCounts sanitize(ImageRGBA& image) {
+    float finiteMax = largestFinite(image);
+    // All-negative or empty images have nothing positive to offer; 0 would erase a sun marked as +Inf.
+    const float infValue = finiteMax > 0.0f ? finiteMax : kHalfMax;
+    return tbb::parallel_reduce(
+        Range(0, image.pixels.size(), 4096), RepairCounts{},
+        [&](const Range& r, RepairCounts n) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i)
+                for (int c = 0; c < 3; ++c) {
+                    float& v = image.pixels[i][c];
+                    if (std::isnan(v)) {
+                        v = 0.0f;
+                        ++n.nan;
+                    } else if (std::isinf(v)) {
+                        v = v > 0.0f ? infValue : 0.0f;
+                        ++n.inf;
+                    } else if (v < 0.0f) {
+                        v = 0.0f;
+                        ++n.negative;
+                    }
+                }
+            return n;
+        },
+        [](RepairCounts a, const RepairCounts& b) {
+            a.nan += b.nan;
+            a.inf += b.inf;
+            a.negative += b.negative;
+            return a;
+        });
+}
+
+float maxLuminance(const ImageRGBA& image, const glm::dvec3& w) {
+    return tbb::parallel_reduce(
+        Range(0, image.pixels.size(), 4096), 0.0f,
+        [&](const Range& r, float m) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                const glm::vec4& p = image.pixels[i];
+                m = std::max(m, float(w.x * p.x + w.y * p.y + w.z * p.z));
+            }
+            return m;
+        },
+        [](float a, float b) { return std::max(a, b); });
+}
+
+} // namespace ibl::ingest

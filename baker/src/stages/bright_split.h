@@ -1,0 +1,27 @@
+// Splits a source cube into a residual with its bright texels scaled down to a threshold luminance and
+// the sparse excess of those texels (the list kernels/ld.h integrates exactly).
+#pragma once
+
+#include "iblbake/cubemap.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace ibl {
+
+struct BrightTexels {
+    std::vector<float> entries; // IBL_BRIGHT_ENTRY_FLOATS per texel
+    std::uint32_t count() const;
+};
+
+struct BrightSplit {
+    CubeMap residual;
+    BrightTexels bright;
+    float thresholdLuminance = 0.0f;
+};
+
+// threshold: multiple of the solid-angle-weighted mean luminance; at most maxTexels texels are split
+// off (the brightest; the threshold rises when more exceed it). residual + excess == source exactly.
+BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels);
+
+} // namespace ibl

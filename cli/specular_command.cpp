@@ -1,0 +1,169 @@
+// iblbake specular: HDRI in, prefiltered specular (LD) cube mip chain out as KTX2.
+#include "commands.h"
+#include "common_options.h"
+
+#include <iblbake/error.h>
+#include <iblbake/exr_output.h>
+#include <iblbake/ingest.h>
+#include <iblbake/ktx2.h>
+#include <iblbake/specular.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+namespace ibl::cli {
+
+namespace {
+
+struct SpecularOptions {
+    std::vector<std::string> inputs;
+    std::string output;
+    int size = 256;
+    int levels = 0;
+    std::string quality = "production";
+    std::uint32_t samples = 0;
+    std::string format = "rgba16f";
+    std::string exrDir;
+    std::string layout = "auto";
+    std::string inputColorSpace;
+    std::string workingColorSpace = "lin_rec709";
+    float rotate = 0.0f;
+    std::string mipMapping = "frostbite";
+    float lodBias = 0.0f;
+    BackendOptions backend;
+};
+
+Ktx2Format parseFormat(const std::string& name) {
+    if (name == "rgba16f") return Ktx2Format::RGBA16F;
+    if (name == "rgba32f") return Ktx2Format::RGBA32F;
+    if (name == "b10g11r11") return Ktx2Format::B10G11R11;
+    if (name == "e5b9g9r9") return Ktx2Format::E5B9G9R9;
+    throw Error("--format: '" + name + "' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9");
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// One EXR per level: the six faces side by side in +X, -X, +Y, -Y, +Z, -Z order (OpenGL orientation).
+void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, const std::string& mapping) {
+    std::filesystem::create_directories(dir);
+    for (std::size_t m = 0; m < chain.levels.size(); ++m) {
+        const CubeMap& level = chain.levels[m];
+        ImageRGBA strip(6 * level.faceSize, level.faceSize);
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < level.faceSize; ++y)
+                for (int x = 0; x < level.faceSize; ++x)
+                    strip.at(f * level.faceSize + x, y) = level.faces[f].at(x, y);
+        ExrOutputOptions exr;
+        exr.channels = 3;
+        exr.attributes = {{"iblbake:layout", "horizontal strip +X,-X,+Y,-Y,+Z,-Z, OpenGL face orientation"},
+                          {"iblbake:level", std::to_string(m)},
+                          {"iblbake:roughnessMapping", mapping}};
+        writeExr(dir / ("level_" + std::to_string(m) + ".exr"), strip, exr);
+    }
+}
+
+} // namespace
+
+Action addSpecularCommand(CLI::App& app) {
+    auto o = std::make_shared<SpecularOptions>();
+    CLI::App* cmd =
+        app.add_subcommand("specular", "bake the prefiltered specular (LD) cube mip chain to KTX2");
+    cmd->add_option("input", o->inputs, "HDR environment (one file, or six for --layout six-files)")
+        ->required();
+    cmd->add_option("-o,--output", o->output, "output .ktx2 file")->required();
+    cmd->add_option("--size", o->size, "face size of level 0 (power of two)")->capture_default_str();
+    cmd->add_option("--levels", o->levels, "mip levels (default: down to 1x1)");
+    cmd->add_option("--quality", o->quality, "sample preset: draft, production, reference")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"draft", "production", "reference"}));
+    cmd->add_option("--samples", o->samples, "maximum samples per texel (overrides the preset)");
+    cmd->add_option("--format", o->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}));
+    cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
+    cmd->add_option("--layout", o->layout,
+                    "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files")
+        ->capture_default_str();
+    cmd->add_option("--input-colorspace", o->inputColorSpace,
+                    "input colour space (default: file metadata, else "
+                    "lin_rec709; sRGB for 8-bit files)");
+    cmd->add_option("--working-colorspace", o->workingColorSpace, "lin_rec709 or acescg")
+        ->capture_default_str();
+    cmd->add_option("--rotate", o->rotate, "rotate the environment about +Y, degrees")->capture_default_str();
+    cmd->add_option("--mip-mapping", o->mipMapping, "roughness per level: frostbite (eq. 63) or linear")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"frostbite", "linear"}));
+    cmd->add_option("--lod-bias", o->lodBias, "added to the source LOD of each sample")
+        ->capture_default_str();
+    o->backend.addTo(*cmd);
+
+    return [o] {
+        auto start = std::chrono::steady_clock::now();
+        const Ktx2Format format = parseFormat(o->format);
+        if (o->size < 1 || o->size > 8192 || (o->size & (o->size - 1)) != 0)
+            throw Error("--size: " + std::to_string(o->size) + " is not a power of two from 1 to 8192");
+        IngestSettings ingest;
+        ingest.layout = parseLayout(o->layout);
+        ingest.inputColorSpace = o->inputColorSpace;
+        ingest.workingColorSpace = o->workingColorSpace;
+        ingest.rotateDegrees = o->rotate;
+        ingest.sourceFaceSize = o->size;
+        SpecularSettings settings;
+        settings.levels = o->levels;
+        settings.quality = parseQuality(o->quality);
+        settings.samples = o->samples;
+        settings.mapping = parseMipMapping(o->mipMapping);
+        settings.lodBias = o->lodBias;
+        Executor executor = o->backend.makeExecutor();
+
+        std::vector<std::filesystem::path> files(o->inputs.begin(), o->inputs.end());
+        SourceEnvironment env = ingestEnvironment(files, ingest);
+        const double ingestMs = msSince(start);
+        const IngestReport& r = env.report;
+        std::printf("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width, r.height,
+                    layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
+                    r.maxLuminanceIn);
+        std::printf("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
+                    (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,
+                    (unsigned long long)r.negativeRepaired);
+
+        std::vector<SpecularLevelTiming> timings;
+        auto bakeStart = std::chrono::steady_clock::now();
+        CubeMapChain chain = bakeSpecular(env.cube, settings, executor, &timings);
+        const double bakeMs = msSince(bakeStart);
+        for (const SpecularLevelTiming& t : timings)
+            std::printf("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.level, t.perceptualRoughness,
+                        chain.levels[std::size_t(t.level)].faceSize, t.milliseconds);
+
+        const int levelCount = int(chain.levels.size());
+        const std::string mapping = std::string(mipMappingName(settings.mapping)) +
+                                    (settings.mapping == MipMapping::Frostbite
+                                         ? ": level m of L holds perceptualRoughness (m/(L-1))^2"
+                                         : ": level m of L holds perceptualRoughness m/(L-1)");
+        Ktx2KeyValues kv = {{"iblbake.product", "specular-ld"},
+                            {"iblbake.roughnessMapping", mapping},
+                            {"iblbake.levelCount", std::to_string(levelCount)},
+                            {"iblbake.units", "relative (input values, uncalibrated)"},
+                            {"iblbake.colorSpace", r.workingColorSpace},
+                            {"iblbake.source", std::filesystem::path(r.file).filename().string()},
+                            {"iblbake.settings",
+                             "quality=" + o->quality + " samples=" + std::to_string(samplesFor(settings)) +
+                                 " lodBias=" + std::to_string(settings.lodBias) + " size=" +
+                                 std::to_string(o->size) + " rotate=" + std::to_string(o->rotate)}};
+        Ktx2WriteStats stats = writeKtx2Cube(o->output, chain, format, kv);
+        if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, mapping);
+        std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
+                    o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
+                    (unsigned long long)stats.repairedNonFinite);
+        std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs, bakeMs,
+                    executor.description().c_str(), msSince(start));
+        o->backend.printTiming(executor, "specular", bakeMs);
+        return 0;
+    };
+}
+
+} // namespace ibl::cli
