@@ -6,6 +6,7 @@
 #include <iblbake/exr_output.h>
 #include <iblbake/ingest.h>
 #include <iblbake/ktx2.h>
+#include <iblbake/preview.h>
 #include <iblbake/specular.h>
 
 #include <chrono>
@@ -26,12 +27,13 @@ struct SpecularOptions {
     std::uint32_t samples = 0;
     std::string format = "rgba16f";
     std::string exrDir;
+    std::string preview;
     std::string layout = "auto";
     std::string inputColorSpace;
     std::string workingColorSpace = "lin_rec709";
     float rotate = 0.0f;
     std::string mipMapping = "frostbite";
-    float lodBias = 0.0f;
+    float lodBias = SpecularSettings{}.lodBias;
     BackendOptions backend;
 };
 
@@ -85,6 +87,7 @@ Action addSpecularCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
+    cmd->add_option("--preview", o->preview, "also write a tone-mapped PNG of every level");
     cmd->add_option("--layout", o->layout,
                     "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files")
         ->capture_default_str();
@@ -156,6 +159,7 @@ Action addSpecularCommand(CLI::App& app) {
                                  std::to_string(o->size) + " rotate=" + std::to_string(o->rotate)}};
         Ktx2WriteStats stats = writeKtx2Cube(o->output, chain, format, kv);
         if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, mapping);
+        if (!o->preview.empty()) writeChainPreview(o->preview, chain);
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
                     (unsigned long long)stats.repairedNonFinite);

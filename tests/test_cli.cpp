@@ -1,49 +1,25 @@
 // The CLI as a user meets it: exit codes, one-line errors, no partial output, intact existing files.
+#include "cli_runner.h"
+
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct CliRun {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
-
+using ibl::test::CliRun;
+using ibl::test::entryCount;
+using ibl::test::lineCount;
 CliRun run(const std::string& args) {
-    fs::path errFile = fs::temp_directory_path() / ("iblbake_cli_err_" + std::to_string(::getpid()));
-    std::string cmd = std::string(IBLBAKE_CLI) + " " + args + " 2>" + errFile.string();
-    CliRun r{};
-    FILE* pipe = ::popen(cmd.c_str(), "r");
-    std::array<char, 4096> buf;
-    while (std::size_t n = std::fread(buf.data(), 1, buf.size(), pipe))
-        r.out.append(buf.data(), n);
-    int status = ::pclose(pipe);
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(errFile);
-    r.err.assign(std::istreambuf_iterator<char>(in), {});
-    fs::remove(errFile);
-    return r;
+    return ibl::test::runCli(args);
 }
-
-int lineCount(const std::string& s) {
-    return int(std::count(s.begin(), s.end(), '\n'));
-}
-
 fs::path tempDir(const std::string& name) {
-    fs::path dir = fs::temp_directory_path() / ("iblbake_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
+    return ibl::test::freshTempDir(name);
 }
 
 TEST(Cli, DfgWritesLayoutMetadata) {
@@ -59,7 +35,7 @@ TEST(Cli, DfgWritesLayoutMetadata) {
     EXPECT_NE(spec.get_string_attribute("iblbake:layout").find("DFG1"), std::string::npos);
     EXPECT_EQ(spec.format, OIIO::TypeDesc::FLOAT);
     // Only the output, no temporary file left beside it.
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    EXPECT_EQ(entryCount(dir), 1u);
     fs::remove_all(dir);
 }
 
@@ -112,7 +88,7 @@ TEST(Cli, FailedWriteKeepsExistingFile) {
     EXPECT_NE(r.exitCode, 0);
     EXPECT_EQ(lineCount(r.err), 1) << r.err;
     EXPECT_TRUE(fs::exists(dir / "lut.exr" / "precious.txt"));
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    EXPECT_EQ(entryCount(dir), 1u);
     fs::remove_all(dir);
 }
 

@@ -1,0 +1,81 @@
+#include "iblbake/preview.h"
+#include "iblbake/atomic_file.h"
+#include "iblbake/error.h"
+
+#include <cube.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace ibl {
+namespace {
+
+float luminance(const glm::vec4& p) {
+    return 0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z;
+}
+
+float medianLuminance(const CubeMap& cube) {
+    struct Sample {
+        float lum, omega;
+    };
+    std::vector<Sample> samples;
+    double total = 0.0;
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < cube.faceSize; ++y)
+            for (int x = 0; x < cube.faceSize; ++x) {
+                float omega = cubeTexelSolidAngle(x, y, cube.faceSize);
+                samples.push_back({luminance(cube.faces[f].at(x, y)), omega});
+                total += omega;
+            }
+    std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) { return a.lum < b.lum; });
+    double accumulated = 0.0;
+    for (const Sample& s : samples)
+        if ((accumulated += s.omega) >= 0.5 * total) return s.lum;
+    return samples.empty() ? 0.0f : samples.back().lum;
+}
+
+// IEC 61966-2-1 (Frostbite Listing 30).
+float encodeSrgb(float linear) {
+    linear = std::clamp(linear, 0.0f, 1.0f);
+    return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+} // namespace
+
+void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& chain, int tileSize,
+                       float exposureEV) {
+    if (chain.levels.empty()) throw Error(path.string() + ": nothing to preview");
+    const int gap = 4, width = 6 * tileSize + 5 * gap;
+    const int rows = int(chain.levels.size()), height = rows * tileSize + (rows - 1) * gap;
+    const float median = medianLuminance(chain.levels[0]);
+    const float scale = (median > 0.0f ? 0.18f / median : 1.0f) * std::exp2(exposureEV);
+    std::vector<unsigned char> pixels(std::size_t(width) * height * 3, 24); // dark grey gaps
+    for (int m = 0; m < rows; ++m) {
+        const CubeMap& level = chain.levels[std::size_t(m)];
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < tileSize; ++y)
+                for (int x = 0; x < tileSize; ++x) {
+                    const glm::vec4& texel =
+                        level.faces[f].at(x * level.faceSize / tileSize, y * level.faceSize / tileSize);
+                    std::size_t o =
+                        (std::size_t(m * (tileSize + gap) + y) * width + f * (tileSize + gap) + x) * 3;
+                    for (int c = 0; c < 3; ++c) {
+                        float v = texel[c] * scale;
+                        pixels[o + c] = (unsigned char)std::lround(255.0f * encodeSrgb(v / (1.0f + v)));
+                    }
+                }
+    }
+    AtomicFile file(path);
+    auto out = OIIO::ImageOutput::create(file.tempPath().string());
+    if (!out) throw Error(path.string() + ": cannot create an image writer: " + OIIO::geterror());
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    if (!out->open(file.tempPath().string(), spec) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
+        throw Error(path.string() + ": " + out->geterror());
+    file.commit();
+}
+
+} // namespace ibl

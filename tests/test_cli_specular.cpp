@@ -1,0 +1,87 @@
+// `iblbake specular` end to end: the sample HDRI in, a valid KTX2 chain with its metadata, the EXR
+// levels and the preview out; bad input refused with one line and nothing written.
+#include "cli_runner.h"
+
+#include <iblbake/ktx2.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace ibl::test;
+
+const std::string kSample = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
+
+TEST(CliSpecular, BakesTheSampleToKtx2ExrAndPreview) {
+    fs::path dir = freshTempDir("specular");
+    CliRun r = runCli("specular " + kSample + " --size 32 --quality draft --backend cpu -o " +
+                      (dir / "env.ktx2").string() + " --exr " + (dir / "levels").string() + " --preview " +
+                      (dir / "preview.png").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("level  5"), std::string::npos) << r.out;
+
+    ibl::Ktx2Image ktx = ibl::readKtx2(dir / "env.ktx2");
+    EXPECT_EQ(ktx.vkFormat, 97u); // VK_FORMAT_R16G16B16A16_SFLOAT
+    EXPECT_EQ(ktx.faceCount, 6u);
+    EXPECT_EQ(ktx.levelCount, 6u);
+    EXPECT_EQ(ktx.pixelWidth, 32u);
+    EXPECT_NE(ktx.keyValues.at("iblbake.roughnessMapping").find("(m/(L-1))^2"), std::string::npos);
+    EXPECT_EQ(ktx.keyValues.at("iblbake.colorSpace"), "lin_rec709");
+    EXPECT_EQ(ktx.keyValues.at("iblbake.levelCount"), "6");
+    for (const auto& level : ktx.levels)
+        for (const auto& face : level)
+            for (const glm::vec4& p : face.pixels)
+                ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    for (int m = 0; m < 6; ++m)
+        EXPECT_TRUE(fs::exists(dir / "levels" / ("level_" + std::to_string(m) + ".exr"))) << m;
+    EXPECT_GT(fs::file_size(dir / "preview.png"), 1000u);
+    EXPECT_EQ(entryCount(dir), 3u); // env.ktx2, levels/, preview.png: no temporaries left
+    fs::remove_all(dir);
+}
+
+TEST(CliSpecular, EveryFormatIsWritten) {
+    fs::path dir = freshTempDir("formats");
+    const std::pair<const char*, unsigned> formats[] = {
+        {"rgba16f", 97}, {"rgba32f", 109}, {"b10g11r11", 122}, {"e5b9g9r9", 123}};
+    for (auto [name, vk] : formats) {
+        fs::path out = dir / (std::string(name) + ".ktx2");
+        CliRun r = runCli("specular " + kSample + " --size 8 --quality draft --backend cpu --format " + name +
+                          " -o " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
+        EXPECT_EQ(ibl::readKtx2(out).vkFormat, vk);
+    }
+    fs::remove_all(dir);
+}
+
+TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
+    fs::path dir = freshTempDir("specular_bad");
+    std::ofstream(dir / "notes.txt") << "this is not an image\n";
+    std::ofstream(dir / "keep.ktx2") << "precious";
+    const std::string out = " -o " + (dir / "keep.ktx2").string();
+    const std::pair<std::string, std::string> cases[] = {
+        {"specular " + (dir / "missing.hdr").string() + out, "missing.hdr"},
+        {"specular " + (dir / "notes.txt").string() + out, "notes.txt"},
+        {"specular " + kSample + " --size 100" + out, "--size"},
+        {"specular " + kSample + " --format bc6h" + out, "--format"},
+        {"specular " + kSample + " --quality ultra" + out, "--quality"},
+        {"specular " + kSample + " --layout hexagon" + out, "hexagon"},
+        {"specular " + kSample + " --size 8 -o /nonexistent-dir/env.ktx2", "/nonexistent-dir/env.ktx2"},
+    };
+    for (const auto& [args, named] : cases) {
+        CliRun r = runCli(args);
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << args << ": " << r.err;
+        EXPECT_NE(r.err.find(named), std::string::npos) << args << ": " << r.err;
+    }
+    std::ifstream kept(dir / "keep.ktx2");
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "precious");
+    EXPECT_EQ(entryCount(dir), 2u);
+    fs::remove_all(dir);
+}
+
+} // namespace
