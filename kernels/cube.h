@@ -27,6 +27,11 @@ IBL_FN vec3 cubeFaceDirection(int face, float s, float t) {
     return d;
 }
 
+// Unit direction through the centre of texel (x, y) of an n-texel face.
+IBL_FN vec3 cubeTexelDirection(int face, uint x, uint y, uint n) {
+    return v3normalize(cubeFaceDirection(face, ((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n));
+}
+
 // Face and (s, t) hit by a direction (need not be normalized; must not be zero). Ties between
 // axes of equal magnitude go to X, then Y, as in the OpenGL selection rule. Written with selects
 // only, so that work-items taking different faces stay vectorized together.

@@ -58,8 +58,7 @@ CubeMap levelCpu(const CubePyramid& pyramid, const LevelTable& table, const Brig
     tbb::parallel_for(0, 6 * n, [&](int row) {
         int face = row / n, y = row % n;
         for (int x = 0; x < n; ++x) {
-            vec3 d = glm::normalize(
-                cubeFaceDirection(face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
+            vec3 d = cubeTexelDirection(face, uint(x), uint(y), uint(n));
             vec3 c = integrateLd(d, pyramid.data.data(), pyramid.layout, table.samples.data(), table.count(),
                                  table.invWeightSum) +
                      brightTexelsLd(d, bright.entries.data(), bright.count(), p.alpha, p.invLobeIntegral,
@@ -74,18 +73,23 @@ CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const cl:
                     const LevelTable& table, const LdParams& params, int n) {
     CubeMap out(n);
     cl::Kernel kernel = cl.kernel("ld.cl", "ldLevel");
+    cl::Kernel brightKernel = cl.kernel("ld.cl", "ldBright");
     cl::Buffer tableBuffer = cl.upload(table.samples);
     const std::size_t faceTexels = std::size_t(n) * std::size_t(n);
     cl::Buffer outBuffer = cl.createBuffer(CL_MEM_WRITE_ONLY, 6 * faceTexels * sizeof(glm::vec4));
     kernel.setArg(0, params);
     kernel.setArg(1, pyramidBuffer);
     kernel.setArg(2, tableBuffer);
-    kernel.setArg(3, brightBuffer);
-    kernel.setArg(4, outBuffer);
+    kernel.setArg(3, outBuffer);
+    brightKernel.setArg(0, params);
+    brightKernel.setArg(1, brightBuffer);
+    brightKernel.setArg(2, outBuffer);
     // Groups of up to 16 adjacent texels of one row: same face, nearby fetches, uniform loop.
     const std::size_t groupWidth = std::min<std::size_t>(16, std::size_t(n));
     const std::size_t width = (std::size_t(n) + groupWidth - 1) / groupWidth * groupWidth;
     cl.run(kernel, cl::NDRange(width, std::size_t(n), 6), cl::NDRange(groupWidth, 1, 1));
+    if (params.brightCount > 0)
+        cl.run(brightKernel, cl::NDRange(width, std::size_t(n), 6), cl::NDRange(groupWidth, 1, 1));
     std::vector<glm::vec4> pixels(6 * faceTexels);
     cl.download(outBuffer, pixels.size() * sizeof(glm::vec4), pixels.data());
     for (int f = 0; f < 6; ++f)
