@@ -92,6 +92,24 @@ TEST(Cli, FailedWriteKeepsExistingFile) {
     fs::remove_all(dir);
 }
 
+TEST(Cli, NoOpenCLDeviceFallsBackToCpuWithOneWarning) {
+    fs::path dir = tempDir("fallback");
+    // An empty ICD vendor directory hides every OpenCL platform from the ICD loader.
+    ::setenv("OCL_ICD_VENDORS", (dir / "no-icds").c_str(), 1);
+    CliRun autoRun = run("dfg --size 8 --samples 16 -o " + (dir / "lut.exr").string());
+    CliRun forced = run("dfg --size 8 --samples 16 --backend opencl -o " + (dir / "forced.exr").string());
+    ::unsetenv("OCL_ICD_VENDORS");
+    EXPECT_EQ(autoRun.exitCode, 0) << autoRun.err;
+    EXPECT_EQ(lineCount(autoRun.err), 1) << autoRun.err;
+    EXPECT_NE(autoRun.err.find("iblbake: warning:"), std::string::npos) << autoRun.err;
+    EXPECT_NE(autoRun.out.find("cpu (TBB)"), std::string::npos) << autoRun.out;
+    // Forcing OpenCL without a device is an error, not a silent fallback.
+    EXPECT_NE(forced.exitCode, 0);
+    EXPECT_EQ(lineCount(forced.err), 1) << forced.err;
+    EXPECT_FALSE(fs::exists(dir / "forced.exr"));
+    fs::remove_all(dir);
+}
+
 TEST(Cli, DevicesAndTiming) {
     CliRun devices = run("devices");
     EXPECT_EQ(devices.exitCode, 0);
