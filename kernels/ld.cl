@@ -19,14 +19,16 @@ __kernel void ldLevel(LdParams params, __global const float* pyramid, __global c
     }
 }
 
-__kernel void ldBright(LdParams params, __global const float* bright, __global float* out) {
+__kernel void ldBright(LdParams params, __global const float* clusters, __global const float* bright,
+                       __global float* out) {
     uint n = params.faceSize;
     uint x = min((uint)get_global_id(0), n - 1u), y = get_global_id(1), face = get_global_id(2);
+    uint o = 4u * ((face * n + y) * n + x);
     vec3 d = cubeTexelDirection((int)face, x, y, n);
-    vec3 c = brightTexelsLd(d, bright, params.brightCount, params.alpha, params.invLobeIntegral,
-                            params.source.baseFaceSize);
+    float skipBelow = brightSkipThreshold(v3(out[o], out[o + 1], out[o + 2]), params.brightCount);
+    vec3 c = brightTexelsLd(d, clusters, params.brightCount, bright, params.alpha, params.invLobeIntegral,
+                            params.source.baseFaceSize, skipBelow);
     if (get_global_id(0) < n) {
-        uint o = 4u * ((face * n + y) * n + x);
         out[o] += c.x;
         out[o + 1] += c.y;
         out[o + 2] += c.z;

@@ -15,7 +15,7 @@ typedef struct {
     uint32_t faceSize;     // output face size of this level
     uint32_t sampleCount;  // table entries
     float invWeightSum;    // 1 / sum of the table's weights
-    uint32_t brightCount;  // entries of the bright-texel list
+    uint32_t brightCount;  // clusters of the bright-texel list
     float alpha;           // GGX alpha of this level
     float invLobeIntegral; // 1 / W(alpha), W = integral of D(h) NoL dl (N = V)
 } LdParams;
@@ -127,42 +127,67 @@ IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, fl
     return 4.0f * fabs(sum);
 }
 
-IBL_FN vec3 brightTexelsLd(vec3 n, IBL_GLOBAL const float* bright, uint count, float alpha,
-                           float invLobeIntegral, uint sourceFaceSize) {
-    // Face-plane size of a texel, about its angle. Away from the lobe centre, D changes across a texel
-    // by ~4 size / max(angle, alpha): such texels are integrated on an S x S grid that keeps the change
-    // under ~0.1. Texels within three texels of a lobe under a quarter texel wide use the closed form.
+// integral_texel D(h) NoL dl of one bright-list entry for the lobe around n (unnormalized).
+IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, float alpha, float texelSize) {
+    // The midpoint rule over a texel of size a at angle theta from the lobe centre errs by about
+    // (a / theta)^2 in GGX's theta^-4 tail, so texels nearer than 10 texels are integrated on an S x S
+    // grid, S = 10 a / max(theta, alpha) (error ~1%). Texels within three texels of a lobe under a
+    // quarter texel wide use the closed form instead.
+    vec3 d = v3(e[0], e[1], e[2]);
+    float cosAngle = v3dot(n, d);
+    float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chord: the angle where it matters (small)
+    float subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
+    int face = (int)e[7];
+    float u0 = -1.0f + e[8] * texelSize, v0 = -1.0f + e[9] * texelSize;
+    if (4.0f * alpha < texelSize && angle < 3.0f * texelSize)
+        return narrowLobeTexelWeight(frame, face, u0, v0, texelSize, alpha);
+    if (subdivisions <= 1.0f || cosAngle < 0.0f) {
+        vec3 h = v3normalize(v3add(n, d));
+        return cosAngle > 0.0f ? D_GGX(v3dot(n, h), alpha) * cosAngle * e[3] : 0.0f;
+    }
+    int S = (int)fmin(subdivisions, 32.0f);
+    float step = texelSize / (float)S, weight = 0.0f;
+    for (int j = 0; j < S; ++j)
+        for (int k = 0; k < S; ++k)
+            weight += lobeWeightOfPatch(n, face, u0 + (float)k * step, v0 + (float)j * step, step, alpha);
+    return weight;
+}
+
+// Bright texels are grouped into clusters (IBL_BRIGHT_CLUSTER_FLOATS each: centroid direction (3),
+// angular radius, bound on sum of excess * solid angle (max over channels), first entry, entry count,
+// unused). A cluster whose largest possible contribution, D at its nearest point times its energy,
+// stays under `skipBelow` is skipped: the caller sets skipBelow to 1e-3 of the texel's sampled value
+// divided by the cluster count, so all skipped clusters together change a texel by under 0.1%.
+#define IBL_BRIGHT_CLUSTER_FLOATS 8
+
+IBL_FN vec3 brightTexelsLd(vec3 n, IBL_GLOBAL const float* clusters, uint clusterCount,
+                           IBL_GLOBAL const float* bright, float alpha, float invLobeIntegral,
+                           uint sourceFaceSize, float skipBelow) {
     float texelSize = 2.0f / (float)sourceFaceSize;
     Frame frame = frameFromNormal(n);
     float r = 0.0f, g = 0.0f, b = 0.0f;
-    for (uint i = 0; i < count; ++i) {
-        const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
-        vec3 d = v3(e[0], e[1], e[2]);
-        float cosAngle = v3dot(n, d);
-        float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chord: the angle where it matters (small)
-        float subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
-        int face = (int)e[7];
-        float u0 = -1.0f + e[8] * texelSize, v0 = -1.0f + e[9] * texelSize;
-        float weight;
-        if (4.0f * alpha < texelSize && angle < 3.0f * texelSize) {
-            weight = narrowLobeTexelWeight(frame, face, u0, v0, texelSize, alpha);
-        } else if (subdivisions <= 1.0f || cosAngle < 0.0f) {
-            vec3 h = v3normalize(v3add(n, d));
-            weight = cosAngle > 0.0f ? D_GGX(v3dot(n, h), alpha) * cosAngle * e[3] : 0.0f;
-        } else {
-            int S = (int)fmin(subdivisions, 32.0f);
-            float step = texelSize / (float)S;
-            weight = 0.0f;
-            for (int j = 0; j < S; ++j)
-                for (int k = 0; k < S; ++k)
-                    weight +=
-                        lobeWeightOfPatch(n, face, u0 + (float)k * step, v0 + (float)j * step, step, alpha);
+    for (uint c = 0; c < clusterCount; ++c) {
+        const IBL_GLOBAL float* cl = clusters + IBL_BRIGHT_CLUSTER_FLOATS * c;
+        float angle = acos(clamp(n.x * cl[0] + n.y * cl[1] + n.z * cl[2], -1.0f, 1.0f));
+        float nearest = fmax(angle - cl[3], 0.0f); // nearest angle to any member
+        float bound = D_GGX(cos(0.5f * nearest), alpha) * cl[4] * invLobeIntegral; // D falls with theta_h
+        if (bound < skipBelow) continue;
+        uint first = (uint)cl[5], count = (uint)cl[6];
+        for (uint i = first; i < first + count; ++i) {
+            const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
+            float weight = brightTexelWeight(n, frame, e, alpha, texelSize);
+            r += weight * e[4];
+            g += weight * e[5];
+            b += weight * e[6];
         }
-        r += weight * e[4];
-        g += weight * e[5];
-        b += weight * e[6];
     }
     return v3(r * invLobeIntegral, g * invLobeIntegral, b * invLobeIntegral);
+}
+
+// The skip threshold for a texel whose sampled (residual) value is `sampled`.
+IBL_FN float brightSkipThreshold(vec3 sampled, uint clusterCount) {
+    float value = fmax(sampled.x, fmax(sampled.y, sampled.z));
+    return clusterCount > 0u ? 1e-3f * value / (float)clusterCount : 0.0f;
 }
 
 IBL_END_NAMESPACE

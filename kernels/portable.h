@@ -56,6 +56,7 @@ using glm::dot;
 using glm::length;
 using glm::mix;
 using glm::normalize;
+using std::acos;
 using std::asin;
 using std::atan;
 using std::atan2;

@@ -16,6 +16,61 @@ float luminance(const glm::vec4& p) {
 std::uint32_t BrightTexels::count() const {
     return std::uint32_t(entries.size() / IBL_BRIGHT_ENTRY_FLOATS);
 }
+std::uint32_t BrightTexels::clusterCount() const {
+    return std::uint32_t(clusters.size() / IBL_BRIGHT_CLUSTER_FLOATS);
+}
+
+namespace {
+
+// Clusters are the bright texels of one 8 x 8 tile of a face: a sun falls into a handful of them.
+constexpr int kClusterTile = 8;
+
+void buildClusters(BrightTexels& bright, int faceSize) {
+    const std::uint32_t count = bright.count();
+    const int tiles = (faceSize + kClusterTile - 1) / kClusterTile;
+    auto tileOf = [&](std::uint32_t i) {
+        const float* e = &bright.entries[i * IBL_BRIGHT_ENTRY_FLOATS];
+        return (int(e[7]) * tiles + int(e[9]) / kClusterTile) * tiles + int(e[8]) / kClusterTile;
+    };
+    std::vector<std::uint32_t> order(count);
+    for (std::uint32_t i = 0; i < count; ++i)
+        order[i] = i;
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return tileOf(a) < tileOf(b); });
+    std::vector<float> sorted;
+    sorted.reserve(bright.entries.size());
+    for (std::uint32_t i : order)
+        sorted.insert(sorted.end(), bright.entries.begin() + i * IBL_BRIGHT_ENTRY_FLOATS,
+                      bright.entries.begin() + (i + 1) * IBL_BRIGHT_ENTRY_FLOATS);
+    bright.entries = std::move(sorted);
+    // A texel's centre is at most about one texel (2 / faceSize radians) from any point of it.
+    const float texelAngle = 2.0f / float(faceSize);
+    for (std::uint32_t first = 0; first < count;) {
+        std::uint32_t end = first;
+        const int tile = tileOf(first);
+        glm::vec3 centroid(0.0f);
+        float energy = 0.0f;
+        for (; end < count && tileOf(end) == tile; ++end) {
+            const float* e = &bright.entries[end * IBL_BRIGHT_ENTRY_FLOATS];
+            float texelEnergy = std::max({e[4], e[5], e[6]}) * e[3];
+            centroid += texelEnergy * glm::vec3(e[0], e[1], e[2]);
+            energy += texelEnergy;
+        }
+        centroid = glm::normalize(centroid);
+        float radius = 0.0f;
+        for (std::uint32_t i = first; i < end; ++i) {
+            const float* e = &bright.entries[i * IBL_BRIGHT_ENTRY_FLOATS];
+            float c = std::clamp(glm::dot(centroid, glm::vec3(e[0], e[1], e[2])), -1.0f, 1.0f);
+            radius = std::max(radius, std::acos(c));
+        }
+        bright.clusters.insert(bright.clusters.end(),
+                               {centroid.x, centroid.y, centroid.z, radius + texelAngle, energy, float(first),
+                                float(end - first), 0.0f});
+        first = end;
+    }
+}
+
+} // namespace
 
 BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels) {
     const int n = source.faceSize;
@@ -59,6 +114,7 @@ BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint3
                                     {d.x, d.y, d.z, cubeTexelSolidAngle(c.x, c.y, n), excess.x, excess.y,
                                      excess.z, float(c.face), float(c.x), float(c.y)});
     }
+    buildClusters(split.bright, n);
     return split;
 }
 

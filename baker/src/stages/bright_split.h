@@ -10,8 +10,10 @@
 namespace ibl {
 
 struct BrightTexels {
-    std::vector<float> entries; // IBL_BRIGHT_ENTRY_FLOATS per texel
+    std::vector<float> entries;  // IBL_BRIGHT_ENTRY_FLOATS per texel, grouped by cluster
+    std::vector<float> clusters; // IBL_BRIGHT_CLUSTER_FLOATS per cluster (kernels/ld.h)
     std::uint32_t count() const;
+    std::uint32_t clusterCount() const;
 };
 
 struct BrightSplit {

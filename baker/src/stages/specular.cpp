@@ -59,18 +59,20 @@ CubeMap levelCpu(const CubePyramid& pyramid, const LevelTable& table, const Brig
         int face = row / n, y = row % n;
         for (int x = 0; x < n; ++x) {
             vec3 d = cubeTexelDirection(face, uint(x), uint(y), uint(n));
-            vec3 c = integrateLd(d, pyramid.data.data(), pyramid.layout, table.samples.data(), table.count(),
-                                 table.invWeightSum) +
-                     brightTexelsLd(d, bright.entries.data(), bright.count(), p.alpha, p.invLobeIntegral,
-                                    pyramid.layout.baseFaceSize);
+            vec3 sampled = integrateLd(d, pyramid.data.data(), pyramid.layout, table.samples.data(),
+                                       table.count(), table.invWeightSum);
+            vec3 c = sampled + brightTexelsLd(d, bright.clusters.data(), bright.clusterCount(),
+                                              bright.entries.data(), p.alpha, p.invLobeIntegral,
+                                              pyramid.layout.baseFaceSize,
+                                              brightSkipThreshold(sampled, bright.clusterCount()));
             out.faces[face].at(x, y) = glm::vec4(c, 1.0f);
         }
     });
     return out;
 }
 
-CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const cl::Buffer& brightBuffer,
-                    const LevelTable& table, const LdParams& params, int n) {
+CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const cl::Buffer& clusterBuffer,
+                    const cl::Buffer& brightBuffer, const LevelTable& table, const LdParams& params, int n) {
     CubeMap out(n);
     cl::Kernel kernel = cl.kernel("ld.cl", "ldLevel");
     cl::Kernel brightKernel = cl.kernel("ld.cl", "ldBright");
@@ -82,8 +84,9 @@ CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const cl:
     kernel.setArg(2, tableBuffer);
     kernel.setArg(3, outBuffer);
     brightKernel.setArg(0, params);
-    brightKernel.setArg(1, brightBuffer);
-    brightKernel.setArg(2, outBuffer);
+    brightKernel.setArg(1, clusterBuffer);
+    brightKernel.setArg(2, brightBuffer);
+    brightKernel.setArg(3, outBuffer);
     // Groups of up to 16 adjacent texels of one row: same face, nearby fetches, uniform loop.
     const std::size_t groupWidth = std::min<std::size_t>(16, std::size_t(n));
     const std::size_t width = (std::size_t(n) + groupWidth - 1) / groupWidth * groupWidth;
@@ -169,9 +172,10 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
     BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
     CubePyramid pyramid = buildCubePyramid(split.residual);
     const float maxLod = float(pyramid.layout.levelCount - 1);
-    cl::Buffer pyramidBuffer, brightBuffer;
+    cl::Buffer pyramidBuffer, clusterBuffer, brightBuffer;
     if (executor.usesOpenCL()) {
         pyramidBuffer = executor.cl().upload(pyramid.data);
+        clusterBuffer = executor.cl().upload(split.bright.clusters);
         brightBuffer = executor.cl().upload(split.bright.entries);
     }
 
@@ -191,12 +195,13 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
                         std::uint32_t(n),
                         table.count(),
                         table.invWeightSum,
-                        split.bright.count(),
+                        split.bright.clusterCount(),
                         alpha,
                         float(1.0 / lobeIntegral(alpha))};
-        chain.levels.push_back(executor.usesOpenCL()
-                                   ? levelOpenCL(executor.cl(), pyramidBuffer, brightBuffer, table, params, n)
-                                   : levelCpu(pyramid, table, split.bright, params, n));
+        chain.levels.push_back(
+            executor.usesOpenCL()
+                ? levelOpenCL(executor.cl(), pyramidBuffer, clusterBuffer, brightBuffer, table, params, n)
+                : levelCpu(pyramid, table, split.bright, params, n));
         if (timings)
             timings->push_back(
                 {m, r,
