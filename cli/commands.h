@@ -12,5 +12,8 @@ using Action = std::function<int()>;
 Action addDevicesCommand(CLI::App& app);
 Action addDfgCommand(CLI::App& app);
 Action addSpecularCommand(CLI::App& app);
+Action addDiffuseCommand(CLI::App& app);
+Action addInspectCommand(CLI::App& app);
+Action addCalibrateCommand(CLI::App& app);
 
 } // namespace ibl::cli

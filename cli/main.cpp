@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
     add(ibl::cli::addDevicesCommand(app));
     add(ibl::cli::addDfgCommand(app));
     add(ibl::cli::addSpecularCommand(app));
+    add(ibl::cli::addDiffuseCommand(app));
+    add(ibl::cli::addInspectCommand(app));
+    add(ibl::cli::addCalibrateCommand(app));
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,223 @@
+// Calibration factor from one known quantity (the sources are described in iblbake/calibration.h).
+#include "iblbake/calibration.h"
+
+#include "../ingest/ingest_internal.h"
+#include "iblbake/error.h"
+
+#include <OpenImageIO/imageio.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <cstdio>
+
+namespace ibl {
+
+namespace {
+
+std::string number(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", v);
+    return buf;
+}
+
+std::string option(CalibrationSource source) {
+    return std::string("--") + calibrationSourceName(source);
+}
+
+} // namespace
+
+const char* calibrationSourceName(CalibrationSource source) {
+    switch (source) {
+    case CalibrationSource::Scale:
+        return "scale";
+    case CalibrationSource::Ev100:
+        return "ev100";
+    case CalibrationSource::Illuminance:
+        return "illuminance";
+    case CalibrationSource::SunIlluminance:
+        return "sun-illuminance";
+    case CalibrationSource::SkyLuminance:
+        return "sky-luminance";
+    case CalibrationSource::Radiometric:
+        return "radiometric";
+    default:
+        return "none";
+    }
+}
+
+std::string CalibrationRecord::summary() const {
+    std::string text = std::string("calibration ") + calibrationSourceName(source);
+    if (source != CalibrationSource::None && source != CalibrationSource::Radiometric)
+        text += " " + number(sourceValue);
+    char buf[256];
+    std::snprintf(buf, sizeof buf, ": factor %.6g, %s %.6g -> %.6g", factor, quantity.c_str(), measuredBefore,
+                  measuredAfter);
+    return text + buf + " (" + units() + ")";
+}
+
+CalibrationRecord computeCalibration(const SphereTexels& texels, const CalibrationSettings& settings) {
+    const CalibrationSource source = settings.source;
+    const double value = settings.value;
+    const std::string opt = option(source);
+    const bool needsValue = source != CalibrationSource::None && source != CalibrationSource::Radiometric;
+    if (needsValue && !std::isfinite(value)) throw Error(opt + ": the value must be a finite number");
+    if (needsValue && source != CalibrationSource::Ev100 && !(value > 0.0))
+        throw Error(opt + ": the value must be positive, got " + number(value));
+
+    CalibrationRecord rec;
+    rec.source = source;
+    rec.sourceValue = needsValue ? value : 0.0;
+    const EnvironmentStats stats = computeEnvironmentStats(texels, settings.luminanceWeights);
+    rec.upwardIlluminanceBefore = stats.upwardIlluminance;
+    rec.meanLuminanceBefore = stats.meanLuminance;
+    rec.quantity = "mean luminance";
+    rec.measuredBefore = stats.meanLuminance;
+
+    SunDetection sun;
+    if (source == CalibrationSource::SunIlluminance || source == CalibrationSource::SkyLuminance) {
+        SunDetectSettings sunSettings = settings.sun;
+        sunSettings.luminanceWeights = settings.luminanceWeights;
+        sun = detectSun(texels, sunSettings);
+        rec.sunMeasured = true;
+        rec.sunFound = sun.found;
+        rec.sunIlluminanceBefore = sun.found ? sun.light.illuminance : 0.0;
+    }
+
+    switch (source) {
+    case CalibrationSource::None:
+        rec.factor = 1.0;
+        break;
+    case CalibrationSource::Scale:
+        rec.factor = value;
+        break;
+    case CalibrationSource::Ev100:
+        if (std::fabs(value) > 64.0) throw Error(opt + ": " + number(value) + " is not an EV100 in -64..64");
+        rec.factor = 1.2 * std::exp2(value);
+        break;
+    case CalibrationSource::Radiometric:
+        rec.factor = kLuminousEfficacy;
+        break;
+    case CalibrationSource::Illuminance:
+        rec.quantity = "upward illuminance";
+        rec.measuredBefore = stats.upwardIlluminance;
+        if (!(stats.upwardIlluminance > 0.0))
+            throw Error(opt + ": the environment sends no light to an upward-facing surface");
+        rec.factor = value / stats.upwardIlluminance;
+        break;
+    case CalibrationSource::SunIlluminance:
+        rec.quantity = "sun illuminance (perpendicular)";
+        if (!sun.found) throw Error(opt + ": no sun detected: " + sun.reason);
+        rec.measuredBefore = sun.light.illuminance;
+        rec.factor = value / sun.light.illuminance;
+        break;
+    case CalibrationSource::SkyLuminance: {
+        rec.quantity = "zenith luminance";
+        // A spot meter is pointed at the sky, not at the sun: the sun's texels are left out.
+        rec.measuredBefore =
+            zenithLuminance(texels, kZenithCapDegrees, settings.luminanceWeights, sun.region);
+        if (!(rec.measuredBefore > 0.0)) throw Error(opt + ": the zenith of the environment is black");
+        rec.factor = value / rec.measuredBefore;
+        break;
+    }
+    }
+    if (!std::isfinite(rec.factor) || !(rec.factor > 0.0))
+        throw Error(opt + ": the calibration factor " + number(rec.factor) +
+                    " is not a positive finite number");
+    rec.measuredAfter = rec.factor * rec.measuredBefore;
+    rec.upwardIlluminanceAfter = rec.factor * rec.upwardIlluminanceBefore;
+    rec.meanLuminanceAfter = rec.factor * rec.meanLuminanceBefore;
+    rec.sunIlluminanceAfter = rec.factor * rec.sunIlluminanceBefore;
+    return rec;
+}
+
+CalibrationRecord computeCalibration(const CubeMap& cube, const CalibrationSettings& settings) {
+    return computeCalibration(SphereTexels(cube), settings);
+}
+
+void applyCalibration(ImageRGBA& image, double factor) {
+    const float f = float(factor);
+    tbb::parallel_for(std::size_t(0), image.pixels.size(), [&](std::size_t i) {
+        glm::vec4& p = image.pixels[i];
+        p = glm::vec4(glm::vec3(p) * f, p.w);
+    });
+}
+
+void applyCalibration(CubeMap& cube, double factor) {
+    for (ImageRGBA& face : cube.faces)
+        applyCalibration(face, factor);
+}
+
+std::vector<std::pair<std::string, std::string>> calibrationMetadata(const CalibrationRecord& r,
+                                                                     const std::string& prefix) {
+    const std::string c = prefix + "calibration.";
+    std::vector<std::pair<std::string, std::string>> kv = {
+        {c + "factor", number(r.factor)},
+        {c + "source", calibrationSourceName(r.source)},
+        {c + "sourceValue", number(r.sourceValue)},
+        {c + "quantity", r.quantity},
+        {c + "measuredBefore", number(r.measuredBefore)},
+        {c + "measuredAfter", number(r.measuredAfter)},
+        {c + "upwardIlluminanceBefore", number(r.upwardIlluminanceBefore)},
+        {c + "upwardIlluminanceAfter", number(r.upwardIlluminanceAfter)},
+        {c + "meanLuminanceBefore", number(r.meanLuminanceBefore)},
+        {c + "meanLuminanceAfter", number(r.meanLuminanceAfter)}};
+    if (r.sunMeasured) {
+        kv.emplace_back(c + "sunIlluminanceBefore", number(r.sunIlluminanceBefore));
+        kv.emplace_back(c + "sunIlluminanceAfter", number(r.sunIlluminanceAfter));
+    }
+    kv.emplace_back(prefix + "units", r.units());
+    return kv;
+}
+
+std::vector<std::pair<std::string, std::string>> readCalibrationMetadata(const std::filesystem::path& file) {
+    std::vector<std::pair<std::string, std::string>> kv;
+    auto in = OIIO::ImageInput::open(file.string());
+    if (!in) {
+        (void)OIIO::geterror(); // clear the error: absent metadata is not a failure here
+        return kv;
+    }
+    for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
+        const std::string name = p.name().string();
+        if (name.rfind("iblbake:calibration.", 0) == 0 || name == "iblbake:units" ||
+            name.rfind("iblbake:sun", 0) == 0)
+            kv.emplace_back(name, p.get_string());
+    }
+    return kv;
+}
+
+glm::dvec3 workingLuminanceWeights(const std::string& workingColorSpace) {
+    const glm::dvec3 w = ingest::luminanceWeights(workingColorSpace); // also checks the space
+    // lin_rec709: the customary 4-digit weights (DESIGN.md, SOURCES.md), within 1e-4 of the matrix row.
+    return ingest::colorSpaceName(workingColorSpace) == ingest::colorSpaceName("lin_rec709")
+               ? kRec709Luminance
+               : w;
+}
+
+ImageRGBA readWorkingLatLong(const std::filesystem::path& file, const IngestSettings& settings,
+                             IngestReport* report) {
+    ingest::RawImage raw = ingest::readImage(file);
+    IngestReport r;
+    r.file = raw.file;
+    r.width = raw.pixels.width;
+    r.height = raw.pixels.height;
+    r.layout = ingest::resolveLayout(raw, settings.layout);
+    if (r.layout != EnvLayout::LatLong)
+        throw Error(raw.file + ": is a " + layoutName(r.layout) + " environment, not a lat-long");
+    if (settings.rotateDegrees != 0.0f) throw Error(raw.file + ": rotation is not supported here");
+    r.inputColorSpace = ingest::resolveInputColorSpace(raw, settings.inputColorSpace);
+    const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace);
+    r.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);
+    auto add = [&](const ingest::RepairCounts& n) {
+        r.nanRepaired += n.nan;
+        r.infRepaired += n.inf;
+        r.negativeRepaired += n.negative;
+    };
+    add(ingest::sanitize(raw.pixels));
+    ingest::convertColor(raw.pixels, r.inputColorSpace, r.workingColorSpace, raw.file);
+    add(ingest::sanitize(raw.pixels));
+    r.maxLuminanceIn = ingest::maxLuminance(raw.pixels, weights);
+    if (report) *report = r;
+    return std::move(raw.pixels);
+}
+
+} // namespace ibl

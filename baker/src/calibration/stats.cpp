@@ -1,0 +1,372 @@
+// Exact texel geometry on the sphere (SphereTexels) and the photometric statistics built on it.
+//
+// Cube texels are spherical quadrilaterals whose edges are great-circle arcs (straight lines on the face
+// plane), so their solid angle has a closed form (the face area element of kernels/cube.h, here in
+// double) and so has the integral of the direction over them: Arvo's vector irradiance of a spherical
+// polygon, 1/2 sum_k theta_k n_k over its edges (theta_k the arc length, n_k the unit normal of the edge's
+// plane). Clipping the face-plane polygon at the horizon (y = 0 is a straight line on every face plane)
+// gives the exact upward-cosine weight of a texel that straddles it.
+//
+// Lat-long cells are rectangles in (longitude phi, z = sin latitude), where d omega = d phi dz, and every
+// integral needed separates: solid angle dphi dz, upward cosine dphi (z1^2 - z0^2) / 2, direction
+// integral from the antiderivative of sqrt(1 - z^2).
+#include "iblbake/environment_stats.h"
+
+#include "../ingest/ingest_internal.h"
+#include "iblbake/error.h"
+
+#include <cube.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace ibl {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// ---- cube geometry ----
+
+double areaElement(double x, double y) {
+    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
+
+struct FaceSquare {
+    double a0, a1, b0, b1;
+};
+
+FaceSquare faceSquare(int i, int j, int n) {
+    const double step = 2.0 / n;
+    return {-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step, -1.0 + (j + 1) * step};
+}
+
+// A polygon on a face plane, in (a, b) coordinates; at most 5 vertices after one half-plane clip.
+struct PlanePolygon {
+    std::array<glm::dvec2, 8> v;
+    int count = 0;
+};
+
+PlanePolygon squarePolygon(const FaceSquare& s) {
+    PlanePolygon p;
+    p.v[0] = {s.a0, s.b0};
+    p.v[1] = {s.a1, s.b0};
+    p.v[2] = {s.a1, s.b1};
+    p.v[3] = {s.a0, s.b1};
+    p.count = 4;
+    return p;
+}
+
+// Keeps the part where c + g . (a, b) >= 0 (Sutherland-Hodgman against one line).
+PlanePolygon clipHalfPlane(const PlanePolygon& in, double c, const glm::dvec2& g) {
+    PlanePolygon out;
+    for (int k = 0; k < in.count; ++k) {
+        const glm::dvec2 p = in.v[std::size_t(k)], q = in.v[std::size_t((k + 1) % in.count)];
+        const double fp = c + glm::dot(g, p), fq = c + glm::dot(g, q);
+        if (fp >= 0.0) out.v[std::size_t(out.count++)] = p;
+        if ((fp >= 0.0) != (fq >= 0.0)) out.v[std::size_t(out.count++)] = p + (q - p) * (fp / (fp - fq));
+    }
+    return out;
+}
+
+// Integral of the unit direction over the spherical polygon under a face-plane polygon (Arvo 1995).
+glm::dvec3 polygonVectorSolidAngle(const ingest::FaceFrame& frame, const PlanePolygon& poly) {
+    if (poly.count < 3) return glm::dvec3(0.0);
+    glm::dvec3 sum(0.0), centre(0.0);
+    for (int k = 0; k < poly.count; ++k) {
+        const glm::dvec2 p = poly.v[std::size_t(k)], q = poly.v[std::size_t((k + 1) % poly.count)];
+        const glm::dvec3 dp = glm::normalize(frame.at(p.x, p.y)), dq = glm::normalize(frame.at(q.x, q.y));
+        const glm::dvec3 c = glm::cross(dp, dq);
+        const double len = glm::length(c);
+        centre += dp;
+        if (len > 0.0) sum += (std::atan2(len, glm::dot(dp, dq)) / len) * c;
+    }
+    sum *= 0.5;
+    // The formula's sign follows the polygon's winding; the integral points toward the polygon.
+    return glm::dot(sum, centre) < 0.0 ? -sum : sum;
+}
+
+// ---- lat-long geometry (ImfEnvmap LatLongMap pixel grid, see ingest.h) ----
+
+double latLongEdge(int k, int n) {
+    return k <= 0 ? 0.0 : k >= n ? 1.0 : (k - 0.5) / (n - 1);
+}
+
+struct LatLongCell {
+    double phi0, phi1; // longitude range, phi0 < phi1
+    double z0, z1;     // z = sin(latitude) range, z0 < z1
+};
+
+LatLongCell latLongCell(int x, int y, int w, int h) {
+    // u grows as longitude falls: phi = (0.5 - u) 2 pi (DESIGN.md).
+    const double phiA = (0.5 - latLongEdge(x, w)) * 2.0 * kPi,
+                 phiB = (0.5 - latLongEdge(x + 1, w)) * 2.0 * kPi;
+    const int yTop = y, yBottom = y + 1;
+    const double zTop = yTop <= 0 ? 1.0 : std::cos(kPi * latLongEdge(yTop, h));
+    const double zBottom = yBottom >= h ? -1.0 : std::cos(kPi * latLongEdge(yBottom, h));
+    return {phiB, phiA, zBottom, zTop};
+}
+
+// Antiderivative of sqrt(1 - z^2).
+double sqrtOneMinusSquareIntegral(double z) {
+    z = std::clamp(z, -1.0, 1.0);
+    return 0.5 * (z * std::sqrt(1.0 - z * z) + std::asin(z));
+}
+
+// z1^2 - z0^2 without cancellation.
+double squareDifference(double z1, double z0) {
+    return (z1 - z0) * (z1 + z0);
+}
+
+} // namespace
+
+// ---- SphereTexels ----
+
+SphereTexels::SphereTexels(CubeMap& cube) : cube_(&cube), writable_(true) {
+    if (cube.faceSize <= 0) throw Error("environment: empty cube map");
+    size_ = 6 * std::size_t(cube.faceSize) * std::size_t(cube.faceSize);
+}
+
+SphereTexels::SphereTexels(const CubeMap& cube) : SphereTexels(const_cast<CubeMap&>(cube)) {
+    writable_ = false;
+}
+
+SphereTexels::SphereTexels(ImageRGBA& latlong) : latlong_(&latlong), writable_(true) {
+    if (latlong.width < 2 || latlong.height < 2)
+        throw Error("environment: a lat-long image needs at least 2x2 pixels, got " +
+                    std::to_string(latlong.width) + "x" + std::to_string(latlong.height));
+    size_ = std::size_t(latlong.width) * std::size_t(latlong.height);
+}
+
+SphereTexels::SphereTexels(const ImageRGBA& latlong) : SphereTexels(const_cast<ImageRGBA&>(latlong)) {
+    writable_ = false;
+}
+
+bool SphereTexels::sameGridAs(const SphereTexels& other) const {
+    if (isCube() != other.isCube()) return false;
+    if (isCube()) return cube_->faceSize == other.cube_->faceSize;
+    return latlong_->width == other.latlong_->width && latlong_->height == other.latlong_->height;
+}
+
+glm::vec4& SphereTexels::texel(std::size_t i) const {
+    if (cube_) {
+        const std::size_t n = std::size_t(cube_->faceSize), face = i / (n * n), r = i % (n * n);
+        return cube_->faces[face].pixels[r];
+    }
+    return latlong_->pixels[i];
+}
+
+glm::vec3 SphereTexels::rgb(std::size_t i) const {
+    return glm::vec3(texel(i));
+}
+
+void SphereTexels::setRgb(std::size_t i, const glm::vec3& value) {
+    if (!writable_) throw Error("environment: internal: write through a read-only view");
+    glm::vec4& t = texel(i);
+    t = glm::vec4(value, t.w);
+}
+
+double SphereTexels::solidAngle(std::size_t i) const {
+    if (cube_) {
+        const int n = cube_->faceSize, r = int(i % (std::size_t(n) * std::size_t(n)));
+        const FaceSquare s = faceSquare(r % n, r / n, n);
+        return areaElement(s.a0, s.b0) - areaElement(s.a0, s.b1) - areaElement(s.a1, s.b0) +
+               areaElement(s.a1, s.b1);
+    }
+    const int w = latlong_->width, h = latlong_->height;
+    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h);
+    return (c.phi1 - c.phi0) * (c.z1 - c.z0);
+}
+
+glm::dvec3 SphereTexels::vectorSolidAngle(std::size_t i) const {
+    if (cube_) {
+        const int n = cube_->faceSize;
+        const int face = int(i / (std::size_t(n) * std::size_t(n))),
+                  r = int(i % (std::size_t(n) * std::size_t(n)));
+        return polygonVectorSolidAngle(ingest::faceFrame(face), squarePolygon(faceSquare(r % n, r / n, n)));
+    }
+    const int w = latlong_->width, h = latlong_->height;
+    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h);
+    const double s = sqrtOneMinusSquareIntegral(c.z1) - sqrtOneMinusSquareIntegral(c.z0);
+    return {s * (std::cos(c.phi0) - std::cos(c.phi1)), 0.5 * (c.phi1 - c.phi0) * squareDifference(c.z1, c.z0),
+            s * (std::sin(c.phi1) - std::sin(c.phi0))};
+}
+
+glm::dvec3 SphereTexels::direction(std::size_t i) const {
+    return glm::normalize(vectorSolidAngle(i));
+}
+
+double SphereTexels::upwardCosine(std::size_t i) const {
+    if (cube_) {
+        const int n = cube_->faceSize;
+        const int face = int(i / (std::size_t(n) * std::size_t(n))),
+                  r = int(i % (std::size_t(n) * std::size_t(n)));
+        if (face == 3) return 0.0; // -Y: entirely below the horizon
+        const ingest::FaceFrame frame = ingest::faceFrame(face);
+        PlanePolygon poly = squarePolygon(faceSquare(r % n, r / n, n));
+        // y(a, b) = o.y + a u.y + b v.y on the face plane; the +Y face needs no clip.
+        if (face != 2) poly = clipHalfPlane(poly, frame.o.y, {frame.u.y, frame.v.y});
+        return std::max(0.0, polygonVectorSolidAngle(frame, poly).y);
+    }
+    const int w = latlong_->width, h = latlong_->height;
+    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h);
+    const double z0 = std::max(c.z0, 0.0), z1 = std::max(c.z1, 0.0);
+    return 0.5 * (c.phi1 - c.phi0) * squareDifference(z1, z0);
+}
+
+void SphereTexels::neighbours(std::size_t i, std::vector<std::size_t>& out) const {
+    out.clear();
+    auto push = [&](std::size_t k) {
+        if (k != i && std::find(out.begin(), out.end(), k) == out.end()) out.push_back(k);
+    };
+    if (cube_) {
+        const int n = cube_->faceSize;
+        const std::size_t nn = std::size_t(n) * std::size_t(n);
+        const int face = int(i / nn), r = int(i % nn), ti = r % n, tj = r / n;
+        for (int dj = -1; dj <= 1; ++dj)
+            for (int di = -1; di <= 1; ++di) {
+                const int ii = ti + di, jj = tj + dj;
+                if (ii >= 0 && ii < n && jj >= 0 && jj < n) {
+                    push(std::size_t(face) * nn + std::size_t(jj) * std::size_t(n) + std::size_t(ii));
+                    continue;
+                }
+                // Off the face: the texel hit by the direction through the extended face plane.
+                const CubeCoord c = cubeCoordFromDirection(
+                    cubeFaceDirection(face, (float(ii) + 0.5f) / float(n), (float(jj) + 0.5f) / float(n)));
+                const int ci = std::clamp(int(std::floor(c.s * float(n))), 0, n - 1);
+                const int cj = std::clamp(int(std::floor(c.t * float(n))), 0, n - 1);
+                push(std::size_t(c.face) * nn + std::size_t(cj) * std::size_t(n) + std::size_t(ci));
+            }
+        return;
+    }
+    const int w = latlong_->width, h = latlong_->height;
+    const int x = int(i % std::size_t(w)), y = int(i / std::size_t(w));
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int xx = x + dx, yy = y + dy;
+            if (yy < 0 || yy >= h) { // over the pole: the same row, half a turn away
+                yy = yy < 0 ? 0 : h - 1;
+                xx += w / 2;
+            }
+            xx = ((xx % w) + w) % w;
+            push(std::size_t(yy) * std::size_t(w) + std::size_t(xx));
+        }
+}
+
+// ---- statistics ----
+
+double ev100FromLuminance(double averageLuminance) {
+    if (!(averageLuminance > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+    return std::log2(averageLuminance * 100.0 / 12.5);
+}
+
+EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::dvec3& weights) {
+    struct Sums {
+        double omega = 0.0, energy = 0.0, upward = 0.0;
+        double logOmega = 0.0, logSum = 0.0;
+        double minY = std::numeric_limits<double>::infinity(),
+               maxY = -std::numeric_limits<double>::infinity();
+    };
+    using Range = tbb::blocked_range<std::size_t>;
+    const Sums s = tbb::parallel_reduce(
+        Range(0, texels.size(), 4096), Sums{},
+        [&](const Range& range, Sums a) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
+                const double omega = texels.solidAngle(i);
+                a.omega += omega;
+                a.energy += y * omega;
+                a.upward += y * texels.upwardCosine(i);
+                a.minY = std::min(a.minY, y);
+                a.maxY = std::max(a.maxY, y);
+                if (y > 0.0) {
+                    a.logOmega += omega;
+                    a.logSum += omega * std::log(y);
+                }
+            }
+            return a;
+        },
+        [](Sums a, const Sums& b) {
+            a.omega += b.omega;
+            a.energy += b.energy;
+            a.upward += b.upward;
+            a.logOmega += b.logOmega;
+            a.logSum += b.logSum;
+            a.minY = std::min(a.minY, b.minY);
+            a.maxY = std::max(a.maxY, b.maxY);
+            return a;
+        });
+
+    EnvironmentStats st;
+    st.texels = texels.size();
+    st.solidAngle = s.omega;
+    st.minLuminance = s.minY;
+    st.maxLuminance = s.maxY;
+    st.meanLuminance = s.energy / s.omega;
+    st.logMeanLuminance = s.logOmega > 0.0 ? std::exp(s.logSum / s.logOmega) : 0.0;
+    st.upwardIlluminance = s.upward;
+
+    // 0.1th percentile of the positive luminances by solid angle.
+    std::vector<std::pair<float, float>> positive; // (luminance, solid angle)
+    positive.reserve(texels.size());
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
+        if (y > 0.0) positive.emplace_back(float(y), float(texels.solidAngle(i)));
+    }
+    if (!positive.empty()) {
+        std::sort(positive.begin(), positive.end());
+        const double target = 0.001 * s.logOmega;
+        double acc = 0.0;
+        st.lowPercentileLuminance = positive.back().first;
+        for (const auto& [y, omega] : positive) {
+            acc += omega;
+            if (acc >= target) {
+                st.lowPercentileLuminance = y;
+                break;
+            }
+        }
+        st.dynamicRangeStops = std::log2(st.maxLuminance / st.lowPercentileLuminance);
+    }
+    st.ev100 = ev100FromLuminance(st.logMeanLuminance);
+    st.ev100FromMean = ev100FromLuminance(st.meanLuminance);
+    return st;
+}
+
+EnvironmentStats computeEnvironmentStats(const CubeMap& cube, const glm::dvec3& weights) {
+    return computeEnvironmentStats(SphereTexels(cube), weights);
+}
+
+EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, const glm::dvec3& weights) {
+    return computeEnvironmentStats(SphereTexels(latlong), weights);
+}
+
+double zenithLuminance(const SphereTexels& texels, double capDegrees, const glm::dvec3& weights,
+                       const std::vector<std::size_t>& exclude) {
+    // Texels whose centroid lies in the cap; on a grid too coarse to have any, the ones nearest +Y.
+    std::vector<double> cosines(texels.size());
+    double nearest = -1.0;
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const glm::dvec3 v = texels.vectorSolidAngle(i);
+        cosines[i] = v.y / glm::length(v);
+        nearest = std::max(nearest, cosines[i]);
+    }
+    const double cosCap = std::min(std::cos(capDegrees * kPi / 180.0), nearest - 1e-12);
+    std::vector<std::size_t> skip = exclude;
+    std::sort(skip.begin(), skip.end());
+    double energy = 0.0, omega = 0.0;
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        if (cosines[i] < cosCap || std::binary_search(skip.begin(), skip.end(), i)) continue;
+        const double w = texels.solidAngle(i);
+        energy += glm::dot(weights, glm::dvec3(texels.rgb(i))) * w;
+        omega += w;
+    }
+    return omega > 0.0 ? energy / omega : 0.0;
+}
+
+} // namespace ibl

@@ -1,0 +1,331 @@
+// Sun detection and measurement (the algorithm is described in iblbake/sun.h).
+#include "iblbake/error.h"
+#include "iblbake/sun.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <numbers>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace ibl {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDegree = kPi / 180.0;
+
+// Angle between unit vectors, accurate for small angles too.
+double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
+    return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+
+// Solid-angle-weighted median of (value, weight) pairs; 0 when empty.
+double weightedMedian(std::vector<std::pair<float, double>>& samples) {
+    if (samples.empty()) return 0.0;
+    std::sort(samples.begin(), samples.end());
+    double total = 0.0;
+    for (const auto& s : samples)
+        total += s.second;
+    double acc = 0.0;
+    for (const auto& [value, weight] : samples) {
+        acc += weight;
+        if (acc >= 0.5 * total) return value;
+    }
+    return samples.back().first;
+}
+
+std::string format(const char* fmt, double a, double b = 0.0) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, fmt, a, b);
+    return buf;
+}
+
+// Texels reachable from `seed` through neighbours for which `accept` holds (the seed is not tested).
+template <class Accept>
+std::vector<std::size_t> floodFill(const SphereTexels& texels, std::size_t seed, Accept accept) {
+    std::vector<std::size_t> out;
+    std::unordered_set<std::size_t> seen{seed};
+    std::deque<std::size_t> queue{seed};
+    std::vector<std::size_t> nb;
+    while (!queue.empty()) {
+        const std::size_t i = queue.front();
+        queue.pop_front();
+        out.push_back(i);
+        texels.neighbours(i, nb);
+        for (std::size_t k : nb)
+            if (!seen.count(k) && accept(k)) {
+                seen.insert(k);
+                queue.push_back(k);
+            }
+    }
+    return out;
+}
+
+// The sun's region: its core is the texels above `threshold` linked to `seed` by chains of core texels
+// at most `margin` steps apart (margin 1: plain 8-connectivity); the region is the core and every texel
+// within `margin` steps of it. So every texel just outside the region is at or below the threshold, and
+// the region takes in the spill of a sun blurred by capture or resampling, whose energy a tight
+// threshold region would leave behind. Returns false once the core's solid angle exceeds
+// `maxCoreSolidAngle`.
+bool growSunRegion(const SphereTexels& texels, std::size_t seed, const std::vector<float>& lum,
+                   float threshold, int margin, double maxCoreSolidAngle, std::vector<std::size_t>& region,
+                   double& coreOmega) {
+    region.clear();
+    coreOmega = 0.0;
+    std::unordered_set<std::size_t> inRegion, inCore{seed};
+    std::deque<std::size_t> cores{seed};
+    std::vector<std::size_t> frontier, next, nb;
+    auto addToRegion = [&](std::size_t k) {
+        if (inRegion.insert(k).second) region.push_back(k);
+    };
+    while (!cores.empty()) {
+        const std::size_t c = cores.front();
+        cores.pop_front();
+        addToRegion(c);
+        coreOmega += texels.solidAngle(c);
+        if (coreOmega > maxCoreSolidAngle) return false;
+        frontier.assign(1, c);
+        std::unordered_set<std::size_t> seen{c};
+        for (int depth = 0; depth < margin; ++depth) {
+            next.clear();
+            for (std::size_t f : frontier) {
+                texels.neighbours(f, nb);
+                for (std::size_t k : nb) {
+                    if (!seen.insert(k).second) continue;
+                    next.push_back(k);
+                    addToRegion(k);
+                    if (lum[k] > threshold && inCore.insert(k).second) cores.push_back(k);
+                }
+            }
+            frontier.swap(next);
+        }
+    }
+    return true;
+}
+
+// Harmonic fill of `region` from its outer boundary: every region texel ends up the average of its
+// neighbours (Gauss-Seidel on the graph Laplacian, Dirichlet values on the boundary). The result is a
+// convex combination of boundary values.
+std::vector<glm::vec3> harmonicFill(const SphereTexels& texels, const std::vector<std::size_t>& region) {
+    std::unordered_map<std::size_t, std::size_t> slot; // texel -> index in region
+    for (std::size_t k = 0; k < region.size(); ++k)
+        slot.emplace(region[k], k);
+    // Per region texel: its neighbours inside the region (as slots) and the sum of those outside (fixed).
+    struct Links {
+        std::vector<std::size_t> inner;
+        glm::dvec3 fixedSum{0.0};
+        int count = 0;
+    };
+    std::vector<Links> links(region.size());
+    std::vector<std::size_t> nb;
+    glm::dvec3 boundarySum(0.0);
+    int boundaryCount = 0;
+    for (std::size_t k = 0; k < region.size(); ++k) {
+        texels.neighbours(region[k], nb);
+        for (std::size_t n : nb) {
+            auto it = slot.find(n);
+            if (it != slot.end()) {
+                links[k].inner.push_back(it->second);
+            } else {
+                const glm::dvec3 v(texels.rgb(n));
+                links[k].fixedSum += v;
+                boundarySum += v;
+                ++boundaryCount;
+            }
+            ++links[k].count;
+        }
+    }
+    const glm::dvec3 start = boundaryCount > 0 ? boundarySum / double(boundaryCount) : glm::dvec3(0.0);
+    std::vector<glm::dvec3> f(region.size(), start);
+    const double scale = std::max({start.x, start.y, start.z, 1e-30});
+    for (int iteration = 0; iteration < 20000; ++iteration) {
+        double change = 0.0;
+        for (std::size_t k = 0; k < region.size(); ++k) {
+            glm::dvec3 sum = links[k].fixedSum;
+            for (std::size_t n : links[k].inner)
+                sum += f[n];
+            const glm::dvec3 next = sum / double(std::max(1, links[k].count));
+            const glm::dvec3 d = glm::abs(next - f[k]);
+            change = std::max({change, d.x, d.y, d.z});
+            f[k] = next;
+        }
+        if (change <= 1e-9 * scale) break;
+    }
+    std::vector<glm::vec3> out(region.size());
+    for (std::size_t k = 0; k < region.size(); ++k)
+        out[k] = glm::vec3(glm::max(f[k], glm::dvec3(0.0)));
+    return out;
+}
+
+} // namespace
+
+double DiskLight::elevationDegrees() const {
+    return std::asin(std::clamp(direction.y, -1.0, 1.0)) / kDegree;
+}
+
+double DiskLight::azimuthDegrees() const {
+    return std::atan2(direction.x, direction.z) / kDegree;
+}
+
+double DiskLight::diskSolidAngle() const {
+    return 2.0 * kPi * (1.0 - std::cos(angularRadius));
+}
+
+DiskLight diskLightFromExcess(const SphereTexels& texels, const std::vector<std::size_t>& region,
+                              const std::vector<glm::dvec3>& excess, const glm::dvec3& weights) {
+    if (excess.size() != region.size()) throw Error("sun: internal: excess and region sizes differ");
+    DiskLight light;
+    glm::dvec3 rgb(0.0), axis(0.0);
+    std::vector<glm::dvec3> dirs(region.size());
+    std::vector<double> w(region.size()), omegas(region.size());
+    for (std::size_t k = 0; k < region.size(); ++k) {
+        const double omega = texels.solidAngle(region[k]);
+        const glm::dvec3 v = texels.vectorSolidAngle(region[k]);
+        const double y = glm::dot(weights, excess[k]);
+        rgb += excess[k] * omega;
+        light.solidAngle += omega;
+        axis += y * v;
+        dirs[k] = glm::normalize(v);
+        w[k] = y * omega;
+        omegas[k] = omega;
+    }
+    light.illuminance = glm::dot(weights, rgb);
+    if (!(light.illuminance > 0.0) || !(glm::length(axis) > 0.0)) {
+        light.illuminance = 0.0;
+        light.color = glm::dvec3(1.0);
+        return light;
+    }
+    light.color = rgb / light.illuminance;
+    light.direction = glm::normalize(axis);
+    double moment = 0.0, total = 0.0;
+    for (std::size_t k = 0; k < region.size(); ++k) {
+        const double theta = angleBetween(dirs[k], light.direction);
+        moment += w[k] * (theta * theta + omegas[k] / (2.0 * kPi));
+        total += w[k];
+    }
+    light.angularRadius = total > 0.0 ? std::sqrt(2.0 * moment / total) : 0.0;
+    return light;
+}
+
+SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& settings) {
+    SunDetection det;
+    const std::size_t n = texels.size();
+    det.texelCount = n;
+    const glm::dvec3& wt = settings.luminanceWeights;
+
+    // Luminance and the upper-hemisphere flag per texel.
+    std::vector<float> lum(n);
+    std::vector<std::uint8_t> upper(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                              lum[i] = float(glm::dot(wt, glm::dvec3(texels.rgb(i))));
+                              upper[i] = texels.vectorSolidAngle(i).y > 0.0;
+                          }
+                      });
+    const std::size_t peak = std::size_t(std::max_element(lum.begin(), lum.end()) - lum.begin());
+    det.peakLuminance = lum[peak];
+    det.peakDirection = texels.direction(peak);
+    if (!(det.peakLuminance > 0.0)) {
+        det.reason = "the environment is black";
+        return det;
+    }
+
+    // 1. Sky level: upper-hemisphere median.
+    {
+        std::vector<std::pair<float, double>> samples;
+        samples.reserve(n / 2 + 1);
+        for (std::size_t i = 0; i < n; ++i)
+            if (upper[i]) samples.emplace_back(lum[i], texels.solidAngle(i));
+        det.skyLuminance = weightedMedian(samples);
+    }
+
+    // 2. Surroundings: median over the ring around the peak.
+    {
+        const double outer = settings.ringOuterDegrees * kDegree, inner = settings.ringInnerDegrees * kDegree;
+        const std::vector<std::size_t> disk = floodFill(texels, peak, [&](std::size_t k) {
+            return angleBetween(texels.direction(k), det.peakDirection) <= outer;
+        });
+        std::vector<std::pair<float, double>> samples;
+        for (std::size_t k : disk)
+            if (angleBetween(texels.direction(k), det.peakDirection) >= inner)
+                samples.emplace_back(lum[k], texels.solidAngle(k));
+        det.surroundLuminance = weightedMedian(samples);
+    }
+    const double reference = std::max(det.surroundLuminance, det.skyLuminance);
+    det.threshold = std::max(settings.ringFactor * det.surroundLuminance,
+                             std::sqrt(det.peakLuminance * det.surroundLuminance));
+
+    // 3. The region: texels above the threshold around the peak, and a margin.
+    const float t = float(det.threshold);
+    if (!(det.peakLuminance > det.threshold)) {
+        det.reason =
+            format("the brightest texel is only %.3g times its surroundings (a sun is more than %.3g)",
+                   det.peakLuminance / std::max(det.surroundLuminance, 1e-30), settings.ringFactor);
+        return det;
+    }
+    // Compactness limit: the setting, or 4 peak texels on a grid too coarse to resolve it.
+    const double maxCore = std::max(settings.maxSolidAngle, 4.0 * texels.solidAngle(peak));
+    if (!growSunRegion(texels, peak, lum, t, settings.marginTexels, maxCore, det.region,
+                       det.coreSolidAngle)) {
+        det.reason =
+            format("the region above the sun threshold is larger than %.3g sr (an area light or sky, "
+                   "not a sun)",
+                   maxCore);
+        det.region.clear();
+        return det;
+    }
+    double regionExcess = 0.0, allExcess = 0.0;
+    for (std::size_t k : det.region)
+        if (lum[k] > t) regionExcess += (double(lum[k]) - det.threshold) * texels.solidAngle(k);
+    for (std::size_t i = 0; i < n; ++i)
+        if (lum[i] > t) allExcess += (double(lum[i]) - det.threshold) * texels.solidAngle(i);
+    det.energyShare = allExcess > 0.0 ? regionExcess / allExcess : 1.0;
+    if (det.energyShare <= settings.minEnergyShare) {
+        det.reason =
+            format("the brightest region holds only %.0f%% of the light above its threshold (several "
+                   "sources, none dominant)",
+                   100.0 * det.energyShare);
+        det.region.clear();
+        return det;
+    }
+
+    // 4-5. Background fill and the light it implies.
+    det.fill = harmonicFill(texels, det.region);
+    std::vector<glm::dvec3> excess(det.region.size());
+    for (std::size_t k = 0; k < det.region.size(); ++k) {
+        const glm::dvec3 before(texels.rgb(det.region[k]));
+        excess[k] = before - glm::min(before, glm::dvec3(det.fill[k]));
+    }
+    det.light = diskLightFromExcess(texels, det.region, excess, wt);
+
+    // 6. Far brighter than the sky: the light's luminance were it a sun-sized disk, over the reference.
+    det.contrast = reference > 0.0 ? det.light.illuminance / (kSunSolidAngle * reference) : HUGE_VAL;
+    if (!(det.contrast >= settings.minContrast)) {
+        det.reason =
+            format("the brightest region is only %.3g times as bright as its surroundings, as a sun-sized "
+                   "disk (a sun is at least %.3g)",
+                   det.contrast, settings.minContrast);
+        det.region.clear();
+        det.fill.clear();
+        return det;
+    }
+    det.found = true;
+    return det;
+}
+
+SunDetection detectSun(const CubeMap& cube, const SunDetectSettings& settings) {
+    return detectSun(SphereTexels(cube), settings);
+}
+
+} // namespace ibl

@@ -1,0 +1,155 @@
+// iblbake calibrate: HDRI in, the same environment in absolute luminance (cd/m2) out as a float OpenEXR,
+// optionally with the sun taken out as an analytic disk light (JSON).
+//
+// The factor is always computed on the ingested source cube (so `calibrate` and the baking commands given
+// the same option agree). The output keeps the input's layout where that is lossless:
+//   - lat-long input: a lat-long at the input's resolution, the input's own pixels (in lin_rec709) times
+//     the factor -- nothing is resampled. With --extract-sun the sun is detected and removed on those
+//     lat-long pixels, with their exact solid angles (ImfEnvmap LatLongMap grid, environment_stats.h), so
+//     the written light is exactly the energy taken out of the written file. Its E_perp differs from the
+//     cube's (which --sun-illuminance calibrates) by the resampling: 0.1-0.7 % on the shared HDRIs.
+//   - cube inputs (any cube layout): the calibrated source cube as a vertical strip (six faces stacked,
+//     +X, -X, +Y, -Y, +Z, -Z, OpenGL orientation, kernels/cube.h), which ingest reads back exactly; the
+//     sun is extracted on the cube.
+// The pixels are lin_rec709 (the working space, and what ingest assumes for a float EXR without
+// chromaticities), so the output reads back as written.
+#include "calibration_options.h"
+#include "commands.h"
+
+#include <iblbake/calibration.h>
+#include <iblbake/error.h>
+#include <iblbake/exr_output.h>
+#include <iblbake/ingest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <numbers>
+
+namespace ibl::cli {
+
+namespace {
+
+struct CalibrateOptions {
+    std::string input;
+    std::string output;
+    int size = 0;
+    std::string layout = "auto";
+    std::string inputColorSpace;
+    CalibrationOptions calibration;
+};
+
+ImageRGBA verticalStrip(const CubeMap& cube) {
+    const int n = cube.faceSize;
+    ImageRGBA strip(n, 6 * n);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                strip.at(x, f * n + y) = cube.faces[std::size_t(f)].at(x, y);
+    return strip;
+}
+
+} // namespace
+
+Action addCalibrateCommand(CLI::App& app) {
+    auto o = std::make_shared<CalibrateOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "calibrate",
+        "scale an HDRI to absolute luminance (cd/m2), optionally extracting the sun as a disk light");
+    cmd->add_option("input", o->input, "HDR environment")->required();
+    cmd->add_option("-o,--output", o->output,
+                    "output OpenEXR (float): lat-long for lat-long inputs, else a "
+                    "vertical strip of cube faces")
+        ->required();
+    cmd->add_option("--size", o->size,
+                    "face size of the source cube the factor is measured on (default: from the input); also "
+                    "the output's for cube inputs")
+        ->check(CLI::Range(0, 8192));
+    cmd->add_option("--layout", o->layout, "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip")
+        ->capture_default_str();
+    cmd->add_option("--input-colorspace", o->inputColorSpace,
+                    "input colour space (default: file metadata, else lin_rec709; sRGB for 8-bit files)");
+    o->calibration.addTo(*cmd);
+
+    return [o] {
+        IngestSettings ingest;
+        ingest.layout = parseLayout(o->layout);
+        ingest.inputColorSpace = o->inputColorSpace;
+        ingest.sourceFaceSize = o->size;
+        SourceEnvironment env = ingestEnvironment({o->input}, ingest);
+        const IngestReport& r = env.report;
+        const glm::dvec3 weights = workingLuminanceWeights(r.workingColorSpace);
+        const CalibrationSettings settings = o->calibration.settings(weights);
+        if (!o->calibration.anySource())
+            throw Error("give one calibration source: --scale, --ev100, --illuminance, --sun-illuminance, "
+                        "--sky-luminance or --radiometric (--scale 1 keeps the values)");
+
+        CalibrationOutcome outcome;
+        ImageRGBA image;
+        std::string layoutText;
+        try {
+            outcome.record = computeCalibration(env.cube, settings);
+            const double factor = outcome.record.factor;
+            SunDetectSettings sunSettings = settings.sun;
+            sunSettings.luminanceWeights = weights;
+            if (r.layout == EnvLayout::LatLong) {
+                ingest.layout = EnvLayout::LatLong;
+                image = readWorkingLatLong(o->input, ingest);
+                applyCalibration(image, factor);
+                if (o->calibration.extractSun) {
+                    SphereTexels texels(image);
+                    const SunDetection sun = detectSun(texels, sunSettings);
+                    if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
+                    outcome.sun = extractSun(texels, sun, weights);
+                }
+                layoutText = "latlong (DESIGN.md / OpenEXR LatLongMap: +Y first scanline, +Z at the centre, "
+                             "+X at u = 0.25)";
+            } else {
+                applyCalibration(env.cube, factor);
+                if (o->calibration.extractSun) {
+                    const SunDetection sun = detectSun(env.cube, sunSettings);
+                    if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
+                    outcome.sun = extractSun(env.cube, sun, weights);
+                }
+                image = verticalStrip(env.cube);
+                layoutText =
+                    "vstrip: faces +X, -X, +Y, -Y, +Z, -Z stacked vertically, OpenGL face orientation";
+            }
+        } catch (const Error& e) {
+            throw Error(r.file + ": " + e.what());
+        }
+
+        ExrOutputOptions exr;
+        exr.channels = 3;
+        exr.pixelType = PixelType::Float;
+        exr.attributes = {{"iblbake:product", "calibrated-environment"},
+                          {"iblbake:layout", layoutText},
+                          {"iblbake:colorSpace", r.workingColorSpace},
+                          {"iblbake:source", std::filesystem::path(r.file).filename().string()},
+                          {"iblbake:version", IBLBAKE_VERSION},
+                          {"Software", "iblbake " IBLBAKE_VERSION}};
+        for (auto& kv : outcome.metadata("iblbake:"))
+            exr.attributes.push_back(std::move(kv));
+
+        std::unique_ptr<AtomicFile> sunJson = stageSunJson(o->calibration, outcome);
+        writeExr(o->output, image, exr);
+        if (sunJson) sunJson->commit();
+
+        std::printf("input   %s: %dx%d %s, %s -> %s, source cube %d\n", r.file.c_str(), r.width, r.height,
+                    layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(), r.faceSize);
+        std::printf("%s\n", outcome.record.summary().c_str());
+        if (outcome.sun) {
+            const DiskLight& l = *outcome.sun;
+            std::printf("sun     extracted: elevation %.2f deg, azimuth %.2f deg, angular radius %.3f deg, "
+                        "E_perp %.6g %s, solid angle %.4g sr -> %s\n",
+                        l.elevationDegrees(), l.azimuthDegrees(), l.angularRadius * 180.0 / std::numbers::pi,
+                        l.illuminance, outcome.record.absolute() ? "lux" : "(relative)", l.solidAngle,
+                        o->calibration.sunJson.c_str());
+        }
+        std::printf("wrote   %s: %dx%d float, %s\n", o->output.c_str(), image.width, image.height,
+                    outcome.record.units().c_str());
+        return 0;
+    };
+}
+
+} // namespace ibl::cli

@@ -1,0 +1,62 @@
+// Calibration options shared by the commands that read an HDRI (calibrate; specular and diffuse can add
+// them the same way): one calibration source, and the optional sun extraction.
+//
+//   CalibrationOptions calibration;          // in the command's option struct
+//   calibration.addTo(*cmd);                 // when building the subcommand
+//   ...
+//   SourceEnvironment env = ingestEnvironment(files, ingest);
+//   CalibrationOutcome cal = applyCalibration(calibration, env);  // scales env.cube, extracts the sun
+//   for (auto& kv : cal.metadata("iblbake.")) keyValues.push_back(kv); // into the output's metadata
+//   auto sunJson = stageSunJson(calibration, cal);  // before writing the main output ...
+//   ... write the main output ...
+//   if (sunJson) sunJson->commit();                 // ... and committed after it
+#pragma once
+
+#include <iblbake/atomic_file.h>
+#include <iblbake/calibration.h>
+#include <iblbake/ingest.h>
+#include <iblbake/sun.h>
+
+#include <CLI/CLI.hpp>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ibl::cli {
+
+struct CalibrationOutcome {
+    CalibrationRecord record;
+    std::optional<DiskLight> sun; // the extracted sun (with --extract-sun)
+
+    // calibrationMetadata(record, prefix) plus prefix + "sun": "extracted: <one-line JSON>" or "kept in
+    // the environment" (and prefix + "sunLight" = the light's JSON when extracted).
+    std::vector<std::pair<std::string, std::string>> metadata(const std::string& prefix) const;
+};
+
+struct CalibrationOptions {
+    std::optional<double> scale, ev100, illuminance, sunIlluminance, skyLuminance;
+    bool radiometric = false;
+    bool extractSun = false;
+    std::string sunJson;
+
+    // --scale, --ev100, --illuminance, --sun-illuminance, --sky-luminance, --radiometric (at most one: a
+    // second is a one-line parse error), --extract-sun and --sun-json (each needs the other).
+    void addTo(CLI::App& command);
+    bool anySource() const;
+    CalibrationSettings settings(const glm::dvec3& luminanceWeights) const; // throws ibl::Error on > 1 source
+};
+
+// Computes the factor on env.cube (environment_stats.h / calibration.h), scales every texel by it, and
+// with --extract-sun takes the sun out of the scaled cube. Throws ibl::Error "<input>: --option: ..."
+// when the source cannot be used (e.g. --sun-illuminance on a map without a sun).
+CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env);
+
+// With --sun-json: the light written to a temporary file beside the target; commit() it once the main
+// output is written, so that a failed run leaves neither. nullptr without --sun-json.
+std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
+                                         const CalibrationOutcome& outcome);
+
+} // namespace ibl::cli

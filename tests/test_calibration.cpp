@@ -1,0 +1,511 @@
+// Photometric statistics (environment_stats.h), calibration factors (calibration.h) and the `inspect` and
+// `calibrate` commands end to end.
+//
+// Tolerances: exact geometry sums (4 pi, pi, zero vector) to 1e-9 relative (double accumulation of ~1e5
+// terms); constant environments to 1e-6 (float pixels); factors for --scale/--ev100/--radiometric exact
+// (the output pixel is the input pixel times float(factor), bit for bit); round trips through a file and
+// `inspect` to 0.5 % (the figure; they agree to ~1e-6, float storage being the only loss).
+#include "iblbake/calibration.h"
+#include "iblbake/environment_stats.h"
+#include "iblbake/error.h"
+#include "iblbake/ingest.h"
+#include "iblbake/sun.h"
+
+#include "cli_runner.h"
+
+#include <cube.h>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace ibl;
+using ibl::test::CliRun;
+using ibl::test::freshTempDir;
+using ibl::test::lineCount;
+using ibl::test::runCli;
+
+constexpr double kPi = std::numbers::pi;
+
+CubeMap cubeOf(int n, const std::function<glm::vec3(const glm::dvec3&)>& value) {
+    CubeMap cube(n);
+    for (ImageRGBA& f : cube.faces)
+        for (glm::vec4& p : f.pixels)
+            p = glm::vec4(0, 0, 0, 1);
+    SphereTexels t(cube);
+    for (std::size_t i = 0; i < t.size(); ++i)
+        t.setRgb(i, value(t.direction(i)));
+    return cube;
+}
+
+ImageRGBA latLongOf(int w, int h, const std::function<glm::vec3(const glm::dvec3&)>& value) {
+    ImageRGBA im(w, h);
+    for (glm::vec4& p : im.pixels)
+        p = glm::vec4(0, 0, 0, 1);
+    SphereTexels t(im);
+    for (std::size_t i = 0; i < t.size(); ++i)
+        t.setRgb(i, value(t.direction(i)));
+    return im;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Geometry and statistics
+
+void expectExactGeometry(const SphereTexels& t) {
+    double omega = 0.0, up = 0.0;
+    glm::dvec3 vec(0.0);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const double w = t.solidAngle(i);
+        ASSERT_GT(w, 0.0) << i;
+        const glm::dvec3 v = t.vectorSolidAngle(i);
+        ASSERT_LE(glm::length(v), w * (1.0 + 1e-12)) << i;
+        ASSERT_GE(t.upwardCosine(i), 0.0);
+        ASSERT_LE(t.upwardCosine(i), w * (1.0 + 1e-12));
+        omega += w;
+        up += t.upwardCosine(i);
+        vec += v;
+    }
+    EXPECT_NEAR(omega, 4.0 * kPi, 1e-9 * 4.0 * kPi);
+    EXPECT_NEAR(up, kPi, 1e-9 * kPi);
+    EXPECT_LT(glm::length(vec), 1e-9);
+}
+
+TEST(EnvironmentGeometry, CubeTexelsAreExact) {
+    for (int n : {1, 2, 7, 16, 33}) { // odd sizes: side-face rows straddle the horizon
+        SCOPED_TRACE(n);
+        const CubeMap cube(n);
+        expectExactGeometry(SphereTexels(cube));
+    }
+    // Same solid angles as kernels/cube.h (float there).
+    const CubeMap cube(64);
+    const SphereTexels t(cube);
+    for (int j = 0; j < 64; j += 9)
+        for (int i = 0; i < 64; i += 7)
+            EXPECT_NEAR(t.solidAngle(std::size_t(j) * 64 + i), cubeTexelSolidAngle(i, j, 64),
+                        2e-4 * t.solidAngle(std::size_t(j) * 64 + i));
+}
+
+TEST(EnvironmentGeometry, LatLongPixelsAreExact) {
+    for (auto [w, h] : {std::pair{4, 2}, {64, 32}, {63, 31}, {100, 50}}) {
+        SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+        const ImageRGBA im(w, h);
+        expectExactGeometry(SphereTexels(im));
+    }
+    // Pixel (x, y) looks along the LatLongMap direction of its centre (DESIGN.md), except at the poles
+    // where its cell's centroid is off the pole.
+    const ImageRGBA im(64, 32);
+    const SphereTexels t(im);
+    const glm::dvec3 d(directionFromLatlong(10.0f / 63.0f, 12.0f / 31.0f));
+    EXPECT_GT(glm::dot(t.direction(12 * 64 + 10), d), std::cos(0.01));
+    EXPECT_THROW(SphereTexels(ImageRGBA(1, 1)), Error);
+}
+
+TEST(EnvironmentGeometry, NeighboursAreSymmetricAndCrossEdges) {
+    for (int grid = 0; grid < 2; ++grid) {
+        const CubeMap cube(8);
+        const ImageRGBA im(16, 8);
+        const SphereTexels t = grid == 0 ? SphereTexels(cube) : SphereTexels(im);
+        std::vector<std::size_t> nb, back;
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            t.neighbours(i, nb);
+            ASSERT_GE(nb.size(), 3u) << i;
+            for (std::size_t k : nb) {
+                ASSERT_NE(k, i);
+                // Neighbours are close: within two texel diagonals.
+                ASSERT_GT(glm::dot(t.direction(i), t.direction(k)), std::cos(grid == 0 ? 0.6 : 0.9))
+                    << i << " " << k;
+            }
+        }
+        // 4-neighbours are mutual (edge neighbours across cube edges and the lat-long seam too).
+        std::size_t edges = 0, mutual = 0;
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            t.neighbours(i, nb);
+            for (std::size_t k : nb) {
+                t.neighbours(k, back);
+                ++edges;
+                mutual += std::find(back.begin(), back.end(), i) != back.end();
+            }
+        }
+        EXPECT_GT(double(mutual), 0.97 * double(edges)) << (grid == 0 ? "cube" : "latlong");
+    }
+}
+
+TEST(EnvironmentStats, ConstantEnvironment) {
+    const double L = 2.5;
+    const glm::vec3 c = glm::vec3(float(L));
+    for (int grid = 0; grid < 4; ++grid) {
+        SCOPED_TRACE(grid);
+        const CubeMap cube = cubeOf(grid == 0 ? 32 : 17, [&](const glm::dvec3&) { return c; });
+        const ImageRGBA im =
+            latLongOf(grid == 2 ? 128 : 51, grid == 2 ? 64 : 25, [&](const glm::dvec3&) { return c; });
+        const EnvironmentStats s = grid < 2 ? computeEnvironmentStats(cube) : computeLatLongStats(im);
+        EXPECT_NEAR(s.upwardIlluminance, kPi * L, 1e-6 * kPi * L); // E = pi L
+        EXPECT_NEAR(s.meanLuminance, L, 1e-6 * L);
+        EXPECT_NEAR(s.logMeanLuminance, L, 1e-6 * L);
+        EXPECT_NEAR(s.minLuminance, L, 1e-6);
+        EXPECT_NEAR(s.maxLuminance, L, 1e-6);
+        EXPECT_NEAR(s.dynamicRangeStops, 0.0, 1e-9);
+        EXPECT_NEAR(s.ev100, std::log2(L * 8.0), 1e-6); // log2(L * 100 / 12.5)
+        EXPECT_NEAR(s.solidAngle, 4.0 * kPi, 1e-9);
+    }
+}
+
+TEST(EnvironmentStats, AnalyticEnvironments) {
+    // Upper hemisphere 1, lower 0 (even face size: the horizon is a texel boundary): E = pi, mean 1/2.
+    const CubeMap half = cubeOf(32, [](const glm::dvec3& d) { return glm::vec3(d.y > 0 ? 1.0f : 0.0f); });
+    EnvironmentStats s = computeEnvironmentStats(half);
+    EXPECT_NEAR(s.upwardIlluminance, kPi, 1e-6);
+    EXPECT_NEAR(s.meanLuminance, 0.5, 1e-6);
+    EXPECT_NEAR(s.minLuminance, 0.0, 0.0);
+
+    // L = cos(theta) above the horizon: E = integral of cos^2 = 2 pi / 3; texel-constant values make it
+    // approximate (second order in the texel size).
+    const CubeMap lobe =
+        cubeOf(128, [](const glm::dvec3& d) { return glm::vec3(float(std::max(0.0, d.y))); });
+    s = computeEnvironmentStats(lobe);
+    EXPECT_NEAR(s.upwardIlluminance, 2.0 * kPi / 3.0, 1e-3 * 2.0 * kPi / 3.0);
+    EXPECT_NEAR(s.meanLuminance, 0.25, 1e-3 * 0.25); // integral of cos over the hemisphere / 4 pi = 1/4
+
+    // Two levels, 1 and 1024 (10 stops); colour does not matter beyond luminance.
+    const CubeMap two = cubeOf(32, [](const glm::dvec3& d) {
+        return d.x > 0.9 ? glm::vec3(1024.0f) : glm::vec3(0.0f, 1.0f / 0.7152f, 0.0f);
+    });
+    s = computeEnvironmentStats(two);
+    EXPECT_NEAR(s.dynamicRangeStops, 10.0, 1e-4);
+    EXPECT_NEAR(s.lowPercentileLuminance, 1.0, 1e-6);
+
+    EXPECT_DOUBLE_EQ(ev100FromLuminance(1.0), 3.0); // Frostbite Table 7: EV100 3 <-> 1 cd/m2
+    EXPECT_DOUBLE_EQ(ev100FromLuminance(4096.0), 15.0);
+    EXPECT_TRUE(std::isnan(ev100FromLuminance(0.0)));
+    EXPECT_TRUE(std::isnan(
+        computeEnvironmentStats(cubeOf(4, [](const glm::dvec3&) { return glm::vec3(0.0f); })).ev100));
+
+    // Zenith cap mean of a sky that is 3 at the zenith region only.
+    const CubeMap zen =
+        cubeOf(64, [](const glm::dvec3& d) { return glm::vec3(d.y > std::cos(0.2) ? 3.0f : 1.0f); });
+    EXPECT_NEAR(zenithLuminance(SphereTexels(zen), kZenithCapDegrees), 3.0, 1e-6);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Calibration factors
+
+CalibrationSettings source(CalibrationSource s, double v = 0.0) {
+    CalibrationSettings c;
+    c.source = s;
+    c.value = v;
+    return c;
+}
+
+TEST(Calibration, FactorsOfEachSource) {
+    const double L = 2.0;
+    const CubeMap cube = cubeOf(16, [&](const glm::dvec3&) { return glm::vec3(float(L)); });
+    EXPECT_EQ(computeCalibration(cube, source(CalibrationSource::None)).factor, 1.0);
+    EXPECT_EQ(computeCalibration(cube, source(CalibrationSource::Scale, 3.75)).factor, 3.75);
+    EXPECT_EQ(computeCalibration(cube, source(CalibrationSource::Ev100, 0.0)).factor, 1.2);
+    EXPECT_EQ(computeCalibration(cube, source(CalibrationSource::Ev100, 10.0)).factor, 1.2 * 1024.0);
+    EXPECT_EQ(computeCalibration(cube, source(CalibrationSource::Ev100, -2.5)).factor, 1.2 * std::exp2(-2.5));
+    EXPECT_EQ(computeCalibration(cube, source(CalibrationSource::Radiometric)).factor, 683.0);
+
+    const CalibrationRecord lux = computeCalibration(cube, source(CalibrationSource::Illuminance, 20000.0));
+    EXPECT_NEAR(lux.factor, 20000.0 / (kPi * L), 1e-6 * lux.factor);
+    EXPECT_NEAR(lux.measuredBefore, kPi * L, 1e-6);
+    EXPECT_NEAR(lux.measuredAfter, 20000.0, 1e-6 * 20000.0);
+    EXPECT_NEAR(lux.upwardIlluminanceAfter, 20000.0, 1e-6 * 20000.0);
+    EXPECT_EQ(lux.units(), "cd/m2");
+
+    const CalibrationRecord sky = computeCalibration(cube, source(CalibrationSource::SkyLuminance, 8000.0));
+    EXPECT_NEAR(sky.factor, 4000.0, 1e-6 * 4000.0);
+    EXPECT_TRUE(sky.sunMeasured);
+    EXPECT_FALSE(sky.sunFound);
+
+    // A sun of known E_perp on a flat sky: --sun-illuminance scales it to the target.
+    CubeMap sunny = cubeOf(64, [](const glm::dvec3&) { return glm::vec3(0.2f); });
+    SphereTexels t(sunny);
+    const std::size_t k = (4 * 64 + 20) * 64 + 30;
+    t.setRgb(k, t.rgb(k) + glm::vec3(float(1.5 / t.solidAngle(k))));
+    const CalibrationRecord sun =
+        computeCalibration(sunny, source(CalibrationSource::SunIlluminance, 100000.0));
+    EXPECT_NEAR(sun.measuredBefore, 1.5, 1e-5 * 1.5);
+    EXPECT_NEAR(sun.factor, 100000.0 / 1.5, 1e-5 * sun.factor);
+    EXPECT_NEAR(sun.sunIlluminanceAfter, 100000.0, 1e-5 * 100000.0);
+    applyCalibration(sunny, sun.factor);
+    const SunDetection after = detectSun(sunny);
+    ASSERT_TRUE(after.found);
+    EXPECT_NEAR(after.light.illuminance, 100000.0, 1e-5 * 100000.0);
+}
+
+TEST(Calibration, UnusableValuesAreOneLineErrorsNamingTheOption) {
+    const CubeMap flat = cubeOf(16, [](const glm::dvec3&) { return glm::vec3(1.0f); });
+    const CubeMap black = cubeOf(16, [](const glm::dvec3&) { return glm::vec3(0.0f); });
+    auto message = [](const CubeMap& cube, CalibrationSettings s) -> std::string {
+        try {
+            computeCalibration(cube, s);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "";
+    };
+    EXPECT_EQ(message(flat, source(CalibrationSource::SunIlluminance, 1e5))
+                  .rfind("--sun-illuminance: no sun detected", 0),
+              0u);
+    EXPECT_EQ(message(flat, source(CalibrationSource::Scale, -1.0)).rfind("--scale: ", 0), 0u);
+    EXPECT_EQ(message(flat, source(CalibrationSource::Scale, 0.0)).rfind("--scale: ", 0), 0u);
+    EXPECT_EQ(message(flat, source(CalibrationSource::Illuminance, NAN)).rfind("--illuminance: ", 0), 0u);
+    EXPECT_EQ(message(flat, source(CalibrationSource::Ev100, 1000.0)).rfind("--ev100: ", 0), 0u);
+    EXPECT_EQ(message(black, source(CalibrationSource::Illuminance, 1e4)).rfind("--illuminance: ", 0), 0u);
+    EXPECT_EQ(message(black, source(CalibrationSource::SkyLuminance, 1e4)).rfind("--sky-luminance: ", 0), 0u);
+    for (auto s : {source(CalibrationSource::Scale, -1.0), source(CalibrationSource::SunIlluminance, 1e5)})
+        EXPECT_EQ(message(flat, s).find('\n'), std::string::npos);
+}
+
+TEST(Calibration, ApplyScalesColourNotAlphaAndMetadataRecordsIt) {
+    CubeMap cube = cubeOf(4, [](const glm::dvec3&) { return glm::vec3(1.0f, 2.0f, 3.0f); });
+    cube.faces[2].at(1, 1).w = 0.5f;
+    applyCalibration(cube, 2.0);
+    EXPECT_EQ(cube.faces[2].at(1, 1), glm::vec4(2.0f, 4.0f, 6.0f, 0.5f));
+    const CalibrationRecord r = computeCalibration(cube, source(CalibrationSource::Illuminance, 5000.0));
+    const auto kv = calibrationMetadata(r, "iblbake:");
+    auto find = [&](const std::string& key) {
+        for (const auto& [k, v] : kv)
+            if (k == key) return v;
+        return std::string("<absent>");
+    };
+    EXPECT_EQ(find("iblbake:calibration.source"), "illuminance");
+    EXPECT_NEAR(std::stod(find("iblbake:calibration.factor")), r.factor, 1e-8 * r.factor);
+    EXPECT_NEAR(std::stod(find("iblbake:calibration.measuredAfter")), 5000.0, 1e-5);
+    EXPECT_EQ(find("iblbake:units"), "cd/m2");
+    EXPECT_EQ(find("iblbake:calibration.quantity"), "upward illuminance");
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The commands, on the shared HDRIs
+
+const fs::path kHdri = fs::path(IBLBAKE_SHARED_DIR) / "data" / "hdri";
+
+#define REQUIRE_SHARED(name)                                                                                 \
+    do {                                                                                                     \
+        if (!fs::exists(kHdri / (name))) GTEST_SKIP() << (kHdri / (name)).string() << " is not present";     \
+    } while (0)
+
+nlohmann::json inspect(const fs::path& file) {
+    const CliRun r = runCli("inspect --json " + file.string());
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    try {
+        return nlohmann::json::parse(r.out);
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "inspect --json printed no JSON: " << e.what() << "\n" << r.out;
+        return {};
+    }
+}
+
+struct Pixels {
+    int width = 0, height = 0, channels = 0;
+    std::vector<float> data;
+    std::map<std::string, std::string> attributes;
+};
+
+Pixels readPixels(const fs::path& file) {
+    Pixels p;
+    auto in = OIIO::ImageInput::open(file.string());
+    EXPECT_TRUE(in) << OIIO::geterror();
+    if (!in) return p;
+    const OIIO::ImageSpec& spec = in->spec();
+    p.width = spec.width;
+    p.height = spec.height;
+    p.channels = spec.nchannels;
+    p.data.resize(std::size_t(p.width) * p.height * p.channels);
+    EXPECT_TRUE(in->read_image(0, 0, 0, p.channels, OIIO::TypeDesc::FLOAT, p.data.data()));
+    for (const OIIO::ParamValue& a : spec.extra_attribs)
+        p.attributes[a.name().string()] = a.get_string();
+    return p;
+}
+
+TEST(CalibrateCli, InspectReportsAnHdri) {
+    REQUIRE_SHARED("rooitou_park_1k.hdr");
+    const nlohmann::json j = inspect(kHdri / "rooitou_park_1k.hdr");
+    EXPECT_EQ(j["width"], 1024);
+    EXPECT_EQ(j["layout"], "latlong");
+    EXPECT_EQ(j["faceSize"], 256);
+    EXPECT_EQ(j["units"], "relative");
+    EXPECT_TRUE(j["calibration"].is_null());
+    EXPECT_GT(j["upwardIlluminance"].get<double>(), 0.0);
+    EXPECT_GT(j["dynamicRange"]["stops"].get<double>(), 15.0);
+    ASSERT_TRUE(j["sun"].is_object());
+    EXPECT_NEAR(j["sun"]["elevationDegrees"].get<double>(), 10.4, 1.0); // SOURCES.md
+
+    const CliRun text = runCli("inspect " + (kHdri / "potsdamer_platz_1k.hdr").string());
+    EXPECT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("no sun"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("EV100"), std::string::npos) << text.out;
+}
+
+TEST(CalibrateCli, IlluminanceRoundTrip) {
+    for (const char* name : {"rooitou_park_1k.hdr", "KernerEnvCube.exr"}) {
+        SCOPED_TRACE(name);
+        if (!fs::exists(kHdri / name)) GTEST_SKIP() << name << " is not present";
+        const fs::path dir = freshTempDir("calib_lux");
+        const fs::path out = dir / "out.exr";
+        const CliRun r =
+            runCli("calibrate " + (kHdri / name).string() + " --illuminance 20000 -o " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const nlohmann::json j = inspect(out);
+        EXPECT_NEAR(j["upwardIlluminance"].get<double>(), 20000.0, 0.005 * 20000.0);
+        EXPECT_EQ(j["units"], "cd/m2");
+        EXPECT_EQ(j["calibration"]["iblbake:calibration.source"], "illuminance");
+        EXPECT_EQ(ibl::test::entryCount(dir), 1u);
+        fs::remove_all(dir);
+    }
+}
+
+TEST(CalibrateCli, SunIlluminanceRoundTrip) {
+    for (const char* name : {"rooitou_park_1k.hdr", "venice_sunset_1k.hdr"}) {
+        SCOPED_TRACE(name);
+        if (!fs::exists(kHdri / name)) GTEST_SKIP() << name << " is not present";
+        const fs::path dir = freshTempDir("calib_sun");
+        const fs::path out = dir / "out.exr";
+        const CliRun r =
+            runCli("calibrate " + (kHdri / name).string() + " --sun-illuminance 100000 -o " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const nlohmann::json j = inspect(out);
+        ASSERT_TRUE(j["sun"].is_object());
+        EXPECT_NEAR(j["sun"]["illuminance"].get<double>(), 100000.0, 0.005 * 100000.0);
+        fs::remove_all(dir);
+    }
+}
+
+TEST(CalibrateCli, SkyLuminanceRoundTrip) {
+    REQUIRE_SHARED("potsdamer_platz_1k.hdr");
+    const fs::path dir = freshTempDir("calib_sky");
+    const fs::path out = dir / "out.exr";
+    const CliRun r = runCli("calibrate " + (kHdri / "potsdamer_platz_1k.hdr").string() +
+                            " --sky-luminance 2000 -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = inspect(out);
+    EXPECT_NEAR(j["luminance"]["zenith"].get<double>(), 2000.0, 0.005 * 2000.0);
+    EXPECT_EQ(j["calibration"]["iblbake:calibration.quantity"], "zenith luminance");
+    fs::remove_all(dir);
+}
+
+TEST(CalibrateCli, ExactFactorsScaleEveryPixel) {
+    REQUIRE_SHARED("venice_sunset_1k.hdr");
+    const fs::path input = kHdri / "venice_sunset_1k.hdr";
+    const Pixels in = readPixels(input);
+    const fs::path dir = freshTempDir("calib_exact");
+    struct Case {
+        std::string option;
+        double factor;
+    };
+    for (const Case& c : {Case{"--scale 3.5", 3.5}, Case{"--ev100 2.5", 1.2 * std::exp2(2.5)},
+                          Case{"--ev100 -1", 0.6}, Case{"--radiometric", 683.0}}) {
+        SCOPED_TRACE(c.option);
+        const fs::path out = dir / "out.exr";
+        const CliRun r = runCli("calibrate " + input.string() + " " + c.option + " -o " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const Pixels p = readPixels(out);
+        ASSERT_EQ(p.width, in.width);
+        ASSERT_EQ(p.height, in.height);
+        ASSERT_EQ(p.channels, 3);
+        const float f = float(c.factor);
+        std::size_t mismatches = 0;
+        for (std::size_t i = 0; i < std::size_t(in.width) * in.height; ++i)
+            for (int ch = 0; ch < 3; ++ch)
+                mismatches += p.data[i * 3 + ch] != in.data[i * in.channels + ch] * f;
+        EXPECT_EQ(mismatches, 0u);
+        EXPECT_NEAR(std::stod(p.attributes.at("iblbake:calibration.factor")), c.factor, 1e-8 * c.factor);
+        EXPECT_EQ(p.attributes.at("iblbake:units"), "cd/m2");
+    }
+    fs::remove_all(dir);
+}
+
+// Sum over a lat-long of value * exact pixel solid angle, in double (independent of the baker's grid class:
+// the cell of ImfEnvmap's LatLongMap, see ingest.h).
+glm::dvec3 latLongEnergy(const Pixels& p) {
+    auto edge = [](int k, int n) { return k <= 0 ? 0.0 : k >= n ? 1.0 : (k - 0.5) / (n - 1); };
+    glm::dvec3 e(0.0);
+    for (int y = 0; y < p.height; ++y) {
+        const double dz = std::cos(kPi * edge(y, p.height)) - std::cos(kPi * edge(y + 1, p.height));
+        for (int x = 0; x < p.width; ++x) {
+            const double omega = 2.0 * kPi * (edge(x + 1, p.width) - edge(x, p.width)) * dz;
+            const float* c = &p.data[(std::size_t(y) * p.width + x) * p.channels];
+            e += glm::dvec3(c[0], c[1], c[2]) * omega;
+        }
+    }
+    return e;
+}
+
+TEST(CalibrateCli, ExtractSunWritesTheLightAndConservesEnergy) {
+    REQUIRE_SHARED("rooitou_park_1k.hdr");
+    const fs::path input = kHdri / "rooitou_park_1k.hdr";
+    const fs::path dir = freshTempDir("calib_extract");
+    const fs::path out = dir / "out.exr", kept = dir / "kept.exr", sunJson = dir / "sun.json";
+    CliRun r = runCli("calibrate " + input.string() + " --sun-illuminance 100000 -o " + kept.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    r = runCli("calibrate " + input.string() + " --sun-illuminance 100000 --extract-sun --sun-json " +
+               sunJson.string() + " -o " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream jsonIn(sunJson);
+    const std::string text((std::istreambuf_iterator<char>(jsonIn)), {});
+    const DiskLight light = diskLightFromJson(text);
+    // The energy the file lost is the light's (lat-long extraction, exact solid angles).
+    const double removed =
+        glm::dot(kRec709Luminance, latLongEnergy(readPixels(kept)) - latLongEnergy(readPixels(out)));
+    EXPECT_NEAR(removed, light.illuminance, 0.005 * light.illuminance);
+    // The calibration target is on the cube; the lat-long extraction agrees with it closely.
+    EXPECT_NEAR(light.illuminance, 100000.0, 0.01 * 100000.0);
+    EXPECT_NEAR(light.elevationDegrees(), 10.4, 1.0);
+    const Pixels p = readPixels(out);
+    EXPECT_NE(p.attributes.at("iblbake:sunLight").find("\"illuminanceLux\""), std::string::npos);
+    // Inspecting the residual finds no sun.
+    const nlohmann::json j = inspect(out);
+    EXPECT_TRUE(j["sun"].is_null());
+    fs::remove_all(dir);
+}
+
+TEST(CalibrateCli, ErrorsAreOneLineNonZeroAndWriteNothing) {
+    REQUIRE_SHARED("potsdamer_platz_1k.hdr");
+    const fs::path dir = freshTempDir("calib_errors");
+    const std::string out = (dir / "out.exr").string(), json = (dir / "sun.json").string();
+    const std::string overcast = (kHdri / "potsdamer_platz_1k.hdr").string();
+    struct Case {
+        std::string args;
+        std::string mention; // part of the one line
+    };
+    for (const Case& c :
+         {Case{"calibrate " + overcast + " --scale 2 --ev100 3 -o " + out, "--scale"},
+          Case{"calibrate " + overcast + " --illuminance 1000 --radiometric -o " + out, "--"},
+          Case{"calibrate " + (dir / "missing.hdr").string() + " --scale 2 -o " + out, "missing.hdr"},
+          Case{"calibrate " + overcast + " --sun-illuminance 100000 -o " + out, "no sun"},
+          Case{"calibrate " + overcast + " --scale 1 --extract-sun --sun-json " + json + " -o " + out,
+               "no sun"},
+          Case{"calibrate " + overcast + " --extract-sun -o " + out, "--sun-json"},
+          Case{"calibrate " + overcast + " --scale -3 -o " + out, "--scale"},
+          Case{"calibrate " + overcast + " -o " + out, "calibration source"},
+          Case{"inspect " + (dir / "missing.hdr").string(), "missing.hdr"}}) {
+        SCOPED_TRACE(c.args);
+        const CliRun r = runCli(c.args);
+        EXPECT_NE(r.exitCode, 0);
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_EQ(r.err.rfind("iblbake: error:", 0), 0u) << r.err;
+        EXPECT_NE(r.err.find(c.mention), std::string::npos) << r.err;
+        EXPECT_EQ(ibl::test::entryCount(dir), 0u) << "partial output";
+    }
+    // The file is named in errors about its content.
+    const CliRun r = runCli("calibrate " + overcast + " --sun-illuminance 100000 -o " + out);
+    EXPECT_NE(r.err.find("potsdamer_platz_1k.hdr"), std::string::npos) << r.err;
+    fs::remove_all(dir);
+}
+
+} // namespace
