@@ -2,9 +2,11 @@
 #pragma once
 
 #include <iblbake/executor.h>
+#include <iblbake/ktx2.h>
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <string>
 
 namespace ibl::cli {
@@ -19,5 +21,11 @@ struct BackendOptions {
     // With --timing: prints the device time of every OpenCL dispatch, and the stage's wall time.
     void printTiming(const Executor& executor, const char* stage, double wallMs) const;
 };
+
+// --format of KTX2 outputs: rgba16f, rgba32f, b10g11r11, e5b9g9r9.
+inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"};
+Ktx2Format parseKtx2Format(const std::string& name);
+
+double millisecondsSince(std::chrono::steady_clock::time_point start);
 
 } // namespace ibl::cli

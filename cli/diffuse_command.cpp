@@ -1,7 +1,9 @@
 // iblbake diffuse: HDRI in, L2 SH (radiance and pre-scaled irradiance) out as JSON, optionally a small
 // irradiance cube as KTX2.
+#include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "input_options.h"
 
 #include <iblbake/atomic_file.h>
 #include <iblbake/error.h>
@@ -27,8 +29,18 @@ namespace {
 
 constexpr int kSchemaVersion = 1;
 
+// The calibration record as a JSON object (the same keys as the KTX2 key/value data, without prefix),
+// with the extracted sun, if any, as a light object under "sunLight".
+nlohmann::json calibrationJson(const CalibrationOutcome& calibration) {
+    nlohmann::json out = nlohmann::json::object();
+    for (const auto& [key, value] : calibration.metadata(""))
+        out[key] = value;
+    if (calibration.sun) out["sunLight"] = nlohmann::json::parse(diskLightToJson(*calibration.sun, true));
+    return out;
+}
+
 struct DiffuseOptions {
-    std::vector<std::string> inputs;
+    InputOptions input;
     std::string output;
     std::string irradianceCube;
     int irradianceSize = 32;
@@ -39,24 +51,9 @@ struct DiffuseOptions {
     std::optional<double> windowParam;
     std::string format = "rgba16f";
     int size = 256;
-    std::string layout = "auto";
-    std::string inputColorSpace;
-    std::string workingColorSpace = "lin_rec709";
-    float rotate = 0.0f;
     BackendOptions backend;
+    CalibrationOptions calibration;
 };
-
-Ktx2Format parseFormat(const std::string& name) {
-    if (name == "rgba16f") return Ktx2Format::RGBA16F;
-    if (name == "rgba32f") return Ktx2Format::RGBA32F;
-    if (name == "b10g11r11") return Ktx2Format::B10G11R11;
-    if (name == "e5b9g9r9") return Ktx2Format::E5B9G9R9;
-    throw Error("--format: '" + name + "' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9");
-}
-
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 nlohmann::json rgb(const glm::dvec3& v) {
     return nlohmann::json::array({v.x, v.y, v.z});
@@ -89,8 +86,7 @@ Action addDiffuseCommand(CLI::App& app) {
     CLI::App* cmd = app.add_subcommand(
         "diffuse",
         "bake diffuse lighting: L2 SH (radiance + pre-scaled irradiance) to JSON, irradiance cube");
-    cmd->add_option("input", o->inputs, "HDR environment (one file, or six for --layout six-files)")
-        ->required();
+    o->input.addTo(*cmd);
     cmd->add_option("-o,--output", o->output, "output .json file (SH coefficients and report)")->required();
     cmd->add_option("--irradiance-cube", o->irradianceCube,
                     "also write the irradiance cube (stores E/pi) to this .ktx2 file");
@@ -117,25 +113,18 @@ Action addDiffuseCommand(CLI::App& app) {
                     "weakest value with E >= 0 everywhere)");
     cmd->add_option("--format", o->format, "irradiance cube format: rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
-        ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}));
+        ->check(CLI::IsMember(kKtx2FormatNames));
     cmd->add_option("--size", o->size,
                     "face size of the source cube (power of two for --irradiance-method sampled)")
         ->capture_default_str();
-    cmd->add_option("--layout", o->layout,
-                    "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files")
-        ->capture_default_str();
-    cmd->add_option("--input-colorspace", o->inputColorSpace,
-                    "input colour space (default: file metadata, else lin_rec709; sRGB for 8-bit files)");
-    cmd->add_option("--working-colorspace", o->workingColorSpace, "lin_rec709 or acescg")
-        ->capture_default_str();
-    cmd->add_option("--rotate", o->rotate, "rotate the environment about +Y, degrees")->capture_default_str();
     o->backend.addTo(*cmd);
+    o->calibration.addTo(*cmd);
 
     return [o] {
         auto start = std::chrono::steady_clock::now();
         const bool wantCube = !o->irradianceCube.empty();
         const IrradianceMethod method = parseIrradianceMethod(o->irradianceMethod);
-        const Ktx2Format format = parseFormat(o->format);
+        const Ktx2Format format = parseKtx2Format(o->format);
         if (o->size < 1 || o->size > 8192)
             throw Error("--size: " + std::to_string(o->size) + " is not from 1 to 8192");
         if (wantCube && method == IrradianceMethod::Sampled && (o->size & (o->size - 1)) != 0)
@@ -154,28 +143,19 @@ Action addDiffuseCommand(CLI::App& app) {
         std::optional<AtomicFile> cubeFile;
         if (wantCube) cubeFile.emplace(o->irradianceCube);
 
-        IngestSettings ingest;
-        ingest.layout = parseLayout(o->layout);
-        ingest.inputColorSpace = o->inputColorSpace;
-        ingest.workingColorSpace = o->workingColorSpace;
-        ingest.rotateDegrees = o->rotate;
-        ingest.sourceFaceSize = o->size;
+        IngestSettings ingest = o->input.settings(o->size);
         Executor executor = o->backend.makeExecutor();
 
-        std::vector<std::filesystem::path> files(o->inputs.begin(), o->inputs.end());
-        SourceEnvironment env = ingestEnvironment(files, ingest);
-        const double ingestMs = msSince(start);
+        SourceEnvironment env = ingestEnvironment(o->input.files(), ingest);
+        CalibrationOutcome calibration = applyCalibration(o->calibration, env);
+        const double ingestMs = millisecondsSince(start);
         const IngestReport& r = env.report;
-        std::printf("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width, r.height,
-                    layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
-                    r.maxLuminanceIn);
-        std::printf("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
-                    (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,
-                    (unsigned long long)r.negativeRepaired);
+        printIngestReport(r);
+        if (calibration.record.absolute()) std::printf("%s\n", calibration.record.summary().c_str());
 
         auto shStart = std::chrono::steady_clock::now();
         DiffuseSH sh = bakeDiffuseSH(env.cube, window);
-        const double shMs = msSince(shStart);
+        const double shMs = millisecondsSince(shStart);
         const ShWindowResult& w = sh.window;
         auto percent = [&](const glm::dvec3& v) { // the worst channel, relative to its mean irradiance
             double worst = std::numeric_limits<double>::infinity();
@@ -208,7 +188,7 @@ Action addDiffuseCommand(CLI::App& app) {
                 cube = bakeIrradianceCube(env.cube, settings, executor);
             else
                 cube = irradianceCubeFromSH(sh.irradiance, o->irradianceSize, &shClamped);
-            cubeMs = msSince(cubeStart);
+            cubeMs = millisecondsSince(cubeStart);
             const std::string methodText =
                 method == IrradianceMethod::Sampled
                     ? "sampled: cosine importance sampling, " +
@@ -226,9 +206,10 @@ Action addDiffuseCommand(CLI::App& app) {
             Ktx2KeyValues kv = {{"iblbake.product", "irradiance"},
                                 {"iblbake.irradianceNormalization", normalization},
                                 {"iblbake.method", methodText},
-                                {"iblbake.units", "relative (input values, uncalibrated)"},
                                 {"iblbake.colorSpace", r.workingColorSpace},
                                 {"iblbake.source", std::filesystem::path(r.file).filename().string()}};
+            for (auto& entry : calibration.metadata("iblbake."))
+                kv.push_back(entry);
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
             Ktx2WriteStats stats = writeKtx2Cube(cubeFile->tempPath(), chain, format, kv);
@@ -262,9 +243,11 @@ Action addDiffuseCommand(CLI::App& app) {
               {"layout", layoutName(r.layout)},
               {"inputColorSpace", r.inputColorSpace},
               {"faceSize", env.cube.faceSize},
-              {"rotateDegrees", o->rotate}}},
+              {"rotateDegrees", o->input.rotateDegrees}}},
             {"colorSpace", r.workingColorSpace},
-            {"units", "relative (input values, uncalibrated)"},
+            {"units", calibration.record.absolute() ? "cd/m2 (luminance); irradiance in lux"
+                                                    : "relative (input values, uncalibrated)"},
+            {"calibration", calibrationJson(calibration)},
             {"directions", "right-handed, +Y up; (x, y, z) of a unit direction as in DESIGN.md"},
             {"sh",
              {{"order", 2},
@@ -307,12 +290,14 @@ Action addDiffuseCommand(CLI::App& app) {
             out.close();
             if (!out) throw Error(o->output + ": cannot write the JSON file");
         }
+        auto sunJson = stageSunJson(o->calibration, calibration);
         if (cubeFile) cubeFile->commit();
         jsonFile.commit();
+        if (sunJson) sunJson->commit();
         std::printf("wrote   %s%s%s\n", o->output.c_str(), wantCube ? " and " : "",
                     wantCube ? o->irradianceCube.c_str() : "");
         std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n", ingestMs, shMs,
-                    cubeMs, executor.description().c_str(), msSince(start));
+                    cubeMs, executor.description().c_str(), millisecondsSince(start));
         return 0;
     };
 }

@@ -1,6 +1,8 @@
 // iblbake specular: HDRI in, prefiltered specular (LD) cube mip chain out as KTX2.
+#include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "input_options.h"
 
 #include <iblbake/error.h>
 #include <iblbake/exr_output.h>
@@ -19,7 +21,7 @@ namespace ibl::cli {
 namespace {
 
 struct SpecularOptions {
-    std::vector<std::string> inputs;
+    InputOptions input;
     std::string output;
     int size = 256;
     int levels = 0;
@@ -28,26 +30,11 @@ struct SpecularOptions {
     std::string format = "rgba16f";
     std::string exrDir;
     std::string preview;
-    std::string layout = "auto";
-    std::string inputColorSpace;
-    std::string workingColorSpace = "lin_rec709";
-    float rotate = 0.0f;
     std::string mipMapping = "frostbite";
     float lodBias = SpecularSettings{}.lodBias;
     BackendOptions backend;
+    CalibrationOptions calibration;
 };
-
-Ktx2Format parseFormat(const std::string& name) {
-    if (name == "rgba16f") return Ktx2Format::RGBA16F;
-    if (name == "rgba32f") return Ktx2Format::RGBA32F;
-    if (name == "b10g11r11") return Ktx2Format::B10G11R11;
-    if (name == "e5b9g9r9") return Ktx2Format::E5B9G9R9;
-    throw Error("--format: '" + name + "' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9");
-}
-
-double msSince(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 // One EXR per level: the six faces side by side in +X, -X, +Y, -Y, +Z, -Z order (OpenGL orientation).
 void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, const std::string& mapping) {
@@ -74,8 +61,7 @@ Action addSpecularCommand(CLI::App& app) {
     auto o = std::make_shared<SpecularOptions>();
     CLI::App* cmd =
         app.add_subcommand("specular", "bake the prefiltered specular (LD) cube mip chain to KTX2");
-    cmd->add_option("input", o->inputs, "HDR environment (one file, or six for --layout six-files)")
-        ->required();
+    o->input.addTo(*cmd);
     cmd->add_option("-o,--output", o->output, "output .ktx2 file")->required();
     cmd->add_option("--size", o->size, "face size of level 0 (power of two)")->capture_default_str();
     cmd->add_option("--levels", o->levels, "mip levels (default: down to 1x1)");
@@ -85,36 +71,23 @@ Action addSpecularCommand(CLI::App& app) {
     cmd->add_option("--samples", o->samples, "maximum samples per texel (overrides the preset)");
     cmd->add_option("--format", o->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
-        ->check(CLI::IsMember({"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"}));
+        ->check(CLI::IsMember(kKtx2FormatNames));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
     cmd->add_option("--preview", o->preview, "also write a tone-mapped PNG of every level");
-    cmd->add_option("--layout", o->layout,
-                    "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files")
-        ->capture_default_str();
-    cmd->add_option("--input-colorspace", o->inputColorSpace,
-                    "input colour space (default: file metadata, else "
-                    "lin_rec709; sRGB for 8-bit files)");
-    cmd->add_option("--working-colorspace", o->workingColorSpace, "lin_rec709 or acescg")
-        ->capture_default_str();
-    cmd->add_option("--rotate", o->rotate, "rotate the environment about +Y, degrees")->capture_default_str();
     cmd->add_option("--mip-mapping", o->mipMapping, "roughness per level: frostbite (eq. 63) or linear")
         ->capture_default_str()
         ->check(CLI::IsMember({"frostbite", "linear"}));
     cmd->add_option("--lod-bias", o->lodBias, "added to the source LOD of each sample")
         ->capture_default_str();
     o->backend.addTo(*cmd);
+    o->calibration.addTo(*cmd);
 
     return [o] {
         auto start = std::chrono::steady_clock::now();
-        const Ktx2Format format = parseFormat(o->format);
+        const Ktx2Format format = parseKtx2Format(o->format);
         if (o->size < 1 || o->size > 8192 || (o->size & (o->size - 1)) != 0)
             throw Error("--size: " + std::to_string(o->size) + " is not a power of two from 1 to 8192");
-        IngestSettings ingest;
-        ingest.layout = parseLayout(o->layout);
-        ingest.inputColorSpace = o->inputColorSpace;
-        ingest.workingColorSpace = o->workingColorSpace;
-        ingest.rotateDegrees = o->rotate;
-        ingest.sourceFaceSize = o->size;
+        IngestSettings ingest = o->input.settings(o->size);
         SpecularSettings settings;
         settings.levels = o->levels;
         settings.quality = parseQuality(o->quality);
@@ -123,21 +96,22 @@ Action addSpecularCommand(CLI::App& app) {
         settings.lodBias = o->lodBias;
         Executor executor = o->backend.makeExecutor();
 
-        std::vector<std::filesystem::path> files(o->inputs.begin(), o->inputs.end());
-        SourceEnvironment env = ingestEnvironment(files, ingest);
-        const double ingestMs = msSince(start);
+        SourceEnvironment env = ingestEnvironment(o->input.files(), ingest);
+        CalibrationOutcome calibration = applyCalibration(o->calibration, env);
+        const double ingestMs = millisecondsSince(start);
         const IngestReport& r = env.report;
-        std::printf("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width, r.height,
-                    layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
-                    r.maxLuminanceIn);
-        std::printf("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
-                    (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,
-                    (unsigned long long)r.negativeRepaired);
+        printIngestReport(r);
+
+        if (calibration.record.absolute()) std::printf("%s\n", calibration.record.summary().c_str());
+        if (calibration.sun)
+            std::printf("sun     extracted: %.6g lux at elevation %.2f deg, azimuth %.2f deg\n",
+                        calibration.sun->illuminance, calibration.sun->elevationDegrees(),
+                        calibration.sun->azimuthDegrees());
 
         std::vector<SpecularLevelTiming> timings;
         auto bakeStart = std::chrono::steady_clock::now();
         CubeMapChain chain = bakeSpecular(env.cube, settings, executor, &timings);
-        const double bakeMs = msSince(bakeStart);
+        const double bakeMs = millisecondsSince(bakeStart);
         for (const SpecularLevelTiming& t : timings)
             std::printf("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.level, t.perceptualRoughness,
                         chain.levels[std::size_t(t.level)].faceSize, t.milliseconds);
@@ -150,21 +124,25 @@ Action addSpecularCommand(CLI::App& app) {
         Ktx2KeyValues kv = {{"iblbake.product", "specular-ld"},
                             {"iblbake.roughnessMapping", mapping},
                             {"iblbake.levelCount", std::to_string(levelCount)},
-                            {"iblbake.units", "relative (input values, uncalibrated)"},
                             {"iblbake.colorSpace", r.workingColorSpace},
                             {"iblbake.source", std::filesystem::path(r.file).filename().string()},
-                            {"iblbake.settings",
-                             "quality=" + o->quality + " samples=" + std::to_string(samplesFor(settings)) +
-                                 " lodBias=" + std::to_string(settings.lodBias) + " size=" +
-                                 std::to_string(o->size) + " rotate=" + std::to_string(o->rotate)}};
+                            {"iblbake.settings", "quality=" + o->quality +
+                                                     " samples=" + std::to_string(samplesFor(settings)) +
+                                                     " lodBias=" + std::to_string(settings.lodBias) +
+                                                     " size=" + std::to_string(o->size) +
+                                                     " rotate=" + std::to_string(o->input.rotateDegrees)}};
+        for (auto& entry : calibration.metadata("iblbake."))
+            kv.push_back(entry);
+        auto sunJson = stageSunJson(o->calibration, calibration);
         Ktx2WriteStats stats = writeKtx2Cube(o->output, chain, format, kv);
+        if (sunJson) sunJson->commit();
         if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, mapping);
         if (!o->preview.empty()) writeChainPreview(o->preview, chain);
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
                     (unsigned long long)stats.repairedNonFinite);
         std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs, bakeMs,
-                    executor.description().c_str(), msSince(start));
+                    executor.description().c_str(), millisecondsSince(start));
         o->backend.printTiming(executor, "specular", bakeMs);
         return 0;
     };

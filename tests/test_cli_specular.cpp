@@ -44,6 +44,29 @@ TEST(CliSpecular, BakesTheSampleToKtx2ExrAndPreview) {
     fs::remove_all(dir);
 }
 
+TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
+    fs::path dir = freshTempDir("specular_calibrated");
+    CliRun r = runCli(
+        "specular " + kSample + " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
+        "--extract-sun --sun-json " + (dir / "sun.json").string() + " -o " + (dir / "env.ktx2").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ibl::Ktx2Image ktx = ibl::readKtx2(dir / "env.ktx2");
+    EXPECT_EQ(ktx.keyValues.at("iblbake.units"), "cd/m2");
+    EXPECT_EQ(ktx.keyValues.at("iblbake.calibration.source"), "sun-illuminance");
+    EXPECT_GT(std::stod(ktx.keyValues.at("iblbake.calibration.factor")), 1000.0);
+    EXPECT_NE(ktx.keyValues.at("iblbake.sun").find("extracted"), std::string::npos);
+    std::ifstream sun(dir / "sun.json");
+    std::string text(std::istreambuf_iterator<char>(sun), {});
+    EXPECT_NE(text.find("\"illuminanceLux\": 99999.99"), std::string::npos) << text;
+    // Two calibration sources: one line, non-zero, nothing written.
+    CliRun two = runCli("specular " + kSample + " --size 8 --ev100 12 --illuminance 5 -o " +
+                        (dir / "two.ktx2").string());
+    EXPECT_NE(two.exitCode, 0);
+    EXPECT_EQ(lineCount(two.err), 1) << two.err;
+    EXPECT_FALSE(fs::exists(dir / "two.ktx2"));
+    fs::remove_all(dir);
+}
+
 TEST(CliSpecular, EveryFormatIsWritten) {
     fs::path dir = freshTempDir("formats");
     const std::pair<const char*, unsigned> formats[] = {

@@ -1,0 +1,40 @@
+#include "input_options.h"
+
+#include <cstdio>
+
+namespace ibl::cli {
+
+void InputOptions::addTo(CLI::App& command) {
+    command.add_option("input", inputs, "HDR environment (one file, or six for --layout six-files)")
+        ->required();
+    command
+        .add_option("--layout", layout, "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files")
+        ->capture_default_str();
+    command.add_option("--input-colorspace", inputColorSpace,
+                       "input colour space (default: file metadata, else lin_rec709; sRGB for 8-bit files)");
+    command.add_option("--working-colorspace", workingColorSpace, "lin_rec709 or acescg")
+        ->capture_default_str();
+    command.add_option("--rotate", rotateDegrees, "rotate the environment about +Y, degrees")
+        ->capture_default_str();
+}
+
+IngestSettings InputOptions::settings(int sourceFaceSize) const {
+    IngestSettings s;
+    s.layout = parseLayout(layout);
+    s.inputColorSpace = inputColorSpace;
+    s.workingColorSpace = workingColorSpace;
+    s.rotateDegrees = rotateDegrees;
+    s.sourceFaceSize = sourceFaceSize;
+    return s;
+}
+
+void printIngestReport(const IngestReport& r) {
+    std::printf("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width, r.height,
+                layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
+                r.maxLuminanceIn);
+    std::printf("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
+                (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,
+                (unsigned long long)r.negativeRepaired);
+}
+
+} // namespace ibl::cli
