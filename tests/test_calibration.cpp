@@ -15,7 +15,9 @@
 
 #include <cube.h>
 
+#include "sphere_texels_support.h"
 #include <OpenImageIO/imageio.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -34,32 +36,13 @@ namespace {
 namespace fs = std::filesystem;
 using namespace ibl;
 using ibl::test::CliRun;
+using ibl::test::cubeOf;
 using ibl::test::freshTempDir;
+using ibl::test::latLongOf;
 using ibl::test::lineCount;
 using ibl::test::runCli;
 
 constexpr double kPi = std::numbers::pi;
-
-CubeMap cubeOf(int n, const std::function<glm::vec3(const glm::dvec3&)>& value) {
-    CubeMap cube(n);
-    for (ImageRGBA& f : cube.faces)
-        for (glm::vec4& p : f.pixels)
-            p = glm::vec4(0, 0, 0, 1);
-    SphereTexels t(cube);
-    for (std::size_t i = 0; i < t.size(); ++i)
-        t.setRgb(i, value(t.direction(i)));
-    return cube;
-}
-
-ImageRGBA latLongOf(int w, int h, const std::function<glm::vec3(const glm::dvec3&)>& value) {
-    ImageRGBA im(w, h);
-    for (glm::vec4& p : im.pixels)
-        p = glm::vec4(0, 0, 0, 1);
-    SphereTexels t(im);
-    for (std::size_t i = 0; i < t.size(); ++i)
-        t.setRgb(i, value(t.direction(i)));
-    return im;
-}
 
 // ---------------------------------------------------------------------------------------------------
 // Geometry and statistics

@@ -11,6 +11,8 @@
 
 #include <cube.h>
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -25,40 +27,9 @@ namespace fs = std::filesystem;
 namespace {
 
 using namespace ibl;
+using namespace ibl::test;
 
 constexpr double kPi = 3.14159265358979323846;
-
-Executor openclOrCpu() {
-    std::ostringstream warnings;
-    return Executor::create(Backend::Auto, "", warnings);
-}
-
-template <class F>
-CubeMap makeCube(int n, F radiance) {
-    CubeMap c(n);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                c.faces[f].at(x, y) = glm::vec4(radiance(glm::normalize(glm::dvec3(
-                                                    cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n)))),
-                                                1.0f);
-    return c;
-}
-
-glm::dvec3 texelCentre(int f, int x, int y, int n) {
-    return glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n)));
-}
-
-double relativeMeanAbsError(const CubeMap& a, const CubeMap& ref) {
-    double err = 0.0, sum = 0.0;
-    for (int f = 0; f < 6; ++f)
-        for (std::size_t i = 0; i < a.faces[f].pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) {
-                err += std::abs(double(a.faces[f].pixels[i][c]) - ref.faces[f].pixels[i][c]);
-                sum += std::abs(double(ref.faces[f].pixels[i][c]));
-            }
-    return err / sum;
-}
 
 std::vector<Executor> backends() {
     std::vector<Executor> e{Executor::cpu()};
@@ -171,10 +142,6 @@ TEST(Irradiance, BadSizesAndMethods) {
 }
 
 // ---- Real HDRIs ----------------------------------------------------------------------------------
-
-fs::path hdriPath(const char* name) {
-    return fs::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / name;
-}
 
 const char* kHdris[] = {"rooitou_park_1k.hdr",      "potsdamer_platz_1k.hdr", "studio_small_03_1k.hdr",
                         "venice_sunset_1k.hdr",     "KernerEnvLatLong.exr",   "KernerEnvCube.exr",

@@ -8,6 +8,8 @@
 #include <cube.h>
 #include <sh.h>
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,24 +21,9 @@ namespace fs = std::filesystem;
 namespace {
 
 using namespace ibl;
+using namespace ibl::test;
 
 constexpr double kPi = 3.14159265358979323846;
-
-template <class F>
-CubeMap makeCube(int n, F radiance) {
-    CubeMap c(n);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                c.faces[f].at(x, y) = glm::vec4(radiance(glm::normalize(glm::dvec3(
-                                                    cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n)))),
-                                                1.0f);
-    return c;
-}
-
-glm::dvec3 texelCentre(int f, int x, int y, int n) {
-    return glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n)));
-}
 
 // The basis written out with the constants of DESIGN.md / the issue, in fp64.
 std::array<double, 9> basisByHand(const glm::dvec3& d) {
@@ -303,10 +290,6 @@ TEST(ShWindow, DeltaWithAndWithoutWindow) {
 }
 
 // ---- Real HDRIs ----------------------------------------------------------------------------------
-
-fs::path hdriPath(const char* name) {
-    return fs::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / name;
-}
 
 CubeMap load(const char* name, int faceSize) {
     IngestSettings settings;

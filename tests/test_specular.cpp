@@ -4,6 +4,8 @@
 
 #include <cube.h>
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,22 +14,7 @@
 namespace {
 
 using namespace ibl;
-
-Executor openclOrCpu() {
-    std::ostringstream warnings;
-    return Executor::create(Backend::Auto, "", warnings);
-}
-
-template <class F>
-CubeMap makeCube(int n, F radiance) {
-    CubeMap c(n);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                c.faces[f].at(x, y) = glm::vec4(
-                    radiance(glm::normalize(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n))), 1.0f);
-    return c;
-}
+using namespace ibl::test;
 
 // A sky-like environment: bright upper hemisphere with a gradient, a warm lobe, a dark ground.
 glm::vec3 skyLike(glm::vec3 d) {
@@ -35,17 +22,6 @@ glm::vec3 skyLike(glm::vec3 d) {
     glm::vec3 ground = glm::vec3(0.1f, 0.08f, 0.05f);
     float lobe = std::pow(std::max(glm::dot(d, glm::normalize(glm::vec3(0.5f, 0.4f, 0.6f))), 0.0f), 32.0f);
     return (d.y > 0 ? sky : ground) + glm::vec3(20.0f, 15.0f, 10.0f) * lobe;
-}
-
-double relativeMeanAbsError(const CubeMap& a, const CubeMap& ref) {
-    double err = 0.0, sum = 0.0;
-    for (int f = 0; f < 6; ++f)
-        for (std::size_t i = 0; i < a.faces[f].pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) {
-                err += std::abs(a.faces[f].pixels[i][c] - ref.faces[f].pixels[i][c]);
-                sum += std::abs(ref.faces[f].pixels[i][c]);
-            }
-    return err / sum;
 }
 
 TEST(Specular, WhiteFurnaceEveryLevelEveryTexel) {

@@ -5,6 +5,8 @@
 
 #include <cube.h>
 
+#include "test_support.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,35 +18,16 @@ namespace fs = std::filesystem;
 namespace {
 
 using namespace ibl;
+using namespace ibl::test;
 
 const char* kHdris[] = {"rooitou_park_1k.hdr",      "potsdamer_platz_1k.hdr", "studio_small_03_1k.hdr",
                         "venice_sunset_1k.hdr",     "KernerEnvLatLong.exr",   "KernerEnvCube.exr",
                         "blender_world_sunrise.exr"};
 
-fs::path hdriPath(const char* name) {
-    return fs::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / name;
-}
-
-Executor openclOrCpu() {
-    std::ostringstream warnings;
-    return Executor::create(Backend::Auto, "", warnings);
-}
-
 CubeMap load(const char* name, int faceSize) {
     IngestSettings settings;
     settings.sourceFaceSize = faceSize;
     return ingestEnvironment({hdriPath(name)}, settings).cube;
-}
-
-double relativeMeanAbsError(const CubeMap& a, const CubeMap& ref) {
-    double err = 0.0, sum = 0.0;
-    for (int f = 0; f < 6; ++f)
-        for (std::size_t i = 0; i < a.faces[f].pixels.size(); ++i)
-            for (int c = 0; c < 3; ++c) {
-                err += std::abs(double(a.faces[f].pixels[i][c]) - ref.faces[f].pixels[i][c]);
-                sum += std::abs(double(ref.faces[f].pixels[i][c]));
-            }
-    return err / sum;
 }
 
 float luminance(const glm::vec4& p) {

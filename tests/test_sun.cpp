@@ -14,7 +14,9 @@
 
 #include <cube.h>
 
+#include "sphere_texels_support.h"
 #include <OpenImageIO/imageio.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,6 +32,8 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace ibl;
+using ibl::test::cubeOf;
+using ibl::test::latLongOf;
 
 constexpr double kPi = std::numbers::pi;
 constexpr double kDeg = kPi / 180.0;
@@ -40,26 +44,6 @@ double angleDegrees(const glm::dvec3& a, const glm::dvec3& b) {
 
 double lum(const glm::dvec3& c) {
     return glm::dot(kRec709Luminance, c);
-}
-
-CubeMap cubeOf(int n, const std::function<glm::vec3(const glm::dvec3&)>& sky) {
-    CubeMap cube(n);
-    SphereTexels t(cube);
-    for (std::size_t i = 0; i < t.size(); ++i) {
-        cube.faces[i / (std::size_t(n) * n)].pixels[i % (std::size_t(n) * n)] = glm::vec4(0, 0, 0, 1);
-        t.setRgb(i, sky(t.direction(i)));
-    }
-    return cube;
-}
-
-ImageRGBA latLongOf(int w, int h, const std::function<glm::vec3(const glm::dvec3&)>& sky) {
-    ImageRGBA im(w, h);
-    for (glm::vec4& p : im.pixels)
-        p = glm::vec4(0, 0, 0, 1);
-    SphereTexels t(im);
-    for (std::size_t i = 0; i < t.size(); ++i)
-        t.setRgb(i, sky(t.direction(i)));
-    return im;
 }
 
 std::size_t cubeIndex(int n, int face, int i, int j) {
