@@ -1,0 +1,41 @@
+// Loading the baker's KTX2 products (readKtx2 has no OIIO dependency).
+#include "iblbake/error.h"
+#include "iblbake/ktx2.h"
+#include "iblbake/runtime.h"
+
+namespace ibl {
+
+LdPyramid loadLdKtx2(const std::filesystem::path& path) {
+    Ktx2Image image = readKtx2(path);
+    if (image.faceCount != 6)
+        throw Error(path.string() + ": not a cube map (" + std::to_string(image.faceCount) + " faces)");
+    if (image.pixelWidth != image.pixelHeight) throw Error(path.string() + ": cube faces are not square");
+    CubeMapChain chain;
+    for (const std::vector<ImageRGBA>& level : image.levels) {
+        CubeMap cube(level.at(0).width);
+        for (int f = 0; f < 6; ++f)
+            cube.faces[f] = level.at(std::size_t(f));
+        chain.levels.push_back(std::move(cube));
+    }
+    LdMapping mapping = LdMapping::Frostbite;
+    auto it = image.keyValues.find("iblbake.roughnessMapping");
+    try {
+        if (it != image.keyValues.end()) mapping = parseLdMapping(it->second);
+        return ldPyramidFromChain(chain, mapping);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+}
+
+DfgTable loadDfgKtx2(const std::filesystem::path& path) {
+    Ktx2Image image = readKtx2(path);
+    if (image.faceCount != 1 || image.levels.empty() || image.levels[0].empty())
+        throw Error(path.string() + ": not a 2D image");
+    try {
+        return dfgTableFromImage(image.levels[0][0]);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+}
+
+} // namespace ibl

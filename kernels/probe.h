@@ -1,0 +1,378 @@
+// Runtime probe sampling: shading a point with the baked products (DESIGN.md "Runtime probe-sampling
+// library"). One source for the C++ runtime (CPU evaluation) and the OpenCL kernel (runtime.cl).
+//   distant probe  LD cube chain sampled trilinearly (cubeSampleLod, the bake's bordered pyramid) at the
+//                  LOD of the chain's roughness mapping; DFG LUT bilinear; Listing 24 / Filament evaluateIBL
+//   energy         Filament 4.7.2 compensation 1 + f0 (1 / r - 1), r = DFG1 + DFG2
+//   diffuse        Filament irradianceSH * Lambert, or times the LUT's Disney term (Listing 24)
+//   directions     specular dominant direction (Listing 22), optional diffuse one (Listing 23)
+//   occlusion      specular occlusion (Listing 26), horizon occlusion (Filament 5.6.2.1)
+//   local probes   parallax correction and distance-based roughness (parallax.h, Appendix F), composed
+//                  with the distant probe by the alpha rule of Frostbite 4.9.5
+//   sun            disk light of Listing 6: punctual for diffuse, representative point for specular
+// Roughness naming (DESIGN.md): `perceptualRoughness` r is what artists set, `alpha` = r^2. Frostbite's
+// listings call r "linearRoughness" and alpha "roughness"; Listings 22, 23 and 26 take alpha.
+#ifndef IBL_PROBE_H
+#define IBL_PROBE_H
+
+#include "brdf.h"
+#include "cube_sample.h"
+#include "parallax.h"
+#include "sampling.h"
+
+#ifndef __OPENCL_VERSION__
+IBL_BEGIN_NAMESPACE
+using std::exp2;
+using std::pow;
+IBL_END_NAMESPACE
+#endif
+
+IBL_BEGIN_NAMESPACE
+
+// Mip <-> roughness mappings of the LD chain (DESIGN.md; the baker's MipMapping, in this order).
+#define IBL_MIP_FROSTBITE 0u // level m of L holds r = (m / (L - 1))^2: lod = sqrt(r) (L - 1) (eq. 63)
+#define IBL_MIP_LINEAR 1u    // level m of L holds r = m / (L - 1): lod = r (L - 1)
+
+// Evaluation switches (RuntimeParams.flags).
+#define IBL_RT_SPECULAR (1u << 0)            // specular from the probes
+#define IBL_RT_DIFFUSE (1u << 1)             // diffuse from the SH coefficients
+#define IBL_RT_ENERGY_COMPENSATION (1u << 2) // Filament 4.7.2
+#define IBL_RT_DISNEY_DIFFUSE (1u << 3)      // diffuse times the LUT's Disney term (else Lambert)
+#define IBL_RT_SPECULAR_DOMINANT (1u << 4)   // Listing 22 (else the mirror direction)
+#define IBL_RT_DIFFUSE_DOMINANT (1u << 5)    // Listing 23 (else the normal)
+#define IBL_RT_SPECULAR_OCCLUSION (1u << 6)  // Listing 26 from the point's ao
+#define IBL_RT_HORIZON_OCCLUSION (1u << 7)   // Filament 5.6.2.1
+#define IBL_RT_DISTANCE_ROUGHNESS (1u << 8)  // Listing 25 for local probes
+#define IBL_RT_SUN (1u << 9)                 // the sun disk light
+#define IBL_RT_F90_FROM_F0 (1u << 10) // f90 = saturate(50 * 0.33 * (f0.r + f0.g + f0.b)) (Filament 5.6.2)
+#define IBL_RT_SH_OVER_PI (1u << 11)  // the SH evaluates to E / pi (Lambert folded in) instead of E
+#define IBL_RT_SUN_NORMALIZATION (1u << 12) // (alpha / alpha')^2 on the sun's representative-point GGX
+
+// One LD chain inside a float buffer that may hold several (local probes share one buffer).
+typedef struct {
+    CubePyramidLayout layout; // bordered pyramid (cube_sample.h); levelCount = the chain's levels
+    uint32_t dataOffset;      // first float of this pyramid in its buffer
+    uint32_t mapping;         // IBL_MIP_*
+} LdChain;
+
+// Pre-scaled SH L2 irradiance (DESIGN.md order, 9 RGB coefficients, coefficient i's RGB at 3i..3i+2).
+typedef struct {
+    float c[27];
+} ShIrradiance;
+
+// A distant disk light (Frostbite 4.6): illuminance * color is the RGB illuminance (lux) on a surface
+// facing it.
+typedef struct {
+    vec3 direction;      // unit, toward the light
+    float angularRadius; // radians
+    vec3 color;          // linear RGB, luminance 1
+    float illuminance;   // E_perp, lux
+} SunDisk;
+
+typedef struct {
+    LdChain ld;            // in the local-probe LD buffer
+    ProbeVolume proxy;     // re-projection geometry
+    ProbeVolume influence; // where the probe applies
+    vec3 captureOffset;    // capture point = proxy.center + offset along the proxy's axes
+    float fadeDistance;    // soft transition width inside the influence boundary
+} LocalProbe;
+
+// Everything of one evaluation that is the same for every point (a kernel argument by value: 4-byte
+// scalars only, identical layout in C++ and OpenCL C).
+typedef struct {
+    uint32_t flags;           // IBL_RT_*
+    uint32_t dfgSize;         // N of the N x N DFG LUT (3 floats per texel: DFG1, DFG2, Disney)
+    uint32_t localProbeCount; // in evaluation order (smallest influence first)
+    uint32_t pointCount;
+    LdChain distant;
+    SunDisk sun;
+    float dielectricF0; // f0 of a non-metal (0.04: Filament's reflectance 0.5)
+    ShIrradiance sh;
+} RuntimeParams;
+
+// A shading point. view points from the surface toward the eye (Filament's v); neither vector has to be
+// normalized (a zero normal becomes +Y, a zero view the normal).
+typedef struct {
+    vec3 position;
+    vec3 normal;
+    vec3 view;
+    vec3 baseColor;
+    float metallic;
+    float perceptualRoughness;
+    float ao;
+} ShadingPoint;
+
+typedef struct {
+    vec3 diffuse;     // indirect diffuse + the sun's diffuse
+    vec3 specular;    // indirect specular + the sun's specular
+    float localAlpha; // composed alpha of the local probes (4.9.5); the distant probe got 1 - localAlpha
+} ShadeResult;
+
+// ---------------------------------------------------------------------------------------------------
+// Lookups
+
+IBL_FN float ldLodForRoughness(LdChain ld, float perceptualRoughness) {
+    float r = saturate(perceptualRoughness);
+    float maxLevel = (float)(ld.layout.levelCount - 1u);
+    return (ld.mapping == IBL_MIP_LINEAR ? r : sqrt(r)) * maxLevel;
+}
+
+// Trilinear LD in direction d (non-zero, need not be unit) for a perceptual roughness.
+IBL_FN vec3 sampleLd(IBL_GLOBAL const float* buffer, LdChain ld, vec3 d, float perceptualRoughness) {
+    return cubeSampleLod(buffer + ld.dataOffset, ld.layout, d, ldLodForRoughness(ld, perceptualRoughness));
+}
+
+// Bilinear DFG LUT (DESIGN.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped to the
+// texel centres (so NoV < 0.5 / N reads the first column, as Listing 24's max(NdotV, 0.5 / size)).
+// Returns (DFG1, DFG2, Disney).
+IBL_FN vec3 dfgLookup(IBL_GLOBAL const float* lut, uint size, float NoV, float perceptualRoughness) {
+    float n = (float)size;
+    float x = clamp(NoV * n - 0.5f, 0.0f, n - 1.0f),
+          y = clamp(perceptualRoughness * n - 0.5f, 0.0f, n - 1.0f);
+    float x0f = floor(x), y0f = floor(y);
+    float fx = x - x0f, fy = y - y0f;
+    uint x0 = (uint)x0f, y0 = (uint)y0f;
+    uint x1 = min(x0 + 1u, size - 1u), y1 = min(y0 + 1u, size - 1u);
+    uint i00 = 3u * (y0 * size + x0), i10 = 3u * (y0 * size + x1);
+    uint i01 = 3u * (y1 * size + x0), i11 = 3u * (y1 * size + x1);
+    float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
+    return v3(w00 * lut[i00] + w10 * lut[i10] + w01 * lut[i01] + w11 * lut[i11],
+              w00 * lut[i00 + 1] + w10 * lut[i10 + 1] + w01 * lut[i01 + 1] + w11 * lut[i11 + 1],
+              w00 * lut[i00 + 2] + w10 * lut[i10 + 2] + w01 * lut[i01 + 2] + w11 * lut[i11 + 2]);
+}
+
+// Filament's irradianceSH(n) (5.3.4.1) on the pre-scaled coefficients. Kept small and separate so that it
+// can be unified with kernels/sh.h's shEvalPrescaled (same polynomials, same order).
+IBL_FN vec3 irradianceSH(ShIrradiance sh, vec3 n) {
+    float p[9];
+    p[0] = 1.0f;
+    p[1] = n.y;
+    p[2] = n.z;
+    p[3] = n.x;
+    p[4] = n.y * n.x;
+    p[5] = n.y * n.z;
+    p[6] = 3.0f * n.z * n.z - 1.0f;
+    p[7] = n.z * n.x;
+    p[8] = n.x * n.x - n.y * n.y;
+    float r = 0.0f, g = 0.0f, b = 0.0f;
+    for (int i = 0; i < 9; ++i) {
+        r += sh.c[3 * i] * p[i];
+        g += sh.c[3 * i + 1] * p[i];
+        b += sh.c[3 * i + 2] * p[i];
+    }
+    return v3(r, g, b);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Frostbite listings
+
+// Listing 22 (alpha = GGX roughness). The result is not normalized.
+IBL_FN vec3 getSpecularDominantDir(vec3 N, vec3 R, float alpha) {
+    float smoothness = saturate(1.0f - alpha);
+    float lerpFactor = smoothness * (sqrt(smoothness) + alpha);
+    return v3lerp(N, R, lerpFactor);
+}
+
+// Listing 23 (alpha = GGX roughness). The result is not normalized.
+IBL_FN vec3 getDiffuseDominantDir(vec3 N, vec3 V, float NdotV, float alpha) {
+    float a = 1.02341f * alpha - 1.51174f;
+    float b = -0.511705f * alpha + 0.755868f;
+    float lerpFactor = saturate((NdotV * a + b) * alpha);
+    return v3lerp(N, V, lerpFactor);
+}
+
+// Listing 26 (the corrected version of the notes' v3; alpha = GGX roughness).
+IBL_FN float computeSpecOcclusion(float NdotV, float AO, float alpha) {
+    return saturate(pow(NdotV + AO, exp2(-16.0f * alpha - 1.0f)) - 1.0f + AO);
+}
+
+// Filament 5.6.2.1: (min(1 + r.n, 1))^2 for the (unit) lookup direction r.
+IBL_FN float horizonOcclusion(vec3 r, vec3 n) {
+    float horizon = saturate(1.0f + v3dot(r, n));
+    return horizon * horizon;
+}
+
+// GGX D with 1 - NoH^2 taken as |N x H|^2 (Filament's precise form): near the peak of a lobe as narrow
+// as the sun's, 1 - NoH^2 in fp32 loses all but a few bits to cancellation.
+IBL_FN float D_GGXFromCross(vec3 NxH, float NoH, float alpha) {
+    float a = NoH * alpha;
+    float d = v3dot(NxH, NxH) + a * a; // 0 only for H = -N (NoH saturated to 0): no microfacet there
+    float k = d > 0.0f ? alpha / d : 0.0f;
+    return k * k * IBL_INV_PI;
+}
+
+// Listing 6: the direction toward the point of the sun disk closest to R (R itself inside the disk).
+IBL_FN vec3 sunSpecularDirection(SunDisk sun, vec3 R) {
+    vec3 D = sun.direction;
+    float r = sin(sun.angularRadius); // disk radius
+    float d = cos(sun.angularRadius); // distance to disk
+    float DdotR = v3dot(D, R);
+    vec3 S = v3sub(R, v3scale(D, DdotR));
+    // R opposite to D has no closest side: any perpendicular will do.
+    vec3 Sn = v3safeNormalize(S, frameFromNormal(D).t);
+    return DdotR < d ? v3normalize(v3add(v3scale(D, d), v3scale(Sn, r))) : R;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Probes
+
+typedef struct {
+    vec3 radiance;
+    float alpha;
+} ProbeSample;
+
+// Appendix F for one local probe: parallax-corrected, distance-based-rough LD and the influence weight.
+// dominantR is unit. As in Listings F.1/F.2 the lookup direction is lerp(localR, dominantR, r) with localR
+// the unnormalized capture-to-intersection vector (metres): the pull toward the uncorrected direction is
+// r / (r + (1 - r) |localR|), so it depends on the scene's scale, as in the listings (normalizing localR
+// first moved reflections near walls by up to a wall pattern's period at r = 0.2-0.3 in our glossy-floor
+// test). The distance-based roughness chooses the LD level only: the DFG term and the energy compensation
+// keep the material's roughness (the BRDF's albedo does not change with the footprint).
+IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_GLOBAL const float* localLd, vec3 position,
+                                      vec3 dominantR, float perceptualRoughness, uint flags) {
+    ProbeSample s;
+    s.radiance = v3(0.0f, 0.0f, 0.0f);
+    s.alpha = 0.0f;
+    float weight =
+        volumeIsValid(probe.proxy) ? influenceWeight(probe.influence, probe.fadeDistance, position) : 0.0f;
+    ParallaxHit h = parallaxCorrect(probe.proxy, probe.captureOffset, position, dominantR);
+    if (weight > 0.0f && h.hit) {
+        float localRoughness =
+            (flags & IBL_RT_DISTANCE_ROUGHNESS)
+                ? computeDistanceBaseRoughness(h.distanceToHit, h.distanceFromCapture, perceptualRoughness)
+                : perceptualRoughness;
+        vec3 localR = v3scale(h.direction, h.distanceFromCapture);
+        vec3 dir = v3safeNormalize(v3lerp(localR, dominantR, perceptualRoughness), dominantR);
+        s.radiance = sampleLd(localLd, probe.ld, dir, localRoughness);
+        s.alpha = weight;
+    }
+    return s;
+}
+
+// Frostbite 4.9.5 medium and large range: local probes in order while alpha < 1, each adding
+// a = saturate(probe.alpha - alpha) of itself; then the distant probe with the remaining 1 - alpha.
+IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_GLOBAL const float* distantLd,
+                                     IBL_GLOBAL const LocalProbe* probes, IBL_GLOBAL const float* localLd,
+                                     vec3 position, vec3 dominantR, float perceptualRoughness) {
+    vec3 rgb = v3(0.0f, 0.0f, 0.0f);
+    float alpha = 0.0f;
+    for (uint i = 0; i < p.localProbeCount && alpha < 1.0f; ++i) {
+        ProbeSample s =
+            localProbeSpecular(probes[i], localLd, position, dominantR, perceptualRoughness, p.flags);
+        float a = saturate(s.alpha - alpha);
+        rgb = v3madd(s.radiance, a, rgb);
+        alpha = saturate(a + alpha);
+    }
+    if (alpha < 1.0f)
+        rgb = v3madd(sampleLd(distantLd, p.distant, dominantR, perceptualRoughness), 1.0f - alpha, rgb);
+    ProbeSample out;
+    out.radiance = rgb;
+    out.alpha = alpha;
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------------
+// The shading of one point
+
+IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_GLOBAL const float* distantLd,
+                              IBL_GLOBAL const float* dfgLut, IBL_GLOBAL const LocalProbe* probes,
+                              IBL_GLOBAL const float* localLd) {
+    uint flags = p.flags;
+    vec3 N = v3safeNormalize(sp.normal, v3(0.0f, 1.0f, 0.0f));
+    vec3 V = v3safeNormalize(sp.view, N);
+    float NoVsigned = v3dot(N, V);
+    float NoV = saturate(NoVsigned);
+    float perceptualRoughness = saturate(sp.perceptualRoughness);
+    float alpha = perceptualRoughness * perceptualRoughness;
+    float metallic = saturate(sp.metallic);
+    float ao = saturate(sp.ao);
+
+    // Filament 4.8.3: diffuse colour and f0 from base colour and metallic; f90 = 1 or from f0 (5.6.2).
+    vec3 diffuseColor = v3scale(sp.baseColor, 1.0f - metallic);
+    float dielectric = p.dielectricF0 * (1.0f - metallic);
+    vec3 f0 = v3madd(sp.baseColor, metallic, v3(dielectric, dielectric, dielectric));
+    float f90 = (flags & IBL_RT_F90_FROM_F0) ? saturate(50.0f * 0.33f * (f0.x + f0.y + f0.z)) : 1.0f;
+
+    vec3 dfg = dfgLookup(dfgLut, p.dfgSize, NoV, perceptualRoughness);
+    float r = fmax(dfg.x + dfg.y, 1e-4f);
+    vec3 energy = v3(1.0f, 1.0f, 1.0f);
+    if (flags & IBL_RT_ENERGY_COMPENSATION)
+        energy = v3(1.0f + f0.x * (1.0f / r - 1.0f), 1.0f + f0.y * (1.0f / r - 1.0f),
+                    1.0f + f0.z * (1.0f / r - 1.0f));
+    vec3 specularColor =
+        v3(f0.x * dfg.x + f90 * dfg.y, f0.y * dfg.x + f90 * dfg.y, f0.z * dfg.x + f90 * dfg.y);
+
+    // Mirror direction reflect(-V, N), then the lobe's dominant direction (Listing 22).
+    vec3 R = v3sub(v3scale(N, 2.0f * NoVsigned), V);
+    vec3 dominantR = (flags & IBL_RT_SPECULAR_DOMINANT) ? getSpecularDominantDir(N, R, alpha) : R;
+    dominantR = v3safeNormalize(dominantR, N);
+
+    ShadeResult out;
+    out.diffuse = v3(0.0f, 0.0f, 0.0f);
+    out.specular = v3(0.0f, 0.0f, 0.0f);
+    out.localAlpha = 0.0f;
+
+    if (flags & IBL_RT_SPECULAR) {
+        ProbeSample ld =
+            composeSpecularLd(p, distantLd, probes, localLd, sp.position, dominantR, perceptualRoughness);
+        float occlusion = (flags & IBL_RT_SPECULAR_OCCLUSION) ? computeSpecOcclusion(NoV, ao, alpha) : 1.0f;
+        if (flags & IBL_RT_HORIZON_OCCLUSION) occlusion *= horizonOcclusion(dominantR, N);
+        out.specular =
+            v3(ld.radiance.x * specularColor.x * energy.x, ld.radiance.y * specularColor.y * energy.y,
+               ld.radiance.z * specularColor.z * energy.z);
+        out.specular = v3scale(out.specular, occlusion);
+        out.localAlpha = ld.alpha;
+    }
+
+    if (flags & IBL_RT_DIFFUSE) {
+        vec3 nd = (flags & IBL_RT_DIFFUSE_DOMINANT)
+                      ? v3safeNormalize(getDiffuseDominantDir(N, V, NoV, alpha), N)
+                      : N;
+        vec3 e = irradianceSH(p.sh, nd);
+        float scale = ((flags & IBL_RT_SH_OVER_PI) ? 1.0f : IBL_INV_PI) * ao *
+                      ((flags & IBL_RT_DISNEY_DIFFUSE) ? dfg.z : 1.0f);
+        out.diffuse = v3(diffuseColor.x * fmax(e.x, 0.0f) * scale, diffuseColor.y * fmax(e.y, 0.0f) * scale,
+                         diffuseColor.z * fmax(e.z, 0.0f) * scale);
+    }
+
+    if (flags & IBL_RT_SUN) {
+        // Listing 6: E = E_perp <N.D>; diffuse as a punctual light in D, specular toward the disk point L.
+        vec3 D = v3safeNormalize(p.sun.direction, v3(0.0f, 1.0f, 0.0f));
+        float NoD = saturate(v3dot(N, D));
+        vec3 E = v3scale(p.sun.color, p.sun.illuminance * NoD);
+        float NoVc = fmax(NoV, 1e-4f);
+        float fd = 1.0f;
+        if (flags & IBL_RT_DISNEY_DIFFUSE) {
+            float LoH = sqrt(saturate(0.5f + 0.5f * v3dot(V, D)));
+            fd = Fr_DisneyDiffuse(NoVc, NoD, LoH, perceptualRoughness);
+        }
+        if (flags & IBL_RT_DIFFUSE)
+            out.diffuse = v3madd(v3(diffuseColor.x * E.x, diffuseColor.y * E.y, diffuseColor.z * E.z),
+                                 fd * IBL_INV_PI, out.diffuse);
+
+        // GGX at the representative point. Listing 6 has no energy normalization ("we have not found a
+        // correct one"): the disk widens the highlight, so D's peak is spread over it and the lobe gains
+        // energy, without bound as alpha -> 0. With IBL_RT_SUN_NORMALIZATION, D is scaled by
+        // (alpha / alpha')^2 with alpha' = alpha + sin(angularRadius) / 2, the widened lobe (Karis 2013's
+        // sphere-light normalization, its radius / distance being sin(angularRadius) here): a mirror facing
+        // the sun then returns the disk's radiance F E_perp / (pi sin^2 angularRadius). alpha >= 2e-3
+        // (Filament's minimum roughness) keeps fp32 D finite, with or without it.
+        vec3 L = sunSpecularDirection(p.sun, R);
+        float alphaSun = fmax(alpha, 2e-3f);
+        float alphaWide = fmin(alphaSun + 0.5f * sin(p.sun.angularRadius), 1.0f);
+        float normalization = (flags & IBL_RT_SUN_NORMALIZATION) ? sq(alphaSun / alphaWide) : 1.0f;
+        vec3 H = v3safeNormalize(v3add(V, L), N);
+        float NoL = saturate(v3dot(N, L)), NoH = saturate(v3dot(N, H)), LoH = saturate(v3dot(L, H));
+        float dv = D_GGXFromCross(v3cross(N, H), NoH, alphaSun) * normalization *
+                   V_SmithGGXCorrelated(NoVc, NoL, alphaSun);
+        float fc = pow5(1.0f - LoH);
+        vec3 F = v3(f0.x + (f90 - f0.x) * fc, f0.y + (f90 - f0.y) * fc, f0.z + (f90 - f0.z) * fc);
+        if (flags & IBL_RT_SPECULAR)
+            out.specular = v3add(out.specular, v3(dv * F.x * energy.x * E.x, dv * F.y * energy.y * E.y,
+                                                  dv * F.z * energy.z * E.z));
+    }
+    return out;
+}
+
+IBL_END_NAMESPACE
+
+#endif
