@@ -15,5 +15,6 @@ Action addSpecularCommand(CLI::App& app);
 Action addDiffuseCommand(CLI::App& app);
 Action addInspectCommand(CLI::App& app);
 Action addCalibrateCommand(CLI::App& app);
+Action addPreviewCommand(CLI::App& app);
 
 } // namespace ibl::cli

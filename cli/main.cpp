@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addDiffuseCommand(app));
     add(ibl::cli::addInspectCommand(app));
     add(ibl::cli::addCalibrateCommand(app));
+    add(ibl::cli::addPreviewCommand(app));
 
     try {
         app.parse(argc, argv);

@@ -14,4 +14,8 @@ namespace ibl {
 void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& chain, int tileSize = 96,
                        float exposureEV = 0.0f);
 
+// A linear image as an 8-bit sRGB PNG: each channel times `scale`, Reinhard x / (1 + x), sRGB curve.
+// Written atomically; throws ibl::Error naming the file.
+void writeTonemappedPng(const std::filesystem::path& path, const ImageRGBA& image, float scale);
+
 } // namespace ibl

@@ -45,6 +45,35 @@ float encodeSrgb(float linear) {
 
 } // namespace
 
+namespace {
+
+void writePng(const std::filesystem::path& path, int width, int height,
+              const std::vector<unsigned char>& rgb) {
+    AtomicFile file(path);
+    auto out = OIIO::ImageOutput::create(file.tempPath().string());
+    if (!out) throw Error(path.string() + ": cannot create an image writer: " + OIIO::geterror());
+    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
+    if (!out->open(file.tempPath().string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
+        !out->close())
+        throw Error(path.string() + ": " + out->geterror());
+    file.commit();
+}
+
+unsigned char tonemap(float linear, float scale) {
+    float v = std::max(linear * scale, 0.0f);
+    return (unsigned char)std::lround(255.0f * encodeSrgb(v / (1.0f + v)));
+}
+
+} // namespace
+
+void writeTonemappedPng(const std::filesystem::path& path, const ImageRGBA& image, float scale) {
+    std::vector<unsigned char> rgb(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            rgb[i * 3 + c] = tonemap(image.pixels[i][c], scale);
+    writePng(path, image.width, image.height, rgb);
+}
+
 void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& chain, int tileSize,
                        float exposureEV) {
     if (chain.levels.empty()) throw Error(path.string() + ": nothing to preview");
@@ -62,20 +91,11 @@ void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& ch
                         level.faces[f].at(x * level.faceSize / tileSize, y * level.faceSize / tileSize);
                     std::size_t o =
                         (std::size_t(m * (tileSize + gap) + y) * width + f * (tileSize + gap) + x) * 3;
-                    for (int c = 0; c < 3; ++c) {
-                        float v = texel[c] * scale;
-                        pixels[o + c] = (unsigned char)std::lround(255.0f * encodeSrgb(v / (1.0f + v)));
-                    }
+                    for (int c = 0; c < 3; ++c)
+                        pixels[o + c] = tonemap(texel[c], scale);
                 }
     }
-    AtomicFile file(path);
-    auto out = OIIO::ImageOutput::create(file.tempPath().string());
-    if (!out) throw Error(path.string() + ": cannot create an image writer: " + OIIO::geterror());
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(file.tempPath().string(), spec) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
-        throw Error(path.string() + ": " + out->geterror());
-    file.commit();
+    writePng(path, width, height, pixels);
 }
 
 } // namespace ibl
