@@ -1,4 +1,5 @@
 #include "calibration_options.h"
+#include "input_options.h"
 
 #include <iblbake/error.h>
 
@@ -124,6 +125,19 @@ std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
     out.close();
     if (!out) throw Error(options.sunJson + ": cannot write the sun's JSON");
     return file;
+}
+
+CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
+                                 int sourceFaceSize) {
+    CalibratedInput out{ingestEnvironment(input.files(), input.settings(sourceFaceSize)), {}};
+    out.calibration = applyCalibration(calibration, out.env);
+    printIngestReport(out.env.report);
+    const CalibrationOutcome& c = out.calibration;
+    if (c.record.absolute()) std::printf("%s\n", c.record.summary().c_str());
+    if (c.sun)
+        std::printf("sun     extracted: %.6g lux at elevation %.2f deg, azimuth %.2f deg\n",
+                    c.sun->illuminance, c.sun->elevationDegrees(), c.sun->azimuthDegrees());
+    return out;
 }
 
 } // namespace ibl::cli

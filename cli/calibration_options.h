@@ -59,4 +59,18 @@ CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnv
 std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
                                          const CalibrationOutcome& outcome);
 
+struct InputOptions;
+
+// What a baking command starts from: the ingested environment, calibrated (and with the sun taken out
+// when asked).
+struct CalibratedInput {
+    SourceEnvironment env;
+    CalibrationOutcome calibration;
+};
+
+// Ingests the input at `sourceFaceSize`, applies the calibration, and prints the input report, the
+// calibration and the extracted sun.
+CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
+                                 int sourceFaceSize);
+
 } // namespace ibl::cli

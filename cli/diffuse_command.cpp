@@ -143,15 +143,12 @@ Action addDiffuseCommand(CLI::App& app) {
         std::optional<AtomicFile> cubeFile;
         if (wantCube) cubeFile.emplace(o->irradianceCube);
 
-        IngestSettings ingest = o->input.settings(o->size);
         Executor executor = o->backend.makeExecutor();
-
-        SourceEnvironment env = ingestEnvironment(o->input.files(), ingest);
-        CalibrationOutcome calibration = applyCalibration(o->calibration, env);
+        CalibratedInput input = ingestCalibrated(o->input, o->calibration, o->size);
+        const SourceEnvironment& env = input.env;
+        const CalibrationOutcome& calibration = input.calibration;
         const double ingestMs = millisecondsSince(start);
         const IngestReport& r = env.report;
-        printIngestReport(r);
-        if (calibration.record.absolute()) std::printf("%s\n", calibration.record.summary().c_str());
 
         auto shStart = std::chrono::steady_clock::now();
         DiffuseSH sh = bakeDiffuseSH(env.cube, window);

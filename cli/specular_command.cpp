@@ -87,7 +87,6 @@ Action addSpecularCommand(CLI::App& app) {
         const Ktx2Format format = parseKtx2Format(o->format);
         if (o->size < 1 || o->size > 8192 || (o->size & (o->size - 1)) != 0)
             throw Error("--size: " + std::to_string(o->size) + " is not a power of two from 1 to 8192");
-        IngestSettings ingest = o->input.settings(o->size);
         SpecularSettings settings;
         settings.levels = o->levels;
         settings.quality = parseQuality(o->quality);
@@ -95,18 +94,11 @@ Action addSpecularCommand(CLI::App& app) {
         settings.mapping = parseMipMapping(o->mipMapping);
         settings.lodBias = o->lodBias;
         Executor executor = o->backend.makeExecutor();
-
-        SourceEnvironment env = ingestEnvironment(o->input.files(), ingest);
-        CalibrationOutcome calibration = applyCalibration(o->calibration, env);
+        CalibratedInput input = ingestCalibrated(o->input, o->calibration, o->size);
+        const SourceEnvironment& env = input.env;
+        const CalibrationOutcome& calibration = input.calibration;
         const double ingestMs = millisecondsSince(start);
         const IngestReport& r = env.report;
-        printIngestReport(r);
-
-        if (calibration.record.absolute()) std::printf("%s\n", calibration.record.summary().c_str());
-        if (calibration.sun)
-            std::printf("sun     extracted: %.6g lux at elevation %.2f deg, azimuth %.2f deg\n",
-                        calibration.sun->illuminance, calibration.sun->elevationDegrees(),
-                        calibration.sun->azimuthDegrees());
 
         std::vector<SpecularLevelTiming> timings;
         auto bakeStart = std::chrono::steady_clock::now();

@@ -1,4 +1,5 @@
 // Probe data in the layout the kernels read: bordered LD pyramids, the 3-channel DFG table, local probes.
+#include "iblbake/cube_pyramid.h"
 #include "iblbake/error.h"
 #include "iblbake/runtime.h"
 
@@ -43,26 +44,7 @@ LdPyramid ldPyramidFromChain(const CubeMapChain& chain, LdMapping mapping) {
             if (face.width != n || face.height != n || face.pixels.size() != std::size_t(n) * std::size_t(n))
                 throw Error("LD chain: level " + std::to_string(m) + " has a face that is not " +
                             std::to_string(n) + "x" + std::to_string(n));
-        // Interior texels as they are; each border texel from the neighbouring face's texel that the
-        // border texel's centre direction falls on (the baker's cube_pyramid.cpp does the same).
-        for (int face = 0; face < 6; ++face)
-            for (int y = -1; y <= n; ++y)
-                for (int x = -1; x <= n; ++x) {
-                    glm::vec4 v;
-                    if (x >= 0 && x < n && y >= 0 && y < n) {
-                        v = level.faces[face].at(x, y);
-                    } else {
-                        CubeCoord c = cubeCoordFromDirection(cubeFaceDirection(
-                            face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
-                        int sx = std::clamp(int(c.s * float(n)), 0, n - 1),
-                            sy = std::clamp(int(c.t * float(n)), 0, n - 1);
-                        v = level.faces[c.face].at(sx, sy);
-                    }
-                    uint32_t o = cubeBorderedTexelIndex(pyramid.layout, m, face, x, y);
-                    pyramid.data[o] = v.x;
-                    pyramid.data[o + 1] = v.y;
-                    pyramid.data[o + 2] = v.z;
-                }
+        storeBorderedLevel(level, m, pyramid.layout, pyramid.data.data());
     }
     return pyramid;
 }

@@ -1,8 +1,6 @@
 #include "iblbake/cube_pyramid.h"
 #include "iblbake/error.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 namespace ibl {
@@ -23,32 +21,6 @@ CubeMap downsample(const CubeMap& above) {
     return below;
 }
 
-// Copies one level into the flat array and fills each face's border with the texel of the
-// neighbouring face that the border texel's centre direction falls on.
-void storeLevel(const CubeMap& level, uint32_t index, CubePyramid& pyramid) {
-    const int n = level.faceSize;
-    tbb::parallel_for(0, 6, [&](int face) {
-        for (int y = -1; y <= n; ++y)
-            for (int x = -1; x <= n; ++x) {
-                glm::vec4 v;
-                if (x >= 0 && x < n && y >= 0 && y < n) {
-                    v = level.faces[face].at(x, y);
-                } else {
-                    vec3 d =
-                        cubeFaceDirection(face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
-                    CubeCoord c = cubeCoordFromDirection(d);
-                    int sx = std::clamp(int(c.s * float(n)), 0, n - 1),
-                        sy = std::clamp(int(c.t * float(n)), 0, n - 1);
-                    v = level.faces[c.face].at(sx, sy);
-                }
-                uint32_t o = cubeBorderedTexelIndex(pyramid.layout, index, face, x, y);
-                pyramid.data[o] = v.x;
-                pyramid.data[o + 1] = v.y;
-                pyramid.data[o + 2] = v.z;
-            }
-    });
-}
-
 } // namespace
 
 CubePyramid buildCubePyramid(const CubeMap& base) {
@@ -63,7 +35,7 @@ CubePyramid buildCubePyramid(const CubeMap& base) {
     pyramid.layout.levelCount = uint32_t(levels.size());
     pyramid.data.assign(cubePyramidFloatCount(pyramid.layout), 0.0f);
     for (uint32_t m = 0; m < levels.size(); ++m)
-        storeLevel(levels[m], m, pyramid);
+        storeBorderedLevel(levels[m], m, pyramid.layout, pyramid.data.data());
     return pyramid;
 }
 
