@@ -143,16 +143,7 @@ TEST(Irradiance, BadSizesAndMethods) {
 
 // ---- Real HDRIs ----------------------------------------------------------------------------------
 
-const char* kHdris[] = {"rooitou_park_1k.hdr",      "potsdamer_platz_1k.hdr", "studio_small_03_1k.hdr",
-                        "venice_sunset_1k.hdr",     "KernerEnvLatLong.exr",   "KernerEnvCube.exr",
-                        "blender_world_sunrise.exr"};
-
-class IrradianceHdri : public ::testing::TestWithParam<const char*> {
-  protected:
-    void SetUp() override {
-        if (!fs::exists(hdriPath(GetParam()))) GTEST_SKIP() << hdriPath(GetParam()) << " not present";
-    }
-};
+class IrradianceHdri : public SharedHdriTest {};
 
 // Sampled cube (production preset, 32-px faces) against the brute force (every texel of a 128-px source,
 // every output texel, fp64): within 1% relative mean error. Draft and reference are printed for the
@@ -186,13 +177,7 @@ TEST_P(IrradianceHdri, ProductionWithin1PercentOfBruteForce) {
                 relativeMeanAbsError(irradianceCubeFromSH(sh.irradiance, 32), ref));
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedHdris, IrradianceHdri, ::testing::ValuesIn(kHdris),
-                         [](const ::testing::TestParamInfo<const char*>& param) {
-                             std::string name = param.param;
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(SharedHdris, IrradianceHdri, ::testing::ValuesIn(kSharedHdris), hdriTestName);
 
 // ---- CLI -----------------------------------------------------------------------------------------
 

@@ -291,22 +291,7 @@ TEST(ShWindow, DeltaWithAndWithoutWindow) {
 
 // ---- Real HDRIs ----------------------------------------------------------------------------------
 
-CubeMap load(const char* name, int faceSize) {
-    IngestSettings settings;
-    settings.sourceFaceSize = faceSize;
-    return ingestEnvironment({hdriPath(name)}, settings).cube;
-}
-
-const char* kHdris[] = {"rooitou_park_1k.hdr",      "potsdamer_platz_1k.hdr", "studio_small_03_1k.hdr",
-                        "venice_sunset_1k.hdr",     "KernerEnvLatLong.exr",   "KernerEnvCube.exr",
-                        "blender_world_sunrise.exr"};
-
-class ShHdri : public ::testing::TestWithParam<const char*> {
-  protected:
-    void SetUp() override {
-        if (!fs::exists(hdriPath(GetParam()))) GTEST_SKIP() << hdriPath(GetParam()) << " not present";
-    }
-};
+class ShHdri : public SharedHdriTest {};
 
 // The L2 truncation error of the SH irradiance against the brute force (every texel, fp64) at 32-px
 // source faces, evaluated at the centres of a 32-px cube: reported per file. Asserted: the mean over the
@@ -314,7 +299,7 @@ class ShHdri : public ::testing::TestWithParam<const char*> {
 // relative mean error stays under 12% (measured 0.9% .. 8.6%, rooitou_park's sun the worst; a wrong
 // factor, sign or index gives > 20%).
 TEST_P(ShHdri, IrradianceVsBruteForce) {
-    CubeMap source = load(GetParam(), 32);
+    CubeMap source = loadSharedHdri(GetParam(), 32);
     ShRgb sh = projectRadianceSH(source);
     CubeMap ref = referenceIrradianceCube(source, 32);
     double err = 0.0, sum = 0.0;
@@ -347,7 +332,7 @@ TEST_P(ShHdri, IrradianceVsBruteForce) {
 // directions and 20000 random ones (neither is the search's 64-px grid), and in fp32 through the
 // kernel-side irradianceSH (within 1e-5 of the mean: fp32 rounding of O(mean) terms).
 TEST_P(ShHdri, AutoWindowLeavesNoNegativeIrradiance) {
-    CubeMap source = load(GetParam(), 128);
+    CubeMap source = loadSharedHdri(GetParam(), 128);
     DiffuseSH d = bakeDiffuseSH(source, {});
     auto worst = [&](const glm::dvec3& v) {
         return 100.0 * std::min({v.x / d.window.meanIrradiance.x, v.y / d.window.meanIrradiance.y,
@@ -378,12 +363,6 @@ TEST_P(ShHdri, AutoWindowLeavesNoNegativeIrradiance) {
         EXPECT_GE(d.window.minAfter[c], 0.0);
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedHdris, ShHdri, ::testing::ValuesIn(kHdris),
-                         [](const ::testing::TestParamInfo<const char*>& param) {
-                             std::string name = param.param;
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(SharedHdris, ShHdri, ::testing::ValuesIn(kSharedHdris), hdriTestName);
 
 } // namespace

@@ -20,16 +20,6 @@ namespace {
 using namespace ibl;
 using namespace ibl::test;
 
-const char* kHdris[] = {"rooitou_park_1k.hdr",      "potsdamer_platz_1k.hdr", "studio_small_03_1k.hdr",
-                        "venice_sunset_1k.hdr",     "KernerEnvLatLong.exr",   "KernerEnvCube.exr",
-                        "blender_world_sunrise.exr"};
-
-CubeMap load(const char* name, int faceSize) {
-    IngestSettings settings;
-    settings.sourceFaceSize = faceSize;
-    return ingestEnvironment({hdriPath(name)}, settings).cube;
-}
-
 float luminance(const glm::vec4& p) {
     return 0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z;
 }
@@ -68,17 +58,12 @@ double seamRatio(const CubeMap& level) {
     return (edge / edgeCount) / (interior / interiorCount);
 }
 
-class RealHdri : public ::testing::TestWithParam<const char*> {
-  protected:
-    void SetUp() override {
-        if (!fs::exists(hdriPath(GetParam()))) GTEST_SKIP() << hdriPath(GetParam()) << " not present";
-    }
-};
+class RealHdri : public SharedHdriTest {};
 
 // Relative mean absolute error per level against the brute force, at 32-texel faces (where the fp64
 // reference over every texel is affordable); production must stay within 2% on every level.
 TEST_P(RealHdri, ProductionWithin2PercentOfBruteForcePerLevel) {
-    CubeMap source = load(GetParam(), 32);
+    CubeMap source = loadSharedHdri(GetParam(), 32);
     const int levelCount = levelCountFor(32, SpecularSettings{});
     std::vector<CubeMap> references;
     for (int m = 1; m < levelCount; ++m)
@@ -135,12 +120,6 @@ TEST_P(RealHdri, FiniteBoundedAndSeamless) {
     std::printf("\n");
 }
 
-INSTANTIATE_TEST_SUITE_P(SharedHdris, RealHdri, ::testing::ValuesIn(kHdris),
-                         [](const ::testing::TestParamInfo<const char*>& param) {
-                             std::string name = param.param;
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(SharedHdris, RealHdri, ::testing::ValuesIn(kSharedHdris), hdriTestName);
 
 } // namespace

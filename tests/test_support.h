@@ -3,12 +3,17 @@
 
 #include <iblbake/cubemap.h>
 #include <iblbake/executor.h>
+#include <iblbake/ingest.h>
 
 #include <cube.h>
 
+#include <gtest/gtest.h>
+
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <string>
 
 namespace ibl::test {
 
@@ -49,6 +54,35 @@ inline double relativeMeanAbsError(const CubeMap& a, const CubeMap& ref) {
 // A file of ../shared/data/hdri (tests skip when it is absent).
 inline std::filesystem::path hdriPath(const char* name) {
     return std::filesystem::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / name;
+}
+
+// The seven HDRIs of ../shared/data/hdri.
+inline const char* const kSharedHdris[] = {
+    "rooitou_park_1k.hdr",  "potsdamer_platz_1k.hdr", "studio_small_03_1k.hdr",   "venice_sunset_1k.hdr",
+    "KernerEnvLatLong.exr", "KernerEnvCube.exr",      "blender_world_sunrise.exr"};
+
+// A test parameterized by one of kSharedHdris; skipped when the file is absent.
+class SharedHdriTest : public ::testing::TestWithParam<const char*> {
+  protected:
+    void SetUp() override {
+        if (!std::filesystem::exists(hdriPath(GetParam())))
+            GTEST_SKIP() << hdriPath(GetParam()) << " not present";
+    }
+};
+
+// Test-name suffix for a shared HDRI: its file name with non-alphanumerics as '_'.
+inline std::string hdriTestName(const ::testing::TestParamInfo<const char*>& param) {
+    std::string name = param.param;
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+}
+
+// A shared HDRI ingested to a cube of faceSize texels.
+inline CubeMap loadSharedHdri(const char* name, int faceSize) {
+    IngestSettings settings;
+    settings.sourceFaceSize = faceSize;
+    return ingestEnvironment({hdriPath(name)}, settings).cube;
 }
 
 } // namespace ibl::test
