@@ -6,6 +6,29 @@
 
 #include <cstdio>
 #include <map>
+#include <string>
+
+namespace {
+
+// Library messages (OpenImageIO, OpenEXR, an OpenCL build log) may span lines; the CLI's contract is
+// one line per error, so line breaks become "; ".
+std::string oneLine(std::string message) {
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+        message.pop_back();
+    std::string out;
+    for (std::size_t i = 0; i < message.size(); ++i) {
+        if (message[i] != '\n') {
+            out += message[i];
+            continue;
+        }
+        while (i + 1 < message.size() && message[i + 1] == '\n')
+            ++i;
+        out += "; ";
+    }
+    return out;
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"iblbake: image-based-lighting and light-probe baker", "iblbake"};
@@ -35,10 +58,10 @@ int main(int argc, char** argv) {
             if (command->parsed()) return action();
         return 2;
     } catch (const ibl::Error& e) {
-        std::fprintf(stderr, "iblbake: error: %s\n", e.what());
+        std::fprintf(stderr, "iblbake: error: %s\n", oneLine(e.what()).c_str());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "iblbake: internal error: %s\n", e.what());
+        std::fprintf(stderr, "iblbake: internal error: %s\n", oneLine(e.what()).c_str());
         return 3;
     }
 }

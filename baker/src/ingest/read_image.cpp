@@ -1,5 +1,6 @@
 // Reading an environment image with OpenImageIO: any format it reads, level 0 of the first subimage
 // (tiled and MIP-mapped files included), R, G, B only (alpha ignored, one channel read as grey).
+#include "../io/muted_stderr.h"
 #include "ingest_internal.h"
 
 #include "iblbake/error.h"
@@ -49,6 +50,7 @@ RawImage readImage(const std::filesystem::path& file) {
     // Alpha is ignored, so colour must not be premultiplied by it (OIIO would do so for PNG and TIFF).
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
+    MutedStderr muted;
     auto in = OIIO::ImageInput::open(name, &config);
     if (!in) {
         std::string why = OIIO::geterror();
