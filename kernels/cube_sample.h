@@ -61,6 +61,15 @@ IBL_FN vec3 cubeSampleLevel(IBL_GLOBAL const float* pyramid, CubePyramidLayout l
         w00 * pyramid[i00 + 2] + w10 * pyramid[i10 + 2] + w01 * pyramid[i01 + 2] + w11 * pyramid[i11 + 2]);
 }
 
+// Pre-filtered importance sampling (Frostbite Listing 19, Krivanek & Colbert 2008): the source level
+// whose texels cover the solid angle omegaS = 1 / (n pdf) of one of n samples, omegaP being a level-0
+// texel's. Rounded to a whole level: one bilinear read per sample instead of trilinear's two; sample
+// tables are shared by all texels, so the rounding makes no texel-to-texel steps.
+IBL_FN float prefilteredSourceLevel(uint sampleCount, float pdf, float omegaP, float lodBias, float maxLod) {
+    float omegaS = 1.0f / ((float)sampleCount * pdf);
+    return floor(clamp(0.5f * log2(omegaS / omegaP) + lodBias, 0.0f, maxLod) + 0.5f);
+}
+
 // Trilinear lookup in direction d at fractional level `lod` (clamped to the pyramid).
 IBL_FN vec3 cubeSampleLod(IBL_GLOBAL const float* pyramid, CubePyramidLayout layout, vec3 d, float lod) {
     CubeCoord c = cubeCoordFromDirection(d);

@@ -40,14 +40,11 @@ IBL_FN IrradianceSample irradianceSampleEntry(uint i, uint n, float omegaP, floa
     float2 disk = unitDiskPoint(hammersley(i, n));
     vec3 l = cosineSampleFromDisk(disk.x, disk.y);
     float pdf = l.z * IBL_INV_PI;
-    float omegaS = 1.0f / ((float)n * pdf);
     IrradianceSample s;
     s.x = l.x;
     s.y = l.y;
     s.z = l.z;
-    // Rounded to a whole level, as the LD stage does (ld.h): one bilinear read per sample instead of
-    // trilinear's two; the table is shared by all texels, so the rounding makes no texel-to-texel steps.
-    s.lod = floor(clamp(0.5f * log2(omegaS / omegaP) + lodBias, 0.0f, maxLod) + 0.5f);
+    s.lod = prefilteredSourceLevel(n, pdf, omegaP, lodBias, maxLod);
     return s;
 }
 

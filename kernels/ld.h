@@ -44,11 +44,7 @@ IBL_FN LdSample ldSampleEntry(uint i, uint n, float alpha, float omegaP, float l
     s.weight = fmax(l.z, 0.0f);
     // With N = V, NoH = VoH and the pdf D NoH / (4 VoH) reduces to D / 4 (Listing 19's comment).
     float pdf = D_GGX(h.z, alpha) * 0.25f;
-    float omegaS = 1.0f / ((float)n * pdf);
-    // Rounded to a whole level: one bilinear read per sample instead of trilinear's two halves the
-    // gathers, at the same accuracy against the reference (the table is shared by all texels, so the
-    // rounding makes no texel-to-texel steps).
-    s.lod = floor(clamp(0.5f * log2(omegaS / omegaP) + lodBias, 0.0f, maxLod) + 0.5f);
+    s.lod = prefilteredSourceLevel(n, pdf, omegaP, lodBias, maxLod);
     return s;
 }
 

@@ -67,30 +67,27 @@ IBL_FN ShBasis shBasis(vec3 d) {
     return y;
 }
 
-// Filament's irradianceSH(n): sum_i sh_i p_i(n) with `sh` 27 floats, coefficient i's RGB at 3i..3i+2.
-// With the pre-scaled irradiance coefficients A_l k_i L_i it returns E(n); with those divided by pi
-// (the Lambert 1/pi folded in, Filament's cmgen convention) it returns E(n) / pi.
-IBL_FN vec3 shEvalPrescaled(IBL_GLOBAL const float* sh, vec3 n) {
-    ShBasis p = shPolynomials(n);
+// sum_i sh_i w_i over RGB coefficients stored as 27 floats (coefficient i's RGB at 3i..3i+2).
+IBL_FN vec3 shWeightedSum(IBL_GLOBAL const float* sh, ShBasis w) {
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (int i = 0; i < IBL_SH_COUNT; ++i) {
-        r += sh[3 * i] * p.v[i];
-        g += sh[3 * i + 1] * p.v[i];
-        b += sh[3 * i + 2] * p.v[i];
+        r += sh[3 * i] * w.v[i];
+        g += sh[3 * i + 1] * w.v[i];
+        b += sh[3 * i + 2] * w.v[i];
     }
     return v3(r, g, b);
 }
 
+// Filament's irradianceSH(n): sum_i sh_i p_i(n) with `sh` 27 floats, coefficient i's RGB at 3i..3i+2.
+// With the pre-scaled irradiance coefficients A_l k_i L_i it returns E(n); with those divided by pi
+// (the Lambert 1/pi folded in, Filament's cmgen convention) it returns E(n) / pi.
+IBL_FN vec3 shEvalPrescaled(IBL_GLOBAL const float* sh, vec3 n) {
+    return shWeightedSum(sh, shPolynomials(n));
+}
+
 // The radiance SH L_i (not pre-scaled) evaluated at n: sum_i L_i Y_i(n), same 27-float layout.
 IBL_FN vec3 shEvalRadiance(IBL_GLOBAL const float* sh, vec3 n) {
-    ShBasis y = shBasis(n);
-    float r = 0.0f, g = 0.0f, b = 0.0f;
-    for (int i = 0; i < IBL_SH_COUNT; ++i) {
-        r += sh[3 * i] * y.v[i];
-        g += sh[3 * i + 1] * y.v[i];
-        b += sh[3 * i + 2] * y.v[i];
-    }
-    return v3(r, g, b);
+    return shWeightedSum(sh, shBasis(n));
 }
 
 IBL_END_NAMESPACE
