@@ -18,6 +18,7 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -80,6 +81,8 @@ ProbeSet loadBake(const fs::path& dir) {
                                   coefficients[i][2].get<float>());
     ProbeSet set(std::move(ld), std::move(dfg), shCoefficientsFrom(irradiance, false));
     if (fs::exists(dir / "sun.json")) set.setSun(sunDiskFrom(diskLightFromJson(readText(dir / "sun.json"))));
+    if (fs::exists(dir / "irradiance.ktx2"))
+        set.setIrradianceCube(loadIrradianceKtx2(dir / "irradiance.ktx2"));
     return set;
 }
 
@@ -128,8 +131,10 @@ Action addPreviewCommand(CLI::App& app) {
     auto o = std::make_shared<PreviewOptions>();
     CLI::App* cmd =
         app.add_subcommand("preview", "render material balls lit by a bake (and the reference beside it)");
-    cmd->add_option("bake", o->bakeDir,
-                    "bake directory: specular.ktx2, dfg_lut.exr, diffuse.json [, sun.json]")
+    cmd->add_option(
+           "bake", o->bakeDir,
+           "bake directory: specular.ktx2, dfg_lut.exr, diffuse.json [, sun.json] [, irradiance.ktx2: "
+           "diffuse from it instead of the SH]")
         ->required();
     cmd->add_option("-o,--output", o->output, "output PNG; the linear render goes to the same name with .exr")
         ->required();
@@ -164,8 +169,10 @@ Action addPreviewCommand(CLI::App& app) {
             double factor = 1.0;
             if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())
                 factor = std::stod(it->second);
+            // At the bake's mirror resolution (at least 128): a coarser reference would blur what the
+            // runtime's level 0 shows sharply and count it as the runtime's error.
             IngestSettings ingest;
-            ingest.sourceFaceSize = 128;
+            ingest.sourceFaceSize = std::max(128, int(set.distantLd().layout.baseFaceSize));
             SourceEnvironment env = ingestEnvironment({fs::path(o->reference)}, ingest);
             applyCalibration(env.cube, factor);
             ReferenceSettings settings;

@@ -4,6 +4,7 @@
 
 #include <iblbake/dfg_lut.h>
 #include <iblbake/executor.h>
+#include <iblbake/irradiance.h>
 #include <iblbake/runtime.h>
 #include <iblbake/specular.h>
 
@@ -105,9 +106,15 @@ inline LdPyramid bakeLd(const CubeMap& cube) {
     return ldPyramidFromChain(bakeSpecular(cube, SpecularSettings{}, executor), LdMapping::Frostbite);
 }
 
-// A distant-only probe set for an environment cube (LD + DFG + SH).
-inline ProbeSet distantSet(const CubeMap& cube) {
-    return ProbeSet(bakeLd(cube), dfgTableFromImage(dfgLut()), projectIrradianceSH(cube));
+// A distant-only probe set for an environment cube (LD + DFG + SH), with the baker's irradiance cube
+// (production settings, 32-px faces) for the diffuse when asked.
+inline ProbeSet distantSet(const CubeMap& cube, bool irradianceCube = false) {
+    ProbeSet set(bakeLd(cube), dfgTableFromImage(dfgLut()), projectIrradianceSH(cube));
+    if (irradianceCube) {
+        static Executor executor = openclOrCpu();
+        set.setIrradianceCube(bakeIrradianceCube(cube, IrradianceSettings{}, executor));
+    }
+    return set;
 }
 
 inline double relativeDifference(const glm::vec4& a, const glm::vec4& b, float floor) {

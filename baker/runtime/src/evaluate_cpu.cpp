@@ -8,7 +8,7 @@ namespace ibl {
 std::vector<ShadeResult> shadeCpu(const ProbeSet& set, std::span<const ShadingPoint> points,
                                   const RuntimeOptions& options) {
     const RuntimeParams params = makeRuntimeParams(set, options, points.size());
-    const float* distant = set.distantLd().data.data();
+    const float* distant = set.distantData().data();
     const float* dfg = set.dfg().data.data();
     const LocalProbe* probes = set.localProbes().data();
     const float* localLd = set.localLdData().data();

@@ -14,7 +14,8 @@ static_assert(sizeof(ShadingPoint) == 60, "ShadingPoint must match kernels/probe
 static_assert(sizeof(ProbeVolume) == 64, "ProbeVolume must match kernels/parallax.h");
 static_assert(sizeof(LocalProbe) == 160 && offsetof(LocalProbe, fadeDistance) == 156,
               "LocalProbe must match kernels/probe.h");
-static_assert(sizeof(RuntimeParams) == 176 && offsetof(RuntimeParams, sh) == 68,
+static_assert(sizeof(RuntimeParams) == 192 && offsetof(RuntimeParams, sh) == 68 &&
+                  offsetof(RuntimeParams, irradiance) == 176,
               "RuntimeParams must match kernels/probe.h");
 
 struct OpenCLProbeEvaluator::Buffers {
@@ -24,7 +25,7 @@ struct OpenCLProbeEvaluator::Buffers {
 
 OpenCLProbeEvaluator::OpenCLProbeEvaluator(ocl::Context& context, const ProbeSet& set)
     : context_(context), set_(set), buffers_(std::make_unique<Buffers>()) {
-    buffers_->distantLd = context_.upload(set.distantLd().data);
+    buffers_->distantLd = context_.upload(set.distantData());
     buffers_->dfg = context_.upload(set.dfg().data);
     buffers_->probes = context_.upload(set.localProbes());
     buffers_->localLd = context_.upload(set.localLdData());

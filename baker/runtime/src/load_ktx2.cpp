@@ -27,6 +27,17 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
     }
 }
 
+CubeMap loadIrradianceKtx2(const std::filesystem::path& path) {
+    Ktx2Image image = readKtx2(path);
+    if (image.faceCount != 6 || image.levels.empty())
+        throw Error(path.string() + ": not a cube map (" + std::to_string(image.faceCount) + " faces)");
+    if (image.pixelWidth != image.pixelHeight) throw Error(path.string() + ": cube faces are not square");
+    CubeMap cube(int(image.pixelWidth));
+    for (int f = 0; f < 6; ++f)
+        cube.faces[f] = image.levels[0].at(std::size_t(f));
+    return cube;
+}
+
 DfgTable loadDfgKtx2(const std::filesystem::path& path) {
     Ktx2Image image = readKtx2(path);
     if (image.faceCount != 1 || image.levels.empty() || image.levels[0].empty())

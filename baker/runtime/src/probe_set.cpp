@@ -99,6 +99,24 @@ ProbeSet::ProbeSet(LdPyramid distantLd, DfgTable dfg, ShCoefficients sh)
         throw Error("probe set: the distant LD pyramid is empty or inconsistent with its layout");
     if (dfg_.size == 0 || dfg_.data.size() != 3 * std::size_t(dfg_.size) * dfg_.size)
         throw Error("probe set: the DFG table is empty or inconsistent with its size");
+    distantData_ = distant_.data;
+}
+
+void ProbeSet::setIrradianceCube(const CubeMap& irradianceOverPi) {
+    const int n = irradianceOverPi.faceSize;
+    if (n <= 0 || n > 8192) throw Error("probe set: irradiance cube face size " + std::to_string(n));
+    for (const ImageRGBA& face : irradianceOverPi.faces)
+        if (face.width != n || face.height != n || face.pixels.size() != std::size_t(n) * std::size_t(n))
+            throw Error("probe set: an irradiance cube face is not " + std::to_string(n) + "x" +
+                        std::to_string(n));
+    CubePyramidLayout layout{uint32_t(n), 1u};
+    std::vector<float> level(cubePyramidFloatCount(layout), 0.0f);
+    storeBorderedLevel(irradianceOverPi, 0, layout, level.data());
+    if (distant_.data.size() + level.size() > std::size_t(UINT32_MAX))
+        throw Error("probe set: distant data exceeds 2^32 floats");
+    distantData_ = distant_.data;
+    distantData_.insert(distantData_.end(), level.begin(), level.end());
+    irradianceLayout_ = layout;
 }
 
 std::size_t ProbeSet::addLocalProbe(const LocalProbeDesc& desc, const LdPyramid& ld) {
@@ -140,8 +158,10 @@ RuntimeParams makeRuntimeParams(const ProbeSet& set, const RuntimeOptions& o, st
     if (o.distanceBasedRoughness) f |= IBL_RT_DISTANCE_ROUGHNESS;
     if (o.sun && set.sun()) f |= IBL_RT_SUN;
     if (o.sunEnergyNormalization) f |= IBL_RT_SUN_NORMALIZATION;
+    if (o.sunQuadrature) f |= IBL_RT_SUN_QUADRATURE;
     if (o.f90FromF0) f |= IBL_RT_F90_FROM_F0;
     if (set.sh().overPi) f |= IBL_RT_SH_OVER_PI;
+    if (o.irradianceCube && set.hasIrradianceCube()) f |= IBL_RT_IRRADIANCE_CUBE;
     p.flags = f;
     p.dfgSize = set.dfg().size;
     p.localProbeCount = uint32_t(set.localProbes().size());
@@ -151,6 +171,8 @@ RuntimeParams makeRuntimeParams(const ProbeSet& set, const RuntimeOptions& o, st
     p.distant.mapping = uint32_t(set.distantLd().mapping);
     if (set.sun()) p.sun = *set.sun();
     p.dielectricF0 = o.dielectricF0;
+    p.irradiance.layout = set.irradianceLayout();
+    p.irradiance.dataOffset = uint32_t(set.distantLd().data.size());
     for (int i = 0; i < 9; ++i)
         for (int c = 0; c < 3; ++c)
             p.sh.c[3 * i + c] = set.sh().c[std::size_t(i)][c];

@@ -95,6 +95,8 @@ SunDisk sunDiskFrom(const Light& light) {
 // comes from its "iblbake.roughnessMapping" key (Frostbite when absent).
 LdPyramid loadLdKtx2(const std::filesystem::path& path);
 DfgTable loadDfgKtx2(const std::filesystem::path& path);
+// The baker's irradiance cube (`iblbake diffuse --irradiance-cube`: one level of E / pi).
+CubeMap loadIrradianceKtx2(const std::filesystem::path& path);
 
 // Volumes: `rotation` columns are the volume's local axes in world space (orthonormal).
 ProbeVolume sphereVolume(const glm::vec3& center, float radius, const glm::mat3& rotation = glm::mat3(1.0f));
@@ -113,6 +115,12 @@ class ProbeSet {
   public:
     ProbeSet(LdPyramid distantLd, DfgTable dfg, ShCoefficients sh);
 
+    // Diffuse from an irradiance cube holding E / pi (what `iblbake diffuse --irradiance-cube` writes)
+    // instead of the SH: bilinear, so it keeps what L2 SH cannot (compact lights' irradiance; no ringing).
+    // Any face size >= 1. Throws ibl::Error for an empty or inconsistent cube.
+    void setIrradianceCube(const CubeMap& irradianceOverPi);
+    bool hasIrradianceCube() const { return irradianceLayout_.levelCount != 0; }
+
     void setSun(const SunDisk& sun) { sun_ = sun; }
     void clearSun() { sun_.reset(); }
     const std::optional<SunDisk>& sun() const { return sun_; }
@@ -124,6 +132,9 @@ class ProbeSet {
     std::size_t addLocalProbe(const LocalProbeDesc& desc, const LdPyramid& ld);
 
     const LdPyramid& distantLd() const { return distant_; }
+    // What the kernels read as the distant buffer: the LD pyramid, then the irradiance cube if set.
+    const std::vector<float>& distantData() const { return distantData_; }
+    const CubePyramidLayout& irradianceLayout() const { return irradianceLayout_; }
     const DfgTable& dfg() const { return dfg_; }
     const ShCoefficients& sh() const { return sh_; }
     const std::vector<LocalProbe>& localProbes() const { return local_; } // evaluation order
@@ -131,6 +142,8 @@ class ProbeSet {
 
   private:
     LdPyramid distant_;
+    std::vector<float> distantData_;
+    CubePyramidLayout irradianceLayout_{};
     DfgTable dfg_;
     ShCoefficients sh_;
     std::optional<SunDisk> sun_;
@@ -152,9 +165,13 @@ struct RuntimeOptions {
     bool horizonOcclusion = true;                      // Filament 5.6.2.1 (no effect when r.n >= 0)
     bool distanceBasedRoughness = true;                // Listing 25
     bool sun = true;                                   // when the set has one
-    bool sunEnergyNormalization = true; // (alpha / alpha')^2 on the sun's specular (kernels/probe.h);
-                                        // false = Listing 6 as printed (too bright at low roughness)
-    bool f90FromF0 = false;             // Filament 5.6.2 pre-baked specular occlusion; else f90 = 1
+    bool irradianceCube = true; // diffuse from the set's irradiance cube when it has one (else the SH)
+    // The sun's specular: integrated over the disk (16 points, kernels/probe.h sunSpecularQuadrature), or
+    // with false Listing 6's representative point, normalized by (alpha / alpha')^2 with
+    // sunEnergyNormalization, else as printed (too bright at low roughness).
+    bool sunQuadrature = true;
+    bool sunEnergyNormalization = true;
+    bool f90FromF0 = false; // Filament 5.6.2 pre-baked specular occlusion; else f90 = 1
     float dielectricF0 = 0.04f;
 };
 
