@@ -2,6 +2,7 @@
 
 #include "iblbake/error.h"
 #include "iblbake/ktx2.h"
+#include "iblbake/sun.h"
 #include "scene_stages.h"
 
 #include <glm/geometric.hpp>
@@ -102,9 +103,17 @@ json buildManifest(const ManifestInputs& in) {
             {"contentHash", in.productHashes.at("diffuse.json")}};
     }
     if (stages.count("sun")) {
-        const json& light = calibration.at("sunLight");
+        const DiskLight light = diskLightFromJson(calibration.at("sunLight").dump());
         products["sun"] = {
-            {"file", "sun.json"}, {"light", light}, {"contentHash", in.productHashes.at("sun.json")}};
+            {"file", "sun.json"},
+            {"light",
+             {{"direction", vec3(light.direction)},
+              {"angularRadius", light.angularRadius},
+              {"color", vec3(light.color)},
+              {"illuminance", light.illuminance},
+              {"meaning", "disk light toward direction, angular radius in radians, illuminance "
+                          "perpendicular to it (lux when calibrated) times color"}}},
+            {"contentHash", in.productHashes.at("sun.json")}};
     }
     json probes = json::array();
     for (const SceneProbe& p : scene.probes) {
