@@ -31,8 +31,8 @@ std::string stageKey(const PlanStage& stage, const std::map<std::string, std::st
                      const std::map<std::string, std::string>& keys, const std::string& backend) {
     ContentHasher h;
     h.add("iblbake " IBLBAKE_VERSION).add(stage.kind).add(stage.settings.dump());
-    for (const PlanInput& in : stage.inputs)
-        h.add(inputHashes.at(in.file.string()));
+    for (const PlanInput& in : stage.inputs) // the name too: products record it (iblbake.source)
+        h.add(in.file.filename().string()).add(inputHashes.at(in.file.string()));
     for (const std::string& dependency : stage.dependsOn)
         h.add(keys.at(dependency));
     h.add(stage.usesBackend ? backend : "no-backend");

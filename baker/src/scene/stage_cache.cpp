@@ -102,7 +102,11 @@ void StageCache::discard(const fs::path& staging) const {
 }
 
 void copyAtomically(const fs::path& from, const fs::path& to) {
-    const fs::path temp = to.parent_path() / ("." + to.filename().string() + ".tmp-" + uniqueSuffix());
+    std::string name = to.filename().string();
+    name.insert(0, 1, '.');
+    name += ".tmp-";
+    name += uniqueSuffix();
+    const fs::path temp = to.parent_path() / name;
     std::error_code ec;
     fs::copy_file(from, temp, fs::copy_options::overwrite_existing, ec);
     if (!ec) fs::rename(temp, to, ec);
