@@ -18,6 +18,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <set>
@@ -308,6 +309,23 @@ TEST(SceneBake, OutputsAreByteIdenticalAcrossRunsWithSeparateCaches) {
     const auto a = snapshot(d.dir / "out"), b = snapshot(d.dir / "out2");
     EXPECT_EQ(a.size(), 5u); // dfg_lut.ktx2, specular.ktx2, diffuse.json, probe_a.ktx2, manifest.json
     EXPECT_EQ(a, b);
+}
+
+// Two processes baking the same scene at once, sharing the output directory and the cache: both succeed
+// and leave what one bake alone leaves.
+TEST(SceneBake, ConcurrentBakesOfOneSceneAgree) {
+    SceneDir d("scene_concurrent");
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+    const fs::path scene = d.write();
+    d.scene["outputs"]["directory"] = "alone";
+    const fs::path alone = d.write("alone.json");
+    ASSERT_EQ(runCli("bake " + alone.string() + " --quiet").exitCode, 0);
+    const std::string bake = std::string(IBLBAKE_CLI) + " bake " + scene.string() + " --quiet";
+    const std::string both = "(" + bake + " & p=$!; " + bake + "; s=$?; wait $p && exit $s)";
+    EXPECT_EQ(std::system(both.c_str()), 0);
+    EXPECT_EQ(snapshot(d.out()), snapshot(d.dir / "alone"));
+    for (const fs::directory_entry& e : fs::directory_iterator(d.out() / ".iblbake-cache"))
+        EXPECT_NE(e.path().filename().string().rfind(".staging-", 0), 0u) << e.path(); // nothing left over
 }
 
 TEST(SceneBake, ProgressModes) {
