@@ -1,14 +1,11 @@
 #include "scene_manifest.h"
 
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
 #include "iblbake/sun.h"
 #include "scene_stages.h"
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
-#include <fstream>
 
 namespace ibl {
 
@@ -16,12 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": cannot read");
-    return json::parse(in);
-}
 
 json vec3(const glm::dvec3& v) {
     return json::array({v.x, v.y, v.z});
@@ -73,7 +64,7 @@ json buildManifest(const ManifestInputs& in) {
     for (const PlanStage& s : in.plan.stages)
         stages[s.id] = &s;
     const std::string lightStage = stages.count("sun") ? "sun" : "environment";
-    const json calibration = readJson(in.entries.at(lightStage) / kCalibrationFile);
+    const json calibration = readJsonFile(in.entries.at(lightStage) / kCalibrationFile);
 
     json products = json::object();
     if (stages.count("dfg")) {
@@ -92,7 +83,7 @@ json buildManifest(const ManifestInputs& in) {
         products["specular"] =
             ldProduct(*stages["specular"], "specular.ktx2", in.productHashes.at("specular.ktx2"));
     {
-        const json diffuse = readJson(in.entries.at("diffuse") / "diffuse.json");
+        const json diffuse = readJsonFile(in.entries.at("diffuse") / "diffuse.json");
         products["diffuse"] = {
             {"file", "diffuse.json"},
             {"sh",

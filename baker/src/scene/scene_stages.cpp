@@ -20,16 +20,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    if (!in) throw Error(file.string() + ": cannot read");
-    try {
-        return json::parse(in);
-    } catch (const json::exception& e) {
-        throw Error(file.string() + ": " + e.what());
-    }
-}
-
 void writeJson(const fs::path& file, const json& doc) {
     std::ofstream out(file);
     out << doc.dump(2) << '\n';
@@ -119,9 +109,9 @@ std::vector<fs::path> inputFiles(const PlanStage& stage) {
 
 // Ingest errors already name the file; the scene key path in front says where the scene names it.
 template <class F>
-auto forInput(const StageContext& c, F&& work) {
+void forInput(const StageContext& c, F&& work) {
     try {
-        return work();
+        work();
     } catch (const Error& e) {
         const std::string key = c.stage.inputs.empty() ? c.stage.id : c.stage.inputs[0].keyPath;
         const std::string prefix = c.scene.name + ": " + key + ": ";
@@ -161,14 +151,13 @@ void runEnvironment(const StageContext& c) {
                                  {"rotateDegrees", s.at("rotation")}};
         writeCube(c.outputDirectory / kCubeFile, env.cube, "calibrated-environment");
         writeJson(c.outputDirectory / kCalibrationFile, calibration);
-        return 0;
     });
 }
 
 void runSun(const StageContext& c) {
     const fs::path from = c.dependencies.at("environment");
     CubeMap cube = readCube(from / kCubeFile);
-    json calibration = readJson(from / kCalibrationFile);
+    json calibration = readJsonFile(from / kCalibrationFile);
     const glm::dvec3 weights = workingLuminanceWeights(calibration.at("colorSpace").get<std::string>());
     SunDetectSettings settings;
     settings.luminanceWeights = weights;
@@ -217,7 +206,7 @@ void writeLdChain(const StageContext& c, const CubeMap& source, const json& cali
 
 void runSpecular(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    writeLdChain(c, readCube(from / kCubeFile), readJson(from / kCalibrationFile), "specular-ld",
+    writeLdChain(c, readCube(from / kCubeFile), readJsonFile(from / kCalibrationFile), "specular-ld",
                  c.outputDirectory / "specular.ktx2");
 }
 
@@ -235,7 +224,7 @@ json coefficients(const ShRgb& sh) {
 void runDiffuse(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
     const CubeMap cube = readCube(from / kCubeFile);
-    json calibration = readJson(from / kCalibrationFile);
+    json calibration = readJsonFile(from / kCalibrationFile);
     const DiffuseSH sh = bakeDiffuseSH(cube, ShWindowSettings{});
     const ShWindowResult& w = sh.window;
     json doc = {
@@ -269,7 +258,7 @@ void runProbe(const StageContext& c) {
         const json& choice = s.at("calibration");
         CalibrationRecord record;
         if (choice.at("source") == "environment") {
-            const json envCalibration = readJson(c.dependencies.at("environment") / kCalibrationFile);
+            const json envCalibration = readJsonFile(c.dependencies.at("environment") / kCalibrationFile);
             CalibrationSettings settings;
             settings.source = CalibrationSource::Scale;
             settings.value = envCalibration.at("factor").get<double>();
@@ -281,11 +270,20 @@ void runProbe(const StageContext& c) {
         json calibration = calibrationJson(record, env.report.workingColorSpace);
         calibration["source"] = {{"file", fs::path(env.report.file).filename().string()}};
         writeLdChain(c, env.cube, calibration, "local-probe-ld", c.outputDirectory / "ld.ktx2");
-        return 0;
     });
 }
 
 } // namespace
+
+json readJsonFile(const fs::path& file) {
+    std::ifstream in(file);
+    if (!in) throw Error(file.string() + ": cannot read");
+    try {
+        return json::parse(in);
+    } catch (const json::exception& e) {
+        throw Error(file.string() + ": " + e.what());
+    }
+}
 
 std::string entryFileFor(const PlanStage& stage, const std::string& product) {
     return stage.kind == "probe-ld" ? "ld.ktx2" : product;

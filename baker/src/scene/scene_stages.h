@@ -6,6 +6,8 @@
 #include "iblbake/scene.h"
 #include "iblbake/scene_plan.h"
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <map>
 #include <string>
@@ -25,6 +27,9 @@ void runStage(const StageContext& context);
 
 // The file in a stage's cache entry that becomes `product` in the output directory.
 std::string entryFileFor(const PlanStage& stage, const std::string& product);
+
+// A JSON file of a cache entry; throws ibl::Error naming the file.
+nlohmann::json readJsonFile(const std::filesystem::path& file);
 
 // Files every environment-like entry ("environment", "sun") holds: the working-space cube and its
 // calibration (JSON: factor, absolute, units, colorSpace, metadata {key: text}, source, sunLight?).
