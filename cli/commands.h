@@ -16,5 +16,7 @@ Action addDiffuseCommand(CLI::App& app);
 Action addInspectCommand(CLI::App& app);
 Action addCalibrateCommand(CLI::App& app);
 Action addPreviewCommand(CLI::App& app);
+Action addPlanCommand(CLI::App& app);
+Action addBakeCommand(CLI::App& app);
 
 } // namespace ibl::cli

@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
     add(ibl::cli::addInspectCommand(app));
     add(ibl::cli::addCalibrateCommand(app));
     add(ibl::cli::addPreviewCommand(app));
+    add(ibl::cli::addPlanCommand(app));
+    add(ibl::cli::addBakeCommand(app));
 
     try {
         app.parse(argc, argv);

@@ -12,6 +12,7 @@
 #include <iblbake/ktx2.h>
 #include <iblbake/preview.h>
 #include <iblbake/runtime.h>
+#include <iblbake/runtime_manifest.h>
 #include <iblbake/runtime_reference.h>
 #include <iblbake/sun.h>
 
@@ -63,7 +64,7 @@ ImageRGBA readDfgLut(const fs::path& path) {
 }
 
 // The probe set of a bake directory as the README's first command writes it.
-ProbeSet loadBake(const fs::path& dir) {
+ProbeSet loadLooseBake(const fs::path& dir) {
     LdPyramid ld = loadLdKtx2(dir / "specular.ktx2");
     DfgTable dfg = dfgTableFromImage(readDfgLut(dir / "dfg_lut.exr"));
     nlohmann::json diffuse;
@@ -84,6 +85,26 @@ ProbeSet loadBake(const fs::path& dir) {
     if (fs::exists(dir / "irradiance.ktx2"))
         set.setIrradianceCube(loadIrradianceKtx2(dir / "irradiance.ktx2"));
     return set;
+}
+
+struct LoadedBake {
+    ProbeSet set;
+    RuntimeOptions options;
+    double calibrationFactor = 1.0;
+};
+
+// A scene bake (`iblbake bake`) through its manifest.json, else the loose files of the README's first
+// command, whose calibration factor is recorded in specular.ktx2.
+LoadedBake loadBake(const fs::path& dir) {
+    if (fs::exists(dir / "manifest.json")) {
+        ManifestProbeSet m = loadProbeSetFromManifest(dir / "manifest.json");
+        return {std::move(m.set), m.options, m.calibrationFactor};
+    }
+    LoadedBake bake{loadLooseBake(dir), RuntimeOptions{}, 1.0};
+    Ktx2Image ktx = readKtx2(dir / "specular.ktx2");
+    if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())
+        bake.calibrationFactor = std::stod(it->second);
+    return bake;
 }
 
 // One shading point per sphere pixel (orthographic camera on +Z looking down -Z, +Y up); pixels off
@@ -131,10 +152,9 @@ Action addPreviewCommand(CLI::App& app) {
     auto o = std::make_shared<PreviewOptions>();
     CLI::App* cmd =
         app.add_subcommand("preview", "render material balls lit by a bake (and the reference beside it)");
-    cmd->add_option(
-           "bake", o->bakeDir,
-           "bake directory: specular.ktx2, dfg_lut.exr, diffuse.json [, sun.json] [, irradiance.ktx2: "
-           "diffuse from it instead of the SH]")
+    cmd->add_option("bake", o->bakeDir,
+                    "bake directory: manifest.json (iblbake bake), else specular.ktx2, dfg_lut.exr, "
+                    "diffuse.json [, sun.json] [, irradiance.ktx2: diffuse from it instead of the SH]")
         ->required();
     cmd->add_option("-o,--output", o->output, "output PNG; the linear render goes to the same name with .exr")
         ->required();
@@ -150,27 +170,25 @@ Action addPreviewCommand(CLI::App& app) {
         auto start = std::chrono::steady_clock::now();
         if (fs::path(o->output).extension() != ".png")
             throw Error(o->output + ": the preview is written as .png");
-        ProbeSet set = loadBake(o->bakeDir);
+        LoadedBake bake = loadBake(o->bakeDir);
+        const ProbeSet& set = bake.set;
         std::vector<int> owner;
         std::vector<ShadingPoint> points = spherePoints(o->sphereSize, owner);
         Executor executor = o->backend.makeExecutor();
         std::vector<glm::vec4> shaded;
         if (executor.usesOpenCL()) {
             OpenCLProbeEvaluator evaluator(executor.cl(), set);
-            shaded = evaluator.evaluate(points);
+            shaded = evaluator.evaluate(points, bake.options);
         } else {
-            shaded = evaluateCpu(set, points);
+            shaded = evaluateCpu(set, points, bake.options);
         }
 
         std::vector<glm::vec3> reference;
         if (!o->reference.empty()) {
-            // The same calibration as the bake (its factor is in the KTX2), the full map (sun included).
-            Ktx2Image ktx = readKtx2(fs::path(o->bakeDir) / "specular.ktx2");
-            double factor = 1.0;
-            if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())
-                factor = std::stod(it->second);
-            // At the bake's mirror resolution (at least 128): a coarser reference would blur what the
-            // runtime's level 0 shows sharply and count it as the runtime's error.
+            // The same calibration as the bake, the full map (sun included), at the bake's mirror
+            // resolution (at least 128): a coarser reference would blur what the runtime's level 0 shows
+            // sharply and count it as the runtime's error.
+            const double factor = bake.calibrationFactor;
             IngestSettings ingest;
             ingest.sourceFaceSize = std::max(128, int(set.distantLd().layout.baseFaceSize));
             SourceEnvironment env = ingestEnvironment({fs::path(o->reference)}, ingest);
@@ -179,7 +197,7 @@ Action addPreviewCommand(CLI::App& app) {
             settings.samplesPerStrategy = 256; // a picture, not a measurement: tests use 2048
             settings.albedoSamples = 1024;
             for (const ReferenceResult& r :
-                 renderReference(ReferenceLighting::distant(env.cube), points, RuntimeOptions{}, settings))
+                 renderReference(ReferenceLighting::distant(env.cube), points, bake.options, settings))
                 reference.push_back(glm::vec3(r.total()));
         }
 

@@ -34,6 +34,10 @@ struct SpecularSettings {
     float brightThreshold = 32.0f;
     std::uint32_t maxBrightTexels = 256;
     float lodBias = -0.5f; // added to Listing 19's 0.5 log2(omegaS / omegaP); measured best (README)
+    // Levels from this one on are not integrated but box-downsampled from the level before (0: integrate
+    // every level). A scene whose roughest material reads level m needs only m + 1 integrated levels; the
+    // chain keeps its full length so that its roughness mapping stays the same (scene_plan.h).
+    int integratedLevels = 0;
 };
 
 std::uint32_t samplesFor(const SpecularSettings& settings);

@@ -157,6 +157,24 @@ std::uint32_t samplesFor(const SpecularSettings& s) {
     }
 }
 
+namespace {
+
+// Each texel the mean of the 2x2 it covers (faces of 1 texel stay as they are).
+CubeMap downsampleBox(const CubeMap& level) {
+    const int n = std::max(1, level.faceSize / 2);
+    if (n == level.faceSize) return level;
+    CubeMap out(n);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                out.faces[f].at(x, y) =
+                    0.25f * (level.faces[f].at(2 * x, 2 * y) + level.faces[f].at(2 * x + 1, 2 * y) +
+                             level.faces[f].at(2 * x, 2 * y + 1) + level.faces[f].at(2 * x + 1, 2 * y + 1));
+    return out;
+}
+
+} // namespace
+
 int levelCountFor(int faceSize, const SpecularSettings& s) {
     int full = int(std::log2(double(faceSize))) + 1;
     return s.levels > 0 ? std::min(s.levels, full) : full;
@@ -182,6 +200,10 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
     CubeMapChain chain;
     chain.levels.push_back(source); // level 0: the mirror, unconvolved (Frostbite footnote 43)
     for (int m = 1; m < levelCount; ++m) {
+        if (settings.integratedLevels > 0 && m >= settings.integratedLevels) {
+            chain.levels.push_back(downsampleBox(chain.levels.back()));
+            continue;
+        }
         auto start = std::chrono::steady_clock::now();
         float r = perceptualRoughnessForLevel(m, levelCount, settings.mapping);
         float alpha = alphaFromPerceptual(r);

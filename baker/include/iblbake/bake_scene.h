@@ -1,0 +1,67 @@
+// Scene-driven bakes (README "Scenes"): run a scene's plan through the stage cache and write the bake
+// directory (products + manifest.json, written last). Re-entrant and free of global state: a batch runner
+// may call bakeScene for many scenes, one after another or from several processes sharing a cache.
+#pragma once
+
+#include "iblbake/executor.h"
+#include "iblbake/scene.h"
+#include "iblbake/scene_plan.h"
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+struct BakeOptions {
+    std::filesystem::path cacheDirectory; // "" = <outputs.directory>/.iblbake-cache
+    bool force = false;                   // recompute every stage (and refresh its cache entry)
+    Backend backend = Backend::Auto;
+    std::string device;               // OpenCL device selector (executor.h)
+    std::ostream* warnings = nullptr; // backend warnings (e.g. the CPU fallback); nullptr = dropped
+};
+
+enum class StageStatus { Pending, Ran, Cached, Failed };
+const char* stageStatusName(StageStatus status); // "pending", "ran", "cached", "failed"
+
+struct StageResult {
+    std::string id, kind;
+    StageStatus status = StageStatus::Pending;
+    std::string key; // cache key: hash of inputs' content, settings, dependencies' keys, version, backend
+    double seconds = 0.0;
+    std::vector<std::string> products;
+};
+
+struct BakeSummary {
+    bool ok = false;
+    std::string error; // one line when !ok
+    std::vector<StageResult> stages;
+    std::vector<SkippedStage> skipped;
+    std::vector<std::filesystem::path> products; // in the output directory, manifest.json last
+    std::filesystem::path manifest;
+    std::string backend; // "opencl" / "cpu" / "none" (no stage ran kernels)
+    double seconds = 0.0;
+    int ran() const;
+    int cached() const;
+};
+
+// Receives progress; the default does nothing. Called from the thread that runs bakeScene.
+class ProgressSink {
+  public:
+    virtual ~ProgressSink() = default;
+    virtual void stageStart(const StageResult& stage, int index, int count) {}
+    virtual void stageEnd(const StageResult& stage, int index, int count) {}
+    virtual void done(const BakeSummary& summary) {}
+};
+
+// Never throws for a bad scene input, a failed stage or an unwritable output: the summary says what went
+// wrong (ok = false, error) and the output directory keeps what it had (products are copied in only once
+// every stage succeeded, the manifest last).
+BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress);
+
+// The summary as JSON: {ok, error, backend, seconds, ran, cached, stages: [{id, kind, status, key, seconds,
+// products}], skipped: [...], products: [...], manifest}.
+nlohmann::json bakeSummaryJson(const BakeSummary& summary);
+
+} // namespace ibl

@@ -1,0 +1,94 @@
+// A scene file (README "Scenes"): the distant environment, the local probes with their proxies, what the
+// materials need and where the products go. Parsing is pure (no file system access) so that a fuzzer can
+// call parseScene on arbitrary bytes; every problem is an ibl::Error "<name>: <key path>: <problem>".
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace ibl {
+
+// The CLI's calibration sources (calibration_options.h), by the same names.
+enum class SceneCalibration { None, Scale, Ev100, Illuminance, SunIlluminance, SkyLuminance, Radiometric };
+
+struct SceneCalibrationChoice {
+    SceneCalibration source = SceneCalibration::None;
+    double value = 0.0; // K, EV100, lux, lux, cd/m2; unused for None and Radiometric
+};
+
+struct SceneEnvironment {
+    std::vector<std::filesystem::path> files; // one file, or six for layout six-files
+    std::string layout = "auto";              // ingest.h parseLayout spellings
+    std::string colorSpace;                   // input colour space; "" = from the file
+    std::string workingColorSpace = "lin_rec709";
+    double rotationDegrees = 0.0; // about +Y
+    SceneCalibrationChoice calibration;
+    bool extractSun = false;
+};
+
+struct SceneVolume {
+    enum class Shape { Sphere, Box } shape = Shape::Sphere;
+    glm::dvec3 center{0.0};
+    double radius = 0.0;             // sphere
+    glm::dvec3 halfExtents{0.0};     // box
+    glm::dvec3 rotationDegrees{0.0}; // box axes: R = Rz(z) Ry(y) Rx(x), x applied first
+};
+
+struct SceneProbe {
+    std::string name; // [A-Za-z0-9_-], unique; names the product probe_<name>.ktx2
+    std::vector<std::filesystem::path> capture;
+    std::string layout = "auto";
+    std::string colorSpace;
+    double rotationDegrees = 0.0;
+    glm::dvec3 position{0.0};             // the capture point in world space
+    SceneVolume proxy;                    // its center defaults to the capture point
+    std::optional<SceneVolume> influence; // default: the proxy
+    double fadeDistance = 0.0;
+    // Absent: the capture is scaled by the environment's calibration factor (same camera, same units).
+    std::optional<SceneCalibrationChoice> calibration;
+};
+
+enum class SceneDiffuseModel { Lambert, Disney };
+
+struct SceneMaterials {
+    double roughnessMin = 0.0, roughnessMax = 1.0; // perceptual roughness of the scene's materials
+    SceneDiffuseModel diffuseModel = SceneDiffuseModel::Lambert;
+    bool specular = true;
+    bool energyCompensation = true;
+    bool clearCoat = false;
+};
+
+struct SceneOutputs {
+    std::filesystem::path directory;
+    std::string ktx2Format = "rgba16f";   // rgba16f, rgba32f, b10g11r11, e5b9g9r9
+    std::string quality = "production";   // draft, production, reference
+    int faceSize = 256;                   // distant LD level 0 and source cube (power of two)
+    int probeFaceSize = 0;                // local probes' LD level 0; 0 = faceSize
+    int dfgSize = 128;                    // DFG LUT texels per side
+    std::string mipMapping = "frostbite"; // or linear
+    std::string runtimeProfile;           // free text, kept in the manifest
+};
+
+struct Scene {
+    std::string name; // for messages: the scene file as the user named it
+    SceneEnvironment environment;
+    std::vector<SceneProbe> probes;
+    SceneMaterials materials;
+    SceneOutputs outputs;
+};
+
+// Parses and validates a scene; relative paths resolve against baseDirectory (not touched). Throws
+// ibl::Error "<name>: <key path>: <problem>" for malformed JSON, unknown keys, wrong types and bad values.
+Scene parseScene(std::string_view text, const std::string& name, const std::filesystem::path& baseDirectory);
+
+// Reads `path` and parses it with its directory as the base. Throws ibl::Error when it cannot be read.
+Scene loadSceneFile(const std::filesystem::path& path);
+
+const char* sceneCalibrationName(SceneCalibration source); // the JSON key: "ev100", "sunIlluminance", ...
+
+} // namespace ibl

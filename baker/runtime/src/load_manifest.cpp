@@ -1,0 +1,101 @@
+#include "iblbake/error.h"
+#include "iblbake/runtime_manifest.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace ibl {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+glm::vec3 vec3(const json& v) {
+    if (!v.is_array() || v.size() != 3) throw Error("needs 3 numbers");
+    return glm::vec3(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
+}
+
+ProbeVolume volume(const json& v) {
+    const glm::mat3 rotation(vec3(v.at("axes").at(0)), vec3(v.at("axes").at(1)), vec3(v.at("axes").at(2)));
+    const std::string shape = v.at("shape").get<std::string>();
+    if (shape == "sphere") return sphereVolume(vec3(v.at("center")), vec3(v.at("extent")).x, rotation);
+    if (shape == "box") return boxVolume(vec3(v.at("center")), vec3(v.at("extent")), rotation);
+    throw Error("shape '" + shape + "' is neither sphere nor box");
+}
+
+// Stand-ins when the bake has no specular products: the runtime then runs with specular off.
+LdPyramid blackLd() {
+    CubeMapChain chain;
+    chain.levels.push_back(CubeMap(1));
+    for (ImageRGBA& face : chain.levels[0].faces)
+        face.pixels.assign(1, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    return ldPyramidFromChain(chain);
+}
+
+DfgTable blackDfg() {
+    return DfgTable{1, {0.0f, 0.0f, 0.0f}};
+}
+
+ManifestProbeSet load(const json& m, const fs::path& dir) {
+    if (m.at("schema") != "iblbake.manifest") throw Error("schema: not an iblbake manifest");
+    if (m.at("schemaVersion") != 1) throw Error("schemaVersion: only version 1 is known");
+    const json& products = m.at("products");
+    const json& materials = m.at("materials");
+    const bool glossy = products.contains("specular");
+
+    std::array<glm::vec3, 9> sh{};
+    const json& coefficients = products.at("diffuse").at("sh").at("irradiance");
+    if (coefficients.size() != 9) throw Error("products.diffuse.sh.irradiance: needs 9 coefficients");
+    for (std::size_t i = 0; i < 9; ++i)
+        sh[i] = vec3(coefficients[i]);
+
+    ManifestProbeSet out{
+        ProbeSet(glossy ? loadLdKtx2(dir / products["specular"].at("file").get<std::string>()) : blackLd(),
+                 products.contains("dfg") ? loadDfgKtx2(dir / products["dfg"].at("file").get<std::string>())
+                                          : blackDfg(),
+                 shCoefficientsFrom(sh, false)),
+        {},
+        m.at("calibration").at("factor").get<double>(),
+        m.at("runtimeProfile").get<std::string>()};
+    if (products.contains("sun")) {
+        const json& light = products["sun"].at("light");
+        SunDisk sun;
+        sun.direction = vec3(light.at("direction"));
+        sun.angularRadius = light.at("angularRadius").get<float>();
+        sun.color = vec3(light.at("color"));
+        sun.illuminance = light.at("illuminance").get<float>();
+        out.set.setSun(sun);
+    }
+    for (const json& p : products.at("probes")) {
+        LocalProbeDesc desc;
+        desc.proxy = volume(p.at("proxy"));
+        desc.influence = volume(p.at("influence"));
+        desc.captureOffset = vec3(p.at("captureOffset"));
+        desc.fadeDistance = p.at("fadeDistance").get<float>();
+        out.set.addLocalProbe(desc, loadLdKtx2(dir / p.at("file").get<std::string>()));
+    }
+    out.options.specular = glossy;
+    out.options.energyCompensation = materials.at("energyCompensation").get<bool>();
+    out.options.diffuseModel =
+        materials.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
+    return out;
+}
+
+} // namespace
+
+ManifestProbeSet loadProbeSetFromManifest(const fs::path& path) {
+    const fs::path file = fs::is_directory(path) ? path / "manifest.json" : path;
+    std::ifstream in(file);
+    if (!in) throw Error(file.string() + ": cannot read");
+    try {
+        return load(json::parse(in), file.parent_path());
+    } catch (const json::exception& e) {
+        throw Error(file.string() + ": " + e.what());
+    } catch (const Error& e) {
+        throw Error(file.string() + ": " + e.what());
+    }
+}
+
+} // namespace ibl

@@ -1,0 +1,224 @@
+// bakeScene (bake_scene.h): keys, cache look-ups, stage runs, then the output directory and the manifest.
+#include "iblbake/bake_scene.h"
+
+#include "iblbake/atomic_file.h"
+#include "iblbake/content_hash.h"
+#include "iblbake/error.h"
+#include "scene_manifest.h"
+#include "scene_stages.h"
+#include "stage_cache.h"
+
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+
+namespace ibl {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Everything a stage's files depend on: the tool version, its kind and settings, the content of the files
+// it reads, its dependencies' keys and, for kernel stages, the backend (OpenCL and CPU results may differ
+// in the last bits).
+std::string stageKey(const PlanStage& stage, const std::map<std::string, std::string>& inputHashes,
+                     const std::map<std::string, std::string>& keys, const std::string& backend) {
+    ContentHasher h;
+    h.add("iblbake " IBLBAKE_VERSION).add(stage.kind).add(stage.settings.dump());
+    for (const PlanInput& in : stage.inputs) // the name too: products record it (iblbake.source)
+        h.add(in.file.filename().string()).add(inputHashes.at(in.file.string()));
+    for (const std::string& dependency : stage.dependsOn)
+        h.add(keys.at(dependency));
+    h.add(stage.usesBackend ? backend : "no-backend");
+    return h.hex();
+}
+
+bool needsBackend(const Plan& plan) {
+    for (const PlanStage& s : plan.stages)
+        if (s.usesBackend) return true;
+    return false;
+}
+
+// Copies the products into the output directory (a file already holding the same bytes is left alone) and
+// returns their hashes.
+std::map<std::string, std::string> publishProducts(const Plan& plan,
+                                                   const std::map<std::string, fs::path>& entries,
+                                                   const fs::path& outputDirectory, BakeSummary& summary) {
+    std::map<std::string, std::string> hashes;
+    for (const PlanStage& stage : plan.stages)
+        for (const std::string& product : stage.products) {
+            const fs::path from = entries.at(stage.id) / entryFileFor(stage, product);
+            const fs::path to = outputDirectory / product;
+            const std::string hash = hashFile(from);
+            std::error_code ec;
+            bool same = false;
+            if (fs::is_regular_file(to, ec)) try {
+                    same = hashFile(to) == hash;
+                } catch (const Error&) { // unreadable: replace it
+                }
+            if (!same) copyAtomically(from, to);
+            hashes[product] = hash;
+            summary.products.push_back(to);
+        }
+    return hashes;
+}
+
+} // namespace
+
+const char* stageStatusName(StageStatus status) {
+    switch (status) {
+    case StageStatus::Ran:
+        return "ran";
+    case StageStatus::Cached:
+        return "cached";
+    case StageStatus::Failed:
+        return "failed";
+    default:
+        return "pending";
+    }
+}
+
+int BakeSummary::ran() const {
+    int n = 0;
+    for (const StageResult& s : stages)
+        n += s.status == StageStatus::Ran;
+    return n;
+}
+
+int BakeSummary::cached() const {
+    int n = 0;
+    for (const StageResult& s : stages)
+        n += s.status == StageStatus::Cached;
+    return n;
+}
+
+BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    BakeSummary summary;
+    const Plan plan = planScene(scene);
+    summary.skipped = plan.skipped;
+    for (const PlanStage& s : plan.stages)
+        summary.stages.push_back({s.id, s.kind, StageStatus::Pending, "", 0.0, s.products});
+    std::size_t current = 0;
+    try {
+        // Every input is read (hashed) before anything is written: a missing file fails the bake here.
+        std::map<std::string, std::string> inputHashes;
+        for (const PlanStage& s : plan.stages)
+            for (const PlanInput& in : s.inputs)
+                if (!inputHashes.count(in.file.string())) try {
+                        inputHashes[in.file.string()] = hashFile(in.file);
+                    } catch (const Error& e) {
+                        throw Error(scene.name + ": " + in.keyPath + ": " + e.what());
+                    }
+
+        std::optional<Executor> executor;
+        summary.backend = "none";
+        if (needsBackend(plan)) {
+            std::ostringstream dropped;
+            executor =
+                Executor::create(options.backend, options.device,
+                                 options.warnings ? *options.warnings : static_cast<std::ostream&>(dropped));
+            summary.backend = backendName(executor->backend());
+        }
+
+        std::map<std::string, std::string> keys;
+        for (std::size_t i = 0; i < plan.stages.size(); ++i) {
+            keys[plan.stages[i].id] = stageKey(plan.stages[i], inputHashes, keys, summary.backend);
+            summary.stages[i].key = keys[plan.stages[i].id];
+        }
+
+        const fs::path outputDirectory = scene.outputs.directory;
+        std::error_code ec;
+        fs::create_directories(outputDirectory, ec);
+        if (!fs::is_directory(outputDirectory))
+            throw Error(scene.name + ": outputs.directory: " + outputDirectory.string() +
+                        ": cannot create it");
+        const StageCache cache(options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache"
+                                                              : options.cacheDirectory);
+
+        std::map<std::string, fs::path> entries;
+        const int count = int(plan.stages.size());
+        for (current = 0; current < plan.stages.size(); ++current) {
+            const PlanStage& stage = plan.stages[current];
+            StageResult& result = summary.stages[current];
+            progress.stageStart(result, int(current), count);
+            const auto stageStart = std::chrono::steady_clock::now();
+            std::optional<fs::path> entry;
+            if (!options.force) entry = cache.find(result.key);
+            if (entry) {
+                result.status = StageStatus::Cached;
+            } else {
+                const fs::path staging = cache.staging(result.key);
+                StageContext context{scene, stage, {}, executor ? &*executor : nullptr, staging};
+                for (const std::string& dependency : stage.dependsOn)
+                    context.dependencies[dependency] = entries.at(dependency);
+                try {
+                    runStage(context);
+                } catch (...) {
+                    cache.discard(staging);
+                    throw;
+                }
+                entry = cache.commit(result.key, staging);
+                result.status = StageStatus::Ran;
+            }
+            entries[stage.id] = *entry;
+            result.seconds = secondsSince(stageStart);
+            progress.stageEnd(result, int(current), count);
+        }
+
+        // Products first, the manifest last: a bake killed before this point leaves the old manifest, which
+        // points only at files that are still there.
+        ManifestInputs manifest{scene, plan, entries, keys, {}, summary.backend};
+        manifest.productHashes = publishProducts(plan, entries, outputDirectory, summary);
+        const fs::path manifestPath = outputDirectory / "manifest.json";
+        {
+            AtomicFile file(manifestPath);
+            std::ofstream out(file.tempPath());
+            out << buildManifest(manifest).dump(2) << '\n';
+            out.close();
+            if (!out) throw Error(manifestPath.string() + ": cannot write");
+            file.commit();
+        }
+        summary.products.push_back(manifestPath);
+        summary.manifest = manifestPath;
+        summary.ok = true;
+    } catch (const std::exception& e) { // ibl::Error, and anything a library throws: one line, no crash
+        summary.ok = false;
+        summary.error = e.what();
+        if (current < summary.stages.size() && summary.stages[current].status == StageStatus::Pending &&
+            !summary.stages[current].key.empty())
+            summary.stages[current].status = StageStatus::Failed;
+    }
+    summary.seconds = secondsSince(start);
+    progress.done(summary);
+    return summary;
+}
+
+nlohmann::json bakeSummaryJson(const BakeSummary& s) {
+    nlohmann::json stages = nlohmann::json::array(), skipped = nlohmann::json::array(),
+                   products = nlohmann::json::array();
+    for (const StageResult& r : s.stages)
+        stages.push_back({{"id", r.id},
+                          {"kind", r.kind},
+                          {"status", stageStatusName(r.status)},
+                          {"key", r.key},
+                          {"seconds", r.seconds},
+                          {"products", r.products}});
+    for (const SkippedStage& k : s.skipped)
+        skipped.push_back({{"id", k.id}, {"kind", k.kind}, {"reason", k.reason}});
+    for (const fs::path& p : s.products)
+        products.push_back(p.string());
+    return {{"ok", s.ok},           {"error", s.error},
+            {"backend", s.backend}, {"seconds", s.seconds},
+            {"ran", s.ran()},       {"cached", s.cached()},
+            {"stages", stages},     {"skipped", skipped},
+            {"products", products}, {"manifest", s.manifest.string()}};
+}
+
+} // namespace ibl

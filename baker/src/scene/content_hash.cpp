@@ -1,0 +1,72 @@
+#include "iblbake/content_hash.h"
+
+#include "iblbake/error.h"
+
+#include <xxhash.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <vector>
+
+namespace ibl {
+
+namespace {
+
+// Big-endian canonical form (xxHash's own), so the text is the same on every machine.
+std::string toHex(XXH128_hash_t hash) {
+    XXH128_canonical_t canonical;
+    XXH128_canonicalFromHash(&canonical, hash);
+    std::string out;
+    char digits[3];
+    for (unsigned char byte : canonical.digest) {
+        std::snprintf(digits, sizeof digits, "%02x", byte);
+        out += digits;
+    }
+    return out;
+}
+
+} // namespace
+
+struct ContentHasher::State {
+    XXH3_state_t* xxh = XXH3_createState();
+    ~State() { XXH3_freeState(xxh); }
+};
+
+ContentHasher::ContentHasher() : state_(std::make_unique<State>()) {
+    if (!state_->xxh) throw Error("content hash: out of memory");
+    XXH3_128bits_reset(state_->xxh);
+}
+
+ContentHasher::~ContentHasher() = default;
+
+ContentHasher& ContentHasher::add(std::string_view field) {
+    const std::uint64_t size = field.size();
+    XXH3_128bits_update(state_->xxh, &size, sizeof size);
+    XXH3_128bits_update(state_->xxh, field.data(), field.size());
+    return *this;
+}
+
+std::string ContentHasher::hex() const {
+    return toHex(XXH3_128bits_digest(state_->xxh));
+}
+
+std::string hashFile(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::error_code ec;
+    if (!in || std::filesystem::is_directory(file, ec)) throw Error(file.string() + ": cannot read");
+    XXH3_state_t* state = XXH3_createState();
+    XXH3_128bits_reset(state);
+    std::vector<char> buffer(1 << 20);
+    while (in) {
+        in.read(buffer.data(), std::streamsize(buffer.size()));
+        XXH3_128bits_update(state, buffer.data(), std::size_t(in.gcount()));
+    }
+    const bool failed = in.bad();
+    const XXH128_hash_t hash = XXH3_128bits_digest(state);
+    XXH3_freeState(state);
+    if (failed) throw Error(file.string() + ": cannot read");
+    return toHex(hash);
+}
+
+} // namespace ibl

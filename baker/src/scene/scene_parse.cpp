@@ -1,0 +1,369 @@
+// Scene file parsing and validation (README "Scenes"). Every accessor knows its key path, so each error
+// names it; keys are consumed as read and whatever is left in an object is an unknown key (a typo must not
+// be silently ignored).
+#include "iblbake/scene.h"
+
+#include "iblbake/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+namespace ibl {
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+class Fail {
+  public:
+    explicit Fail(std::string name) : name_(std::move(name)) {}
+    [[noreturn]] void operator()(const std::string& path, const std::string& problem) const {
+        throw Error(name_ + ": " + (path.empty() ? "" : path + ": ") + problem);
+    }
+
+  private:
+    std::string name_;
+};
+
+const char* typeName(const json& v) {
+    return v.is_object()    ? "an object"
+           : v.is_array()   ? "an array"
+           : v.is_string()  ? "a string"
+           : v.is_boolean() ? "a boolean"
+           : v.is_number()  ? "a number"
+                            : "null";
+}
+
+// One JSON object being read: get*() take a key out; finish() rejects what is left.
+class ObjectReader {
+  public:
+    ObjectReader(const json& value, std::string path, const Fail& fail)
+        : path_(std::move(path)), fail_(fail) {
+        if (!value.is_object()) fail_(path_, std::string("must be an object, not ") + typeName(value));
+        for (auto it = value.begin(); it != value.end(); ++it)
+            remaining_.emplace(it.key());
+        value_ = &value;
+    }
+
+    std::string key(const std::string& k) const { return path_.empty() ? k : path_ + "." + k; }
+    bool has(const std::string& k) const { return value_->contains(k); }
+
+    const json* take(const std::string& k) {
+        remaining_.erase(k);
+        auto it = value_->find(k);
+        return it == value_->end() ? nullptr : &*it;
+    }
+    const json& required(const std::string& k) {
+        const json* v = take(k);
+        if (!v) fail_(key(k), "is required");
+        return *v;
+    }
+
+    double number(const std::string& k, double fallback) {
+        const json* v = take(k);
+        return v ? numberValue(*v, key(k)) : fallback;
+    }
+    double numberValue(const json& v, const std::string& path) const {
+        if (!v.is_number()) fail_(path, std::string("must be a number, not ") + typeName(v));
+        double d = v.get<double>();
+        if (!std::isfinite(d)) fail_(path, "must be a finite number");
+        return d;
+    }
+    int integer(const std::string& k, int fallback, int lo, int hi) {
+        const json* v = take(k);
+        if (!v) return fallback;
+        double d = numberValue(*v, key(k));
+        if (d != std::floor(d) || d < lo || d > hi)
+            fail_(key(k), "must be a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+        return int(d);
+    }
+    bool boolean(const std::string& k, bool fallback) {
+        const json* v = take(k);
+        if (!v) return fallback;
+        if (!v->is_boolean()) fail_(key(k), std::string("must be true or false, not ") + typeName(*v));
+        return v->get<bool>();
+    }
+    std::string string(const std::string& k, const std::string& fallback) {
+        const json* v = take(k);
+        return v ? stringValue(*v, key(k)) : fallback;
+    }
+    std::string stringValue(const json& v, const std::string& path) const {
+        if (!v.is_string()) fail_(path, std::string("must be a string, not ") + typeName(v));
+        return v.get<std::string>();
+    }
+    std::string choice(const std::string& k, const std::string& fallback,
+                       const std::vector<std::string>& allowed) {
+        std::string s = string(k, fallback);
+        for (const std::string& a : allowed)
+            if (s == a) return s;
+        std::string list;
+        for (const std::string& a : allowed)
+            list += (list.empty() ? "" : ", ") + a;
+        fail_(key(k), "'" + s + "' is not one of " + list);
+    }
+    glm::dvec3 vec3(const std::string& k, const glm::dvec3& fallback, const char* what = "3 numbers") {
+        const json* v = take(k);
+        if (!v) return fallback;
+        if (!v->is_array() || v->size() != 3) fail_(key(k), std::string("must be ") + what);
+        glm::dvec3 out;
+        for (int i = 0; i < 3; ++i) {
+            if (!(*v)[std::size_t(i)].is_number()) fail_(key(k), std::string("must be ") + what);
+            out[i] = numberValue((*v)[std::size_t(i)], key(k));
+        }
+        return out;
+    }
+
+    void finish() const {
+        if (!remaining_.empty()) fail_(key(*remaining_.begin()), "unknown key");
+    }
+    const Fail& fail() const { return fail_; }
+
+  private:
+    const json* value_ = nullptr;
+    std::string path_;
+    const Fail& fail_;
+    std::set<std::string> remaining_;
+};
+
+fs::path resolve(const std::string& file, const fs::path& base) {
+    fs::path p(file);
+    return (p.is_absolute() ? p : base / p).lexically_normal();
+}
+
+// "file": "a.hdr" or ["+x.hdr", ..., "-z.hdr"] (six-files layout).
+std::vector<fs::path> files(ObjectReader& r, const std::string& k, const fs::path& base) {
+    const json& v = r.required(k);
+    std::vector<fs::path> out;
+    if (v.is_string()) {
+        out.push_back(resolve(r.stringValue(v, r.key(k)), base));
+    } else if (v.is_array() && (v.size() == 6)) {
+        for (std::size_t i = 0; i < v.size(); ++i)
+            out.push_back(resolve(r.stringValue(v[i], r.key(k) + "[" + std::to_string(i) + "]"), base));
+    } else {
+        r.fail()(r.key(k), "must be a file name or an array of six (six-files layout)");
+    }
+    for (const fs::path& p : out)
+        if (p.empty() || !p.has_filename()) r.fail()(r.key(k), "must name a file");
+    return out;
+}
+
+const std::vector<std::string> kLayouts = {"auto",   "latlong", "exr-cube", "hcross",
+                                           "vcross", "hstrip",  "vstrip",   "six-files"};
+
+void checkLayoutFileCount(ObjectReader& r, const std::string& layoutKey, const std::string& layout,
+                          std::size_t fileCount) {
+    if ((layout == "six-files") != (fileCount == 6))
+        r.fail()(r.key(layoutKey), layout == "six-files" ? "six-files needs an array of six files"
+                                                         : "an array of six files needs layout six-files");
+}
+
+// {"ev100": 12} and the other calibration sources: exactly one key.
+SceneCalibrationChoice calibration(const json& v, const std::string& path, const Fail& fail) {
+    ObjectReader r(v, path, fail);
+    SceneCalibrationChoice c;
+    int count = 0;
+    for (SceneCalibration s :
+         {SceneCalibration::Scale, SceneCalibration::Ev100, SceneCalibration::Illuminance,
+          SceneCalibration::SunIlluminance, SceneCalibration::SkyLuminance}) {
+        const std::string k = sceneCalibrationName(s);
+        if (!r.has(k)) continue;
+        ++count;
+        c.source = s;
+        c.value = r.number(k, 0.0);
+        bool positive = s != SceneCalibration::Ev100;
+        if (positive && !(c.value > 0.0)) fail(r.key(k), "must be a positive number");
+    }
+    if (r.has("radiometric")) {
+        if (r.boolean("radiometric", false)) {
+            ++count;
+            c.source = SceneCalibration::Radiometric;
+        }
+    }
+    r.finish();
+    if (count > 1)
+        fail(path, "give one calibration source (scale, ev100, illuminance, sunIlluminance, skyLuminance, "
+                   "radiometric)");
+    return c;
+}
+
+SceneVolume volume(const json& v, const std::string& path, const Fail& fail,
+                   const std::optional<glm::dvec3>& defaultCenter) {
+    ObjectReader r(v, path, fail);
+    SceneVolume out;
+    r.required("shape");
+    const std::string shape = r.choice("shape", "", {"sphere", "box"});
+    out.shape = shape == "sphere" ? SceneVolume::Shape::Sphere : SceneVolume::Shape::Box;
+    if (!defaultCenter && !r.has("center")) fail(r.key("center"), "is required");
+    out.center = r.vec3("center", defaultCenter.value_or(glm::dvec3(0.0)));
+    if (out.shape == SceneVolume::Shape::Sphere) {
+        if (!r.has("radius")) fail(r.key("radius"), "is required for a sphere");
+        out.radius = r.number("radius", 0.0);
+        if (!(out.radius > 0.0)) fail(r.key("radius"), "must be a positive number");
+    } else {
+        if (!r.has("halfExtents")) fail(r.key("halfExtents"), "is required for a box");
+        out.halfExtents = r.vec3("halfExtents", glm::dvec3(0.0), "3 positive numbers");
+        for (int i = 0; i < 3; ++i)
+            if (!(out.halfExtents[i] > 0.0)) fail(r.key("halfExtents"), "must be 3 positive numbers");
+        out.rotationDegrees = r.vec3("rotation", glm::dvec3(0.0));
+    }
+    r.finish();
+    return out;
+}
+
+SceneEnvironment environment(const json& v, const fs::path& base, const Fail& fail) {
+    ObjectReader r(v, "environment", fail);
+    SceneEnvironment e;
+    e.files = files(r, "file", base);
+    e.layout = r.choice("layout", "auto", kLayouts);
+    checkLayoutFileCount(r, "layout", e.layout, e.files.size());
+    e.colorSpace = r.string("colorSpace", "");
+    e.workingColorSpace = r.choice("workingColorSpace", "lin_rec709", {"lin_rec709", "acescg"});
+    e.rotationDegrees = r.number("rotation", 0.0);
+    if (const json* c = r.take("calibration")) e.calibration = calibration(*c, r.key("calibration"), fail);
+    e.extractSun = r.boolean("extractSun", false);
+    r.finish();
+    return e;
+}
+
+bool validProbeName(const std::string& name) {
+    if (name.empty() || name.size() > 64) return false;
+    for (char ch : name)
+        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-') return false;
+    return true;
+}
+
+SceneProbe probe(const json& v, const std::string& path, const fs::path& base, const Fail& fail) {
+    ObjectReader r(v, path, fail);
+    SceneProbe p;
+    p.name = r.string("name", "");
+    if (!validProbeName(p.name)) fail(r.key("name"), "must be 1 to 64 of A-Z a-z 0-9 _ -");
+    p.capture = files(r, "capture", base);
+    p.layout = r.choice("layout", "auto", kLayouts);
+    checkLayoutFileCount(r, "layout", p.layout, p.capture.size());
+    p.colorSpace = r.string("colorSpace", "");
+    p.rotationDegrees = r.number("rotation", 0.0);
+    if (!r.has("position")) fail(r.key("position"), "is required");
+    p.position = r.vec3("position", glm::dvec3(0.0));
+    p.proxy = volume(r.required("proxy"), r.key("proxy"), fail, p.position);
+    if (const json* i = r.take("influence"))
+        p.influence = volume(*i, r.key("influence"), fail, p.proxy.center);
+    p.fadeDistance = r.number("fadeDistance", 0.0);
+    if (p.fadeDistance < 0.0) fail(r.key("fadeDistance"), "must not be negative");
+    if (const json* c = r.take("calibration")) p.calibration = calibration(*c, r.key("calibration"), fail);
+    r.finish();
+    return p;
+}
+
+SceneMaterials materials(const json& v, const Fail& fail) {
+    ObjectReader r(v, "materials", fail);
+    SceneMaterials m;
+    if (const json* range = r.take("roughness")) {
+        ObjectReader rr(*range, r.key("roughness"), fail);
+        m.roughnessMin = rr.number("min", 0.0);
+        m.roughnessMax = rr.number("max", 1.0);
+        rr.finish();
+        if (m.roughnessMin < 0.0 || m.roughnessMin > 1.0) fail(rr.key("min"), "must be from 0 to 1");
+        if (m.roughnessMax < 0.0 || m.roughnessMax > 1.0) fail(rr.key("max"), "must be from 0 to 1");
+        if (m.roughnessMin > m.roughnessMax) fail(r.key("roughness"), "min must not exceed max");
+    }
+    m.diffuseModel = r.choice("diffuseModel", "lambert", {"lambert", "disney"}) == "disney"
+                         ? SceneDiffuseModel::Disney
+                         : SceneDiffuseModel::Lambert;
+    m.specular = r.boolean("specular", true);
+    m.energyCompensation = r.boolean("energyCompensation", true);
+    m.clearCoat = r.boolean("clearCoat", false);
+    r.finish();
+    return m;
+}
+
+bool isPowerOfTwo(int n) {
+    return n > 0 && (n & (n - 1)) == 0;
+}
+
+SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
+    ObjectReader r(v, "outputs", fail);
+    SceneOutputs o;
+    const std::string directory = r.stringValue(r.required("directory"), r.key("directory"));
+    if (directory.empty()) fail(r.key("directory"), "must name a directory");
+    o.directory = resolve(directory, base);
+    o.ktx2Format = r.choice("ktx2Format", "rgba16f", {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"});
+    o.quality = r.choice("quality", "production", {"draft", "production", "reference"});
+    o.faceSize = r.integer("faceSize", 256, 1, 4096);
+    if (!isPowerOfTwo(o.faceSize)) fail(r.key("faceSize"), "must be a power of two");
+    o.probeFaceSize = r.integer("probeFaceSize", o.faceSize, 1, 4096);
+    if (!isPowerOfTwo(o.probeFaceSize)) fail(r.key("probeFaceSize"), "must be a power of two");
+    o.dfgSize = r.integer("dfgSize", 128, 1, 1024);
+    o.mipMapping = r.choice("mipMapping", "frostbite", {"frostbite", "linear"});
+    o.runtimeProfile = r.string("runtimeProfile", "");
+    r.finish();
+    return o;
+}
+
+} // namespace
+
+const char* sceneCalibrationName(SceneCalibration source) {
+    switch (source) {
+    case SceneCalibration::Scale:
+        return "scale";
+    case SceneCalibration::Ev100:
+        return "ev100";
+    case SceneCalibration::Illuminance:
+        return "illuminance";
+    case SceneCalibration::SunIlluminance:
+        return "sunIlluminance";
+    case SceneCalibration::SkyLuminance:
+        return "skyLuminance";
+    case SceneCalibration::Radiometric:
+        return "radiometric";
+    default:
+        return "none";
+    }
+}
+
+Scene parseScene(std::string_view text, const std::string& name, const fs::path& baseDirectory) {
+    const Fail fail(name);
+    json doc;
+    try {
+        doc = json::parse(text.begin(), text.end());
+    } catch (const json::exception& e) {
+        fail("", std::string("not valid JSON: ") + e.what());
+    }
+    try {
+        ObjectReader r(doc, "", fail);
+        Scene scene;
+        scene.name = name;
+        r.string("$schema", ""); // editors' schema hint, ignored
+        scene.environment = environment(r.required("environment"), baseDirectory, fail);
+        if (const json* list = r.take("probes")) {
+            if (!list->is_array()) fail("probes", std::string("must be an array, not ") + typeName(*list));
+            std::set<std::string> names;
+            for (std::size_t i = 0; i < list->size(); ++i) {
+                const std::string path = "probes[" + std::to_string(i) + "]";
+                scene.probes.push_back(probe((*list)[i], path, baseDirectory, fail));
+                if (!names.insert(scene.probes.back().name).second)
+                    fail(path + ".name", "'" + scene.probes.back().name + "' is used by an earlier probe");
+            }
+        }
+        if (const json* m = r.take("materials")) scene.materials = materials(*m, fail);
+        scene.outputs = outputs(r.required("outputs"), baseDirectory, fail);
+        r.finish();
+        return scene;
+    } catch (const json::exception& e) { // a conversion the checks above missed: still one clean line
+        fail("", std::string("unreadable value: ") + e.what());
+    }
+}
+
+Scene loadSceneFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in || fs::is_directory(path)) throw Error(path.string() + ": cannot read the scene file");
+    std::string text{std::istreambuf_iterator<char>(in), {}};
+    if (in.bad()) throw Error(path.string() + ": cannot read the scene file");
+    return parseScene(text, path.string(), path.parent_path().empty() ? fs::path(".") : path.parent_path());
+}
+
+} // namespace ibl

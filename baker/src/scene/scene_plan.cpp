@@ -1,0 +1,195 @@
+// The planner (scene_plan.h): what a scene's materials and probes need, and nothing else.
+#include "iblbake/scene_plan.h"
+
+#include <cmath>
+
+namespace ibl {
+
+namespace {
+
+using nlohmann::json;
+
+// DFG LUT samples per texel for each quality preset (the CLI's default, 1,024, is production).
+unsigned dfgSamples(const std::string& quality) {
+    return quality == "draft" ? 256u : quality == "reference" ? 4096u : 1024u;
+}
+
+json calibrationJson(const SceneCalibrationChoice& c) {
+    json out = {{"source", sceneCalibrationName(c.source)}};
+    if (c.source != SceneCalibration::None && c.source != SceneCalibration::Radiometric)
+        out["value"] = c.value;
+    return out;
+}
+
+std::vector<PlanInput> inputsOf(const std::vector<std::filesystem::path>& files, const std::string& keyPath) {
+    std::vector<PlanInput> out;
+    for (std::size_t i = 0; i < files.size(); ++i)
+        out.push_back({files.size() == 1 ? keyPath : keyPath + "[" + std::to_string(i) + "]", files[i]});
+    return out;
+}
+
+json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
+    return {{"faceSize", faceSize},
+            {"levels", fullLevelCount(faceSize)},
+            {"integratedLevels", lastLevelNeeded(faceSize, o.mipMapping, m.roughnessMax) + 1},
+            {"roughnessMax", m.roughnessMax},
+            {"mipMapping", o.mipMapping},
+            {"quality", o.quality},
+            {"ktx2Format", o.ktx2Format}};
+}
+
+} // namespace
+
+int fullLevelCount(int faceSize) {
+    int levels = 1;
+    while ((1 << (levels - 1)) < faceSize)
+        ++levels;
+    return levels;
+}
+
+int lastLevelNeeded(int faceSize, const std::string& mapping, double roughnessMax) {
+    const int levels = fullLevelCount(faceSize);
+    for (int m = 0; m < levels - 1; ++m) {
+        double t = double(m) / double(levels - 1);
+        double r = mapping == "linear" ? t : t * t;
+        if (r >= roughnessMax) return m;
+    }
+    return levels - 1;
+}
+
+Plan planScene(const Scene& scene) {
+    Plan plan;
+    const SceneMaterials& m = scene.materials;
+    const SceneOutputs& o = scene.outputs;
+    const SceneEnvironment& env = scene.environment;
+    const bool glossy = m.specular || m.clearCoat;
+    const bool disney = m.diffuseModel == SceneDiffuseModel::Disney;
+
+    if (glossy || disney) {
+        PlanStage s{"dfg", "dfg-lut", {}, {}, {}, {"dfg_lut.ktx2"}, true, ""};
+        s.settings = {{"size", o.dfgSize}, {"samples", dfgSamples(o.quality)}};
+        s.reason = glossy ? "split-sum specular needs DFG1/DFG2 (baked once, shared by every probe)"
+                          : "Disney diffuse reads the LUT's third channel";
+        plan.stages.push_back(std::move(s));
+        if (glossy && !disney)
+            plan.notes.push_back("dfg: the Disney channel (B) is not read by Lambert materials");
+        if (glossy && m.energyCompensation)
+            plan.notes.push_back("dfg: energy compensation reads DFG1 + DFG2 (no extra product)");
+    } else {
+        plan.skipped.push_back(
+            {"dfg", "dfg-lut", "Lambert diffuse-only materials: the SH irradiance needs no LUT"});
+    }
+
+    {
+        PlanStage s{
+            "environment", "environment", {}, inputsOf(env.files, "environment.file"), {}, {}, false, ""};
+        s.settings = {{"layout", env.layout},
+                      {"colorSpace", env.colorSpace},
+                      {"workingColorSpace", env.workingColorSpace},
+                      {"rotation", env.rotationDegrees},
+                      {"calibration", calibrationJson(env.calibration)},
+                      {"faceSize", o.faceSize}};
+        s.reason = "ingest and calibrate the distant environment (read by the diffuse" +
+                   std::string(glossy ? " and specular" : "") + " stages)";
+        plan.stages.push_back(std::move(s));
+    }
+
+    std::string lightSource = "environment";
+    if (env.extractSun) {
+        PlanStage s{"sun", "sun-extract", {"environment"}, {}, {}, {"sun.json"}, false, ""};
+        s.settings = json::object();
+        s.reason = "environment.extractSun: the sun becomes an analytic disk light, bakes use the residual";
+        plan.stages.push_back(std::move(s));
+        lightSource = "sun";
+    } else {
+        plan.skipped.push_back({"sun", "sun-extract", "environment.extractSun is false"});
+    }
+
+    if (glossy) {
+        PlanStage s{"specular",
+                    "specular-ld",
+                    {lightSource},
+                    {},
+                    ldSettings(o, m, o.faceSize),
+                    {"specular.ktx2"},
+                    true,
+                    ""};
+        const int last = s.settings["integratedLevels"].get<int>() - 1;
+        const int levels = s.settings["levels"].get<int>();
+        s.reason = std::string(m.specular ? "materials use specular" : "clear coat is used") + "; levels 0-" +
+                   std::to_string(last) + " of " + std::to_string(levels) + " integrated (roughness max " +
+                   json(m.roughnessMax).dump() + ")";
+        plan.stages.push_back(std::move(s));
+    } else {
+        plan.skipped.push_back({"specular", "specular-ld", "no material uses specular or clear coat"});
+    }
+
+    {
+        PlanStage s{"diffuse", "diffuse-sh", {lightSource}, {}, {}, {"diffuse.json"}, false, ""};
+        s.settings = {{"window", "auto"}};
+        s.reason =
+            std::string("diffuse lighting: L2 SH irradiance (") + (disney ? "Disney" : "Lambert") + ")";
+        plan.stages.push_back(std::move(s));
+    }
+
+    if (scene.probes.empty()) {
+        plan.skipped.push_back({"probe:*", "probe-ld", "the scene has no local probes"});
+    } else {
+        for (std::size_t i = 0; i < scene.probes.size(); ++i) {
+            const SceneProbe& p = scene.probes[i];
+            const std::string id = "probe:" + p.name;
+            if (!glossy) {
+                plan.skipped.push_back({id, "probe-ld",
+                                        "local probes carry specular only (Frostbite 4.9.3) and no material "
+                                        "uses specular"});
+                continue;
+            }
+            const std::string key = "probes[" + std::to_string(i) + "].capture";
+            PlanStage s{id,
+                        "probe-ld",
+                        {},
+                        inputsOf(p.capture, key),
+                        ldSettings(o, m, o.probeFaceSize),
+                        {"probe_" + p.name + ".ktx2"},
+                        true,
+                        ""};
+            s.settings["layout"] = p.layout;
+            s.settings["colorSpace"] = p.colorSpace;
+            s.settings["workingColorSpace"] = env.workingColorSpace;
+            s.settings["rotation"] = p.rotationDegrees;
+            if (p.calibration) {
+                s.settings["calibration"] = calibrationJson(*p.calibration);
+            } else if (env.calibration.source != SceneCalibration::None) {
+                // The same camera and units as the environment: its factor, so its stage is an input.
+                s.settings["calibration"] = {{"source", "environment"}};
+                s.dependsOn.push_back("environment");
+            } else {
+                s.settings["calibration"] = calibrationJson(SceneCalibrationChoice{});
+            }
+            s.reason = "local probe '" + p.name + "': specular LD chain of its capture";
+            plan.stages.push_back(std::move(s));
+        }
+    }
+    return plan;
+}
+
+json planToJson(const Plan& plan) {
+    json stages = json::array(), skipped = json::array();
+    for (const PlanStage& s : plan.stages) {
+        json inputs = json::array();
+        for (const PlanInput& in : s.inputs)
+            inputs.push_back({{"key", in.keyPath}, {"file", in.file.string()}});
+        stages.push_back({{"id", s.id},
+                          {"kind", s.kind},
+                          {"dependsOn", s.dependsOn},
+                          {"inputs", inputs},
+                          {"settings", s.settings},
+                          {"products", s.products},
+                          {"reason", s.reason}});
+    }
+    for (const SkippedStage& s : plan.skipped)
+        skipped.push_back({{"id", s.id}, {"kind", s.kind}, {"reason", s.reason}});
+    return {{"stages", stages}, {"skipped", skipped}, {"notes", plan.notes}};
+}
+
+} // namespace ibl

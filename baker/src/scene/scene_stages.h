@@ -1,0 +1,39 @@
+// The work of each stage kind of a scene plan: reads its dependencies' cache entries and the scene's
+// files, writes its files into a staging directory (scene_plan.h lists the kinds).
+#pragma once
+
+#include "iblbake/executor.h"
+#include "iblbake/scene.h"
+#include "iblbake/scene_plan.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <map>
+#include <string>
+
+namespace ibl {
+
+struct StageContext {
+    const Scene& scene;
+    const PlanStage& stage;
+    std::map<std::string, std::filesystem::path> dependencies; // stage id -> its cache entry
+    const Executor* executor = nullptr;                        // set when stage.usesBackend
+    std::filesystem::path outputDirectory;                     // the staging directory
+};
+
+// Throws ibl::Error with a one-line message (naming the scene key path for input problems).
+void runStage(const StageContext& context);
+
+// The file in a stage's cache entry that becomes `product` in the output directory.
+std::string entryFileFor(const PlanStage& stage, const std::string& product);
+
+// A JSON file of a cache entry; throws ibl::Error naming the file.
+nlohmann::json readJsonFile(const std::filesystem::path& file);
+
+// Files every environment-like entry ("environment", "sun") holds: the working-space cube and its
+// calibration (JSON: factor, absolute, units, colorSpace, metadata {key: text}, source, sunLight?).
+inline constexpr const char* kCubeFile = "cube.ktx2";
+inline constexpr const char* kCalibrationFile = "calibration.json";
+
+} // namespace ibl

@@ -1,0 +1,29 @@
+// Progress of `iblbake bake`: a redrawn one-line bar with the stage and an ETA on a terminal, one line per
+// stage otherwise, nothing with --quiet, JSON event lines on stdout with --json.
+#pragma once
+
+#include <iblbake/bake_scene.h>
+
+#include <chrono>
+
+namespace ibl::cli {
+
+enum class ProgressMode { Bar, Lines, Quiet, Json };
+
+// Bar when stderr is a terminal, else Lines (unless quiet or json).
+ProgressMode chooseProgressMode(bool quiet, bool json);
+
+class ConsoleProgress : public ProgressSink {
+  public:
+    explicit ConsoleProgress(ProgressMode mode) : mode_(mode) {}
+    void stageStart(const StageResult& stage, int index, int count) override;
+    void stageEnd(const StageResult& stage, int index, int count) override;
+    void done(const BakeSummary& summary) override;
+
+  private:
+    ProgressMode mode_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    bool barDrawn_ = false;
+};
+
+} // namespace ibl::cli

@@ -1,0 +1,439 @@
+// `iblbake plan` / `iblbake bake` end to end on small scenes (16-texel faces, draft): bakes run exactly the
+// planned stages; re-runs are fully cached; touching one probe's capture re-runs only that probe; bad scenes
+// fail with one line naming the key path and leave earlier outputs byte for byte; outputs are deterministic;
+// the runtime loads the manifest and shades like the probe set built by hand from the products.
+#include "cli_runner.h"
+
+#include <iblbake/bake_scene.h>
+#include <iblbake/ktx2.h>
+#include <iblbake/runtime_manifest.h>
+#include <iblbake/scene.h>
+#include <iblbake/sun.h>
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace ibl::test;
+
+namespace {
+
+const std::string kSample = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
+
+// A 64 x 32 lat-long: a sky gradient whose colour depends on `seed`.
+void writeLatLong(const fs::path& file, float seed) {
+    const int w = 64, h = 32;
+    std::vector<float> pixels(std::size_t(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            float* p = &pixels[(std::size_t(y) * w + x) * 3];
+            p[0] = 0.2f + seed * float(x) / w;
+            p[1] = 0.5f + 0.5f * float(h - y) / h;
+            p[2] = 1.0f - 0.5f * float(y) / h;
+        }
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+}
+
+std::string readBytes(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+void writeText(const fs::path& file, const std::string& text) {
+    std::ofstream(file) << text;
+}
+
+json probeJson(const std::string& name, const std::string& capture, const glm::dvec3& position) {
+    return {{"name", name},
+            {"capture", capture},
+            {"position", {position.x, position.y, position.z}},
+            {"proxy", {{"shape", "box"}, {"halfExtents", {2, 1, 1.5}}, {"rotation", {0, 30, 0}}}},
+            {"fadeDistance", 0.25}};
+}
+
+// A scene directory with env.hdr, a.hdr, b.hdr and a small, fast scene writing to out/.
+struct SceneDir {
+    fs::path dir;
+    json scene;
+
+    explicit SceneDir(const std::string& name) : dir(freshTempDir(name)) {
+        writeLatLong(dir / "env.hdr", 0.5f);
+        writeLatLong(dir / "a.hdr", 1.0f);
+        writeLatLong(dir / "b.hdr", 2.0f);
+        scene = {{"environment", {{"file", "env.hdr"}}},
+                 {"outputs",
+                  {{"directory", "out"},
+                   {"quality", "draft"},
+                   {"faceSize", 16},
+                   {"probeFaceSize", 16},
+                   {"dfgSize", 16}}}};
+    }
+    ~SceneDir() { fs::remove_all(dir); }
+    fs::path write(const std::string& file = "scene.json") const {
+        writeText(dir / file, scene.dump(2));
+        return dir / file;
+    }
+    fs::path out() const { return dir / "out"; }
+};
+
+struct JsonRun {
+    CliRun run;
+    std::vector<std::string> started; // stage ids in stage-start events
+    json summary;                     // the done event's summary
+};
+
+JsonRun bakeJson(const fs::path& scene, const std::string& extra = "") {
+    JsonRun r{runCli("bake " + scene.string() + " --json" + extra), {}, {}};
+    std::istringstream lines(r.run.out);
+    for (std::string line; std::getline(lines, line);) {
+        json event = json::parse(line);
+        if (event["event"] == "stage-start") r.started.push_back(event["stage"]);
+        if (event["event"] == "done") r.summary = event["summary"];
+    }
+    return r;
+}
+
+std::vector<std::string> plannedIds(const fs::path& scene) {
+    CliRun r = runCli("plan " + scene.string() + " --json");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::vector<std::string> ids;
+    const json plan = json::parse(r.out);
+    for (const json& s : plan["stages"])
+        ids.push_back(s["id"]);
+    return ids;
+}
+
+std::map<std::string, std::string> statusById(const json& summary) {
+    std::map<std::string, std::string> out;
+    for (const json& s : summary["stages"])
+        out[s["id"]] = s["status"];
+    return out;
+}
+
+// Every regular file directly in `dir` with its bytes.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(dir))
+        if (e.is_regular_file()) files[e.path().filename().string()] = readBytes(e.path());
+    return files;
+}
+
+} // namespace
+
+TEST(SceneBake, RunsExactlyThePlannedStagesForEachNeed) {
+    SceneDir d("scene_needs");
+    struct Variant {
+        std::string name;
+        std::function<void(json&)> edit;
+        std::set<std::string> expected;
+    };
+    const std::vector<Variant> variants = {
+        {"diffuse-only-lambert",
+         [](json& s) {
+             s["materials"] = {{"specular", false}};
+         },
+         {"environment", "diffuse"}},
+        {"diffuse-only-disney",
+         [](json& s) {
+             s["materials"] = {{"specular", false}, {"diffuseModel", "disney"}};
+         },
+         {"dfg", "environment", "diffuse"}},
+        {"glossy", [](json&) {}, {"dfg", "environment", "specular", "diffuse"}},
+        {"glossy-probes",
+         [](json& s) {
+             s["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+         },
+         {"dfg", "environment", "specular", "diffuse", "probe:a"}},
+        {"sun",
+         [](json& s) {
+             s["environment"]["file"] = kSample;
+             s["environment"]["extractSun"] = true;
+         },
+         {"dfg", "environment", "sun", "specular", "diffuse"}},
+    };
+    for (const Variant& v : variants) {
+        SCOPED_TRACE(v.name);
+        json scene = d.scene;
+        v.edit(scene);
+        scene["outputs"]["directory"] = "out-" + v.name;
+        writeText(d.dir / (v.name + ".json"), scene.dump());
+        const std::vector<std::string> planned = plannedIds(d.dir / (v.name + ".json"));
+        EXPECT_EQ(std::set<std::string>(planned.begin(), planned.end()), v.expected);
+        JsonRun r = bakeJson(d.dir / (v.name + ".json"));
+        ASSERT_EQ(r.run.exitCode, 0) << r.run.err;
+        EXPECT_EQ(r.started, planned);
+        EXPECT_EQ(r.summary["ran"], int(planned.size()));
+        EXPECT_EQ(r.summary["stages"].size(), planned.size());
+        const json manifest = json::parse(readBytes(d.dir / ("out-" + v.name) / "manifest.json"));
+        EXPECT_EQ(manifest["products"].contains("specular"), v.expected.count("specular") == 1);
+        EXPECT_EQ(manifest["products"].contains("dfg"), v.expected.count("dfg") == 1);
+        EXPECT_EQ(manifest["products"].contains("sun"), v.expected.count("sun") == 1);
+        EXPECT_EQ(manifest["products"]["probes"].size(), v.expected.count("probe:a"));
+        for (const auto& [name, product] : manifest["products"].items())
+            if (product.is_object())
+                EXPECT_TRUE(fs::exists(d.dir / ("out-" + v.name) / product["file"].get<std::string>()))
+                    << name;
+    }
+}
+
+TEST(ScenePlanCli, TextPlanGivesEveryStageAndEverySkipWithItsReason) {
+    SceneDir d("scene_plan_text");
+    d.scene["materials"] = {{"specular", false}};
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+    CliRun r = runCli("plan " + d.write().string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("run     environment"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("run     diffuse"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("skip    dfg              dfg-lut      Lambert diffuse-only materials"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("skip    specular"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("skip    sun              sun-extract  environment.extractSun is false"),
+              std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("skip    probe:a          probe-ld     local probes carry specular only"),
+              std::string::npos)
+        << r.out;
+    EXPECT_FALSE(fs::exists(d.out())); // planning writes nothing
+}
+
+TEST(SceneBake, RerunIsCachedAndTouchingOneCaptureRerunsOnlyItsProbe) {
+    SceneDir d("scene_cache");
+    d.scene["environment"]["calibration"] = {{"scale", 2.0}};
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0}), probeJson("b", "b.hdr", {5, 1, 0})});
+    const fs::path scene = d.write();
+    JsonRun first = bakeJson(scene);
+    ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
+    EXPECT_EQ(first.summary["ran"], 6);
+    const auto before = snapshot(d.out());
+
+    JsonRun second = bakeJson(scene);
+    ASSERT_EQ(second.run.exitCode, 0) << second.run.err;
+    EXPECT_EQ(second.summary["ran"], 0);
+    EXPECT_EQ(second.summary["cached"], 6);
+    EXPECT_EQ(snapshot(d.out()), before);
+
+    writeLatLong(d.dir / "b.hdr", 3.0f);
+    JsonRun third = bakeJson(scene);
+    ASSERT_EQ(third.run.exitCode, 0) << third.run.err;
+    const auto status = statusById(third.summary);
+    EXPECT_EQ(status.at("probe:b"), "ran");
+    EXPECT_EQ(third.summary["ran"], 1);
+    const auto after = snapshot(d.out());
+    EXPECT_NE(after.at("probe_b.ktx2"), before.at("probe_b.ktx2"));
+    EXPECT_EQ(after.at("probe_a.ktx2"), before.at("probe_a.ktx2"));
+    EXPECT_EQ(after.at("specular.ktx2"), before.at("specular.ktx2"));
+
+    JsonRun forced = bakeJson(scene, " --force");
+    ASSERT_EQ(forced.run.exitCode, 0) << forced.run.err;
+    EXPECT_EQ(forced.summary["ran"], 6);
+    EXPECT_EQ(snapshot(d.out()), after); // recomputed, same bytes
+}
+
+TEST(SceneBake, DamagedCacheEntryAndTamperedProductAreRepaired) {
+    SceneDir d("scene_damage");
+    const fs::path scene = d.write();
+    JsonRun first = bakeJson(scene);
+    ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
+    const auto before = snapshot(d.out());
+    std::string specularKey;
+    for (const json& s : first.summary["stages"])
+        if (s["id"] == "specular") specularKey = s["key"];
+    ASSERT_FALSE(specularKey.empty());
+    const fs::path entry = d.out() / ".iblbake-cache" / specularKey / "specular.ktx2";
+    ASSERT_TRUE(fs::exists(entry));
+    std::string bytes = readBytes(entry);
+    bytes[bytes.size() / 2] ^= 0x5a;
+    writeText(entry, bytes);
+    writeText(d.out() / "diffuse.json", "{}");
+
+    JsonRun second = bakeJson(scene);
+    ASSERT_EQ(second.run.exitCode, 0) << second.run.err;
+    const auto status = statusById(second.summary);
+    EXPECT_EQ(status.at("specular"), "ran");
+    EXPECT_EQ(status.at("diffuse"), "cached");
+    EXPECT_EQ(snapshot(d.out()), before);
+}
+
+TEST(SceneBake, BadScenesFailWithOneLineAndLeaveEarlierOutputs) {
+    SceneDir d("scene_bad");
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+    ASSERT_EQ(runCli("bake " + d.write().string() + " --quiet").exitCode, 0);
+    const auto before = snapshot(d.out());
+    writeText(d.dir / "not_an_image.hdr", "this is not an image\n");
+
+    struct Bad {
+        std::string name;
+        std::function<void(json&)> edit;
+        std::string expected;
+    };
+    const std::vector<Bad> bads = {
+        {"missing-file", [](json& s) { s["environment"]["file"] = "missing.hdr"; }, "environment.file: "},
+        {"wrong-type", [](json& s) { s["outputs"]["faceSize"] = "sixteen"; },
+         "outputs.faceSize: must be a number, not a string"},
+        {"unknown-key",
+         [](json& s) {
+             s["materials"] = {{"specualr", false}};
+         },
+         "materials.specualr: unknown key"},
+        {"zero-proxy",
+         [](json& s) {
+             s["probes"][0]["proxy"]["halfExtents"] = {2, 0, 1};
+         },
+         "probes[0].proxy.halfExtents: must be 3 positive numbers"},
+        {"not-an-image", [](json& s) { s["probes"][0]["capture"] = "not_an_image.hdr"; },
+         "probes[0].capture: "},
+    };
+    for (const Bad& b : bads) {
+        SCOPED_TRACE(b.name);
+        json scene = d.scene;
+        b.edit(scene);
+        const fs::path file = d.dir / (b.name + ".json");
+        writeText(file, scene.dump());
+        CliRun r = runCli("bake " + file.string() + " --quiet");
+        EXPECT_NE(r.exitCode, 0);
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(file.string() + ": " + b.expected), std::string::npos) << r.err;
+        EXPECT_EQ(snapshot(d.out()), before);
+    }
+    CliRun missing = runCli("bake " + (d.dir / "nope.json").string());
+    EXPECT_NE(missing.exitCode, 0);
+    EXPECT_EQ(lineCount(missing.err), 1) << missing.err;
+    EXPECT_EQ(snapshot(d.out()), before);
+}
+
+TEST(SceneBake, OutputsAreByteIdenticalAcrossRunsWithSeparateCaches) {
+    SceneDir d("scene_determinism");
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+    d.scene["materials"] = {{"diffuseModel", "disney"}, {"roughness", {{"max", 0.5}}}};
+    const fs::path one = d.write("one.json");
+    d.scene["outputs"]["directory"] = "out2";
+    const fs::path two = d.write("two.json");
+    ASSERT_EQ(runCli("bake " + one.string() + " --quiet").exitCode, 0);
+    ASSERT_EQ(runCli("bake " + two.string() + " --quiet").exitCode, 0);
+    const auto a = snapshot(d.dir / "out"), b = snapshot(d.dir / "out2");
+    EXPECT_EQ(a.size(), 5u); // dfg_lut.ktx2, specular.ktx2, diffuse.json, probe_a.ktx2, manifest.json
+    EXPECT_EQ(a, b);
+}
+
+// Two processes baking the same scene at once, sharing the output directory and the cache: both succeed
+// and leave what one bake alone leaves.
+TEST(SceneBake, ConcurrentBakesOfOneSceneAgree) {
+    SceneDir d("scene_concurrent");
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+    const fs::path scene = d.write();
+    d.scene["outputs"]["directory"] = "alone";
+    const fs::path alone = d.write("alone.json");
+    ASSERT_EQ(runCli("bake " + alone.string() + " --quiet").exitCode, 0);
+    const std::string bake = std::string(IBLBAKE_CLI) + " bake " + scene.string() + " --quiet";
+    const std::string both = "(" + bake + " & p=$!; " + bake + "; s=$?; wait $p && exit $s)";
+    EXPECT_EQ(std::system(both.c_str()), 0);
+    EXPECT_EQ(snapshot(d.out()), snapshot(d.dir / "alone"));
+    for (const fs::directory_entry& e : fs::directory_iterator(d.out() / ".iblbake-cache"))
+        EXPECT_NE(e.path().filename().string().rfind(".staging-", 0), 0u) << e.path(); // nothing left over
+}
+
+TEST(SceneBake, ProgressModes) {
+    SceneDir d("scene_progress");
+    const fs::path scene = d.write();
+    CliRun plain = runCli("bake " + scene.string()); // stderr is a file: one line per stage
+    ASSERT_EQ(plain.exitCode, 0) << plain.err;
+    int stageLines = 0;
+    std::istringstream lines(plain.err);
+    for (std::string line; std::getline(lines, line);)
+        stageLines += line.rfind("[", 0) == 0;
+    EXPECT_EQ(stageLines, 4) << plain.err;
+    EXPECT_NE(plain.err.find("[3/4] specular"), std::string::npos) << plain.err;
+    EXPECT_NE(plain.out.find("4 ran, 0 cached"), std::string::npos) << plain.out;
+    EXPECT_EQ(plain.err.find('\r'), std::string::npos); // no bar redraws when stderr is not a terminal
+}
+
+TEST(SceneBake, QuietPrintsNothing) {
+    SceneDir d("scene_quiet");
+    CliRun quiet = runCli("bake " + d.write().string() + " --quiet");
+    ASSERT_EQ(quiet.exitCode, 0);
+    EXPECT_TRUE(quiet.out.empty()) << quiet.out;
+    EXPECT_TRUE(quiet.err.empty()) << quiet.err;
+}
+
+// The runtime's manifest loader against a probe set assembled by hand from the same products.
+TEST(SceneBake, ManifestLoadsAndShadesLikeTheHandBuiltSet) {
+    SceneDir d("scene_manifest");
+    d.scene["environment"] = {
+        {"file", kSample}, {"calibration", {{"sunIlluminance", 100000}}}, {"extractSun", true}};
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0.5, 1, 0.25})});
+    d.scene["materials"] = {{"diffuseModel", "disney"}};
+    const ibl::Scene scene = ibl::loadSceneFile(d.write());
+    ibl::BakeOptions options;
+    options.backend = ibl::Backend::Cpu;
+    ibl::ProgressSink silent;
+    const ibl::BakeSummary summary = ibl::bakeScene(scene, options, silent);
+    ASSERT_TRUE(summary.ok) << summary.error;
+    EXPECT_EQ(summary.backend, "cpu");
+
+    const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(d.out());
+    const json diffuse = json::parse(readBytes(d.out() / "diffuse.json"));
+    std::array<glm::vec3, 9> sh{};
+    for (std::size_t i = 0; i < 9; ++i) {
+        const json& c = diffuse["sh"]["irradiance"][i];
+        sh[i] = glm::vec3(c[0].get<float>(), c[1].get<float>(), c[2].get<float>());
+    }
+    ibl::ProbeSet byHand(ibl::loadLdKtx2(d.out() / "specular.ktx2"),
+                         ibl::loadDfgKtx2(d.out() / "dfg_lut.ktx2"), ibl::shCoefficientsFrom(sh, false));
+    byHand.setSun(ibl::sunDiskFrom(ibl::diskLightFromJson(readBytes(d.out() / "sun.json"))));
+    const glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(30.0), glm::dvec3(0, 1, 0)));
+    ibl::LocalProbeDesc desc;
+    desc.proxy =
+        ibl::boxVolume(glm::vec3(0.5f, 1.0f, 0.25f), glm::vec3(2.0f, 1.0f, 1.5f), glm::mat3(rotation));
+    desc.fadeDistance = 0.25f;
+    byHand.addLocalProbe(desc, ibl::loadLdKtx2(d.out() / "probe_a.ktx2"));
+    ibl::RuntimeOptions options2;
+    options2.diffuseModel = ibl::DiffuseModel::Disney;
+    EXPECT_EQ(loaded.options.diffuseModel, ibl::DiffuseModel::Disney);
+    EXPECT_TRUE(loaded.options.specular);
+
+    std::vector<ibl::ShadingPoint> points;
+    for (int i = 0; i < 64; ++i) {
+        const float t = float(i) / 63.0f;
+        const glm::vec3 n = glm::normalize(glm::vec3(std::cos(7.0f * t), 0.8f - t, std::sin(7.0f * t)));
+        // Inside the probe's box, in its fade band, and outside it.
+        points.push_back(ibl::makeShadingPoint(glm::vec3(-3.0f + 6.0f * t, 1.0f, 0.25f), n,
+                                               glm::normalize(n + glm::vec3(0.3f, 0.5f, 0.2f)),
+                                               glm::vec3(0.7f), float(i % 2), t));
+    }
+    const std::vector<glm::vec4> a = ibl::evaluateCpu(loaded.set, points, loaded.options);
+    const std::vector<glm::vec4> b = ibl::evaluateCpu(byHand, points, options2);
+    int local = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        for (int c = 0; c < 4; ++c)
+            EXPECT_EQ(a[i][c], b[i][c]) << i << " " << c;
+        local += b[i].w > 0.0f;
+    }
+    EXPECT_GT(local, 8);                  // some points are lit by the local probe ...
+    EXPECT_LT(local, int(points.size())); // ... and some are not
+}
+
+TEST(SceneBake, PreviewAcceptsAManifestBake) {
+    SceneDir d("scene_preview");
+    ASSERT_EQ(runCli("bake " + d.write().string() + " --quiet").exitCode, 0);
+    CliRun r = runCli("preview " + d.out().string() + " --sphere-size 8 --backend cpu -o " +
+                      (d.dir / "preview.png").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_TRUE(fs::exists(d.dir / "preview.png"));
+}
