@@ -17,5 +17,6 @@ Action addInspectCommand(CLI::App& app);
 Action addCalibrateCommand(CLI::App& app);
 Action addPreviewCommand(CLI::App& app);
 Action addGltfCommand(CLI::App& app);
+Action addExportShCommand(CLI::App& app);
 
 } // namespace ibl::cli

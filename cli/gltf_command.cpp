@@ -1,5 +1,6 @@
 // iblbake gltf BAKE_DIR -o scene.gltf: a bake directory as glTF 2.0 (EXT_lights_image_based with RGBD PNG
 // faces, the sun as a KHR_lights_punctual directional light); conventions in iblbake/gltf_ibl.h.
+#include "bake_dir.h"
 #include "commands.h"
 #include "common_options.h"
 
@@ -29,34 +30,6 @@ struct GltfOptions {
     std::string quality = "production";
     BackendOptions backend;
 };
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path.string() + ": cannot read");
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-// diffuse.json's sh.irradiance (A_l k_i L_i), 9 finite RGB triples.
-ShRgb readPrescaledIrradiance(const fs::path& path) {
-    try {
-        const nlohmann::json doc = nlohmann::json::parse(readText(path));
-        const nlohmann::json& c = doc.at("sh").at("irradiance");
-        if (!c.is_array() || c.size() != 9) throw Error(path.string() + ": sh.irradiance needs 9 entries");
-        ShRgb sh{};
-        for (std::size_t i = 0; i < 9; ++i) {
-            if (!c[i].is_array() || c[i].size() != 3)
-                throw Error(path.string() + ": sh.irradiance[" + std::to_string(i) + "] needs 3 numbers");
-            for (std::size_t k = 0; k < 3; ++k) {
-                sh[i][int(k)] = c[i][k].get<double>();
-                if (!std::isfinite(sh[i][int(k)]))
-                    throw Error(path.string() + ": sh.irradiance[" + std::to_string(i) + "] is not finite");
-            }
-        }
-        return sh;
-    } catch (const nlohmann::json::exception& e) {
-        throw Error(path.string() + ": " + e.what());
-    }
-}
 
 CubeMapChain chainFromKtx2(const fs::path& path, const Ktx2Image& ktx) {
     if (ktx.faceCount != 6 || ktx.pixelWidth != ktx.pixelHeight)

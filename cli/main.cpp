@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addCalibrateCommand(app));
     add(ibl::cli::addPreviewCommand(app));
     add(ibl::cli::addGltfCommand(app));
+    add(ibl::cli::addExportShCommand(app));
 
     try {
         app.parse(argc, argv);
