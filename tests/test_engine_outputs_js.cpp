@@ -3,6 +3,8 @@
 // Khronos' glTF-Validator (tests/js/validate_gltf.mjs). Skipped, with the reason, without Node.js.
 #include "bake_dir_support.h"
 
+#include <iblbake/ktx2.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -35,8 +37,12 @@ NodeRun runNode(const std::string& script, const std::string& args) {
     return r;
 }
 
+// The JSON as one single-quoted shell word (it holds no single quote).
 std::string quoted(const nlohmann::json& j) {
-    return "'" + j.dump() + "'";
+    std::string word = j.dump();
+    word.insert(word.begin(), '\'');
+    word.push_back('\'');
+    return word;
 }
 
 class IndependentParser : public ::testing::Test {
@@ -111,6 +117,31 @@ TEST_P(Ktx2ByKtxParse, IrradianceCube) {
     NodeRun r = runNode("check_ktx2.mjs", (dir / "irradiance.ktx2").string() + " " + quoted(expect));
     EXPECT_EQ(r.exitCode, 0) << r.out;
     std::printf("%s", r.out.c_str());
+    fs::remove_all(dir);
+}
+
+// writeKtx2Image (2D, e.g. a LUT): no command writes one today, so the library call is checked directly.
+TEST_P(Ktx2ByKtxParse, TwoDimensionalImage) {
+    const auto [format, vkFormat] = GetParam();
+    const fs::path dir = ibl::test::freshTempDir(std::string("ktx_2d_") + format);
+    ibl::ImageRGBA image(12, 5);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = glm::vec4(0.1f * float(i), 1.0f, 2.0f, 1.0f);
+    const std::string name = format;
+    const ibl::Ktx2Format ktxFormat = name == "rgba16f"     ? ibl::Ktx2Format::RGBA16F
+                                      : name == "rgba32f"   ? ibl::Ktx2Format::RGBA32F
+                                      : name == "b10g11r11" ? ibl::Ktx2Format::B10G11R11
+                                                            : ibl::Ktx2Format::E5B9G9R9;
+    ibl::writeKtx2Image(dir / "image.ktx2", image, ktxFormat, {{"iblbake.product", "test-image"}});
+    const nlohmann::json expect = {{"vkFormat", vkFormat},
+                                   {"pixelWidth", 12},
+                                   {"pixelHeight", 5},
+                                   {"levelCount", 1},
+                                   {"faceCount", 1},
+                                   {"layerCount", 0},
+                                   {"keyValues", {{"iblbake.product", "test-image"}}}};
+    NodeRun r = runNode("check_ktx2.mjs", (dir / "image.ktx2").string() + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
     fs::remove_all(dir);
 }
 

@@ -1,6 +1,6 @@
 // Reads a KTX 2.0 file with ktx-parse (an implementation independent of iblbake's reader) and checks it
 // against what the writer promised.
-// Usage: node check_ktx2.mjs FILE.ktx2 '{"vkFormat": 97, "pixelWidth": 64, "levelCount": 7,
+// Usage: node check_ktx2.mjs FILE.ktx2 '{"vkFormat": 97, "pixelWidth": 64, ["pixelHeight": 64,] "levelCount": 7,
 //        "faceCount": 6, "layerCount": 0, "keys": ["iblbake.product", ...], "keyValues": {"k": "v"}}'
 // Exits 0 and prints "ok ..." when every check holds; otherwise prints each failure and exits 1.
 import { readFileSync } from 'node:fs';
@@ -37,8 +37,9 @@ try {
 const format = FORMATS[ktx.vkFormat];
 check(ktx.vkFormat === expect.vkFormat, `vkFormat ${ktx.vkFormat}, expected ${expect.vkFormat}`);
 check(format !== undefined, `vkFormat ${ktx.vkFormat} is not one iblbake writes`);
-check(ktx.pixelWidth === expect.pixelWidth && ktx.pixelHeight === expect.pixelWidth,
-      `size ${ktx.pixelWidth}x${ktx.pixelHeight}, expected ${expect.pixelWidth}x${expect.pixelWidth}`);
+const expectHeight = expect.pixelHeight ?? expect.pixelWidth; // cube faces are square
+check(ktx.pixelWidth === expect.pixelWidth && ktx.pixelHeight === expectHeight,
+      `size ${ktx.pixelWidth}x${ktx.pixelHeight}, expected ${expect.pixelWidth}x${expectHeight}`);
 check(ktx.pixelDepth === 0, `pixelDepth ${ktx.pixelDepth}, expected 0 (not a 3D texture)`);
 check(ktx.faceCount === expect.faceCount, `faceCount ${ktx.faceCount}, expected ${expect.faceCount}`);
 check(ktx.layerCount === expect.layerCount, `layerCount ${ktx.layerCount}, expected ${expect.layerCount}`);
@@ -50,10 +51,10 @@ if (format) {
   check(ktx.typeSize === format.typeSize, `typeSize ${ktx.typeSize}, expected ${format.typeSize} for ${format.name}`);
   // Level m holds faceCount images of max(1, size >> m) squared texels, nothing more or less.
   ktx.levels.forEach((level, m) => {
-    const side = Math.max(1, ktx.pixelWidth >> m);
-    const expected = ktx.faceCount * side * side * format.bytes;
+    const w = Math.max(1, ktx.pixelWidth >> m), h = Math.max(1, ktx.pixelHeight >> m);
+    const expected = ktx.faceCount * w * h * format.bytes;
     check(level.levelData.byteLength === expected,
-          `level ${m}: ${level.levelData.byteLength} bytes, expected ${expected} (${ktx.faceCount} x ${side}^2 x ${format.bytes})`);
+          `level ${m}: ${level.levelData.byteLength} bytes, expected ${expected} (${ktx.faceCount} x ${w}x${h} x ${format.bytes})`);
     check(level.uncompressedByteLength === expected,
           `level ${m}: uncompressedByteLength ${level.uncompressedByteLength}, expected ${expected}`);
   });
