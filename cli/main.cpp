@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
     add(ibl::cli::addPreviewCommand(app));
     add(ibl::cli::addPlanCommand(app));
     add(ibl::cli::addBakeCommand(app));
+    add(ibl::cli::addGltfCommand(app));
+    add(ibl::cli::addExportShCommand(app));
 
     try {
         app.parse(argc, argv);

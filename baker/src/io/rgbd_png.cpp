@@ -1,0 +1,76 @@
+// RGBD packing (iblbake/rgbd.h) and its PNG files through OpenImageIO.
+#include "iblbake/error.h"
+#include "iblbake/rgbd.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace ibl {
+namespace {
+
+// Babylon.js's toGammaSpace/toLinearSpace approximation of sRGB.
+constexpr float kGamma = 2.2f;
+
+std::uint8_t quantize(float unit) {
+    return std::uint8_t(std::lround(255.0f * std::clamp(unit, 0.0f, 1.0f)));
+}
+
+float finiteNonNegative(float v) {
+    return std::isfinite(v) && v > 0.0f ? v : 0.0f;
+}
+
+} // namespace
+
+std::array<std::uint8_t, 4> encodeRgbd(const glm::vec3& linear) {
+    const glm::vec3 c(finiteNonNegative(linear.r), finiteNonNegative(linear.g), finiteNonNegative(linear.b));
+    const float maxRgb = std::max({c.r, c.g, c.b, 1e-7f}); // Babylon's maxEps
+    // D * 255 is an integer from 1 to 255, stored exactly in alpha.
+    const float d255 = std::clamp(std::floor(std::max(kRgbdMaxValue / maxRgb, 1.0f)), 1.0f, 255.0f);
+    const float d = d255 / 255.0f;
+    return {quantize(std::pow(c.r * d, 1.0f / kGamma)), quantize(std::pow(c.g * d, 1.0f / kGamma)),
+            quantize(std::pow(c.b * d, 1.0f / kGamma)), std::uint8_t(d255)};
+}
+
+glm::vec3 decodeRgbd(const std::array<std::uint8_t, 4>& rgbd) {
+    const float d = float(std::max<std::uint8_t>(rgbd[3], 1)) / 255.0f;
+    auto channel = [&](int c) { return std::pow(float(rgbd[c]) / 255.0f, kGamma) / d; };
+    return {channel(0), channel(1), channel(2)};
+}
+
+void writeRgbdPng(const std::filesystem::path& path, const ImageRGBA& image, float scale) {
+    std::vector<std::uint8_t> pixels(image.pixels.size() * 4);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const auto rgbd = encodeRgbd(glm::vec3(image.pixels[i]) * scale);
+        std::copy(rgbd.begin(), rgbd.end(), pixels.begin() + std::ptrdiff_t(4 * i));
+    }
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) throw Error(path.string() + ": cannot create a PNG writer: " + OIIO::geterror());
+    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
+    // Alpha is D, not coverage: OpenImageIO must not divide the colour by it on the way out.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
+    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
+        !out->close())
+        throw Error(path.string() + ": " + out->geterror());
+}
+
+ImageRGBA readRgbdPng(const std::filesystem::path& path) {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1); // keep D as stored (no premultiplication)
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    if (!in) throw Error(path.string() + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    if (spec.nchannels != 4) throw Error(path.string() + ": an RGBD PNG has 4 channels");
+    std::vector<std::uint8_t> pixels(std::size_t(spec.width) * spec.height * 4);
+    if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, pixels.data()))
+        throw Error(path.string() + ": " + in->geterror());
+    ImageRGBA image(spec.width, spec.height);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = glm::vec4(
+            decodeRgbd({pixels[4 * i], pixels[4 * i + 1], pixels[4 * i + 2], pixels[4 * i + 3]}), 1.0f);
+    return image;
+}
+
+} // namespace ibl

@@ -1,0 +1,51 @@
+// iblbake export-sh BAKE_DIR --profile filament -o sh.txt: the bake's diffuse SH in an engine's own
+// convention (iblbake/filament_sh.h).
+#include "bake_dir.h"
+#include "commands.h"
+
+#include <iblbake/atomic_file.h>
+#include <iblbake/error.h>
+#include <iblbake/filament_sh.h>
+
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+namespace ibl::cli {
+namespace {
+
+struct ExportShOptions {
+    std::string bakeDir;
+    std::string output;
+    std::string profile;
+};
+
+} // namespace
+
+Action addExportShCommand(CLI::App& app) {
+    auto o = std::make_shared<ExportShOptions>();
+    CLI::App* cmd = app.add_subcommand("export-sh", "write a bake's diffuse SH in an engine's convention");
+    cmd->add_option("bake", o->bakeDir, "bake directory holding diffuse.json")->required();
+    cmd->add_option("-o,--output", o->output, "output file")->required();
+    cmd->add_option("--profile", o->profile,
+                    "filament: cmgen's sh.txt (irradiance / pi, pre-scaled by the SH basis constants)")
+        ->required()
+        ->check(CLI::IsMember({"filament"}));
+
+    return [o] {
+        const std::filesystem::path diffuse = std::filesystem::path(o->bakeDir) / "diffuse.json";
+        const std::string text = filamentShText(readPrescaledIrradiance(diffuse));
+        AtomicFile file(o->output);
+        {
+            std::ofstream out(file.tempPath());
+            out << text;
+            out.close();
+            if (!out) throw Error(o->output + ": cannot write");
+        }
+        file.commit();
+        std::printf("wrote   %s (Filament sh.txt from %s)\n", o->output.c_str(), diffuse.c_str());
+        return 0;
+    };
+}
+
+} // namespace ibl::cli

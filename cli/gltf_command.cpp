@@ -1,0 +1,127 @@
+// iblbake gltf BAKE_DIR -o scene.gltf: a bake directory as glTF 2.0 (EXT_lights_image_based with RGBD PNG
+// faces, the sun as a KHR_lights_punctual directional light); conventions in iblbake/gltf_ibl.h.
+#include "bake_dir.h"
+#include "commands.h"
+#include "common_options.h"
+
+#include <iblbake/error.h>
+#include <iblbake/gltf_ibl.h>
+#include <iblbake/ktx2.h>
+#include <iblbake/specular.h>
+#include <iblbake/sun.h>
+
+#include <nlohmann/json.hpp>
+
+#include <bit>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+
+namespace fs = std::filesystem;
+
+namespace ibl::cli {
+namespace {
+
+struct GltfOptions {
+    std::string bakeDir;
+    std::string output;
+    int minFaceSize = 16;
+    std::string quality = "production";
+    BackendOptions backend;
+};
+
+CubeMapChain chainFromKtx2(const fs::path& path, const Ktx2Image& ktx) {
+    if (ktx.faceCount != 6 || ktx.pixelWidth != ktx.pixelHeight)
+        throw Error(path.string() + ": not a cube map (" + std::to_string(ktx.faceCount) + " faces)");
+    CubeMapChain chain;
+    for (const std::vector<ImageRGBA>& faces : ktx.levels) {
+        CubeMap level;
+        level.faceSize = faces.front().width;
+        for (int f = 0; f < 6; ++f)
+            level.faces[std::size_t(f)] = faces[std::size_t(f)];
+        chain.levels.push_back(std::move(level));
+    }
+    return chain;
+}
+
+} // namespace
+
+Action addGltfCommand(CLI::App& app) {
+    auto o = std::make_shared<GltfOptions>();
+    CLI::App* cmd = app.add_subcommand(
+        "gltf",
+        "export a bake as glTF 2.0: EXT_lights_image_based (RGBD PNG) and the sun as KHR_lights_punctual");
+    cmd->add_option("bake", o->bakeDir, "bake directory: specular.ktx2, diffuse.json [, sun.json]")
+        ->required();
+    cmd->add_option("-o,--output", o->output, "output .gltf; its images are written beside it")->required();
+    cmd->add_option("--min-face-size", o->minFaceSize,
+                    "face size of the roughness-1 level when the chain is re-filtered (the extension "
+                    "suggests 16)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 4096));
+    cmd->add_option("--quality", o->quality,
+                    "sample preset of the re-filtered chain: draft, production, reference")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"draft", "production", "reference"}));
+    o->backend.addTo(*cmd);
+
+    return [o] {
+        auto start = std::chrono::steady_clock::now();
+        const fs::path dir(o->bakeDir), output(o->output);
+        if (output.extension() != ".gltf") throw Error(o->output + ": the glTF is written as .gltf (JSON)");
+        const fs::path ktxPath = dir / "specular.ktx2";
+        const Ktx2Image ktx = readKtx2(ktxPath);
+        CubeMapChain chain = chainFromKtx2(ktxPath, ktx);
+
+        GltfIblScene scene;
+        scene.prescaledIrradiance = readPrescaledIrradiance(dir / "diffuse.json");
+        if (fs::exists(dir / "sun.json")) {
+            const std::string text = readText(dir / "sun.json");
+            try {
+                scene.sun = diskLightFromJson(text);
+                scene.sunInLux = nlohmann::json::parse(text).value("units", "lux") == "lux";
+            } catch (const std::exception& e) {
+                throw Error((dir / "sun.json").string() + ": " + e.what());
+            }
+        }
+
+        // The extension maps its levels evenly to roughness 0..1; a linear bake already does, any other
+        // is re-filtered from its level 0 (the unconvolved source) down to --min-face-size.
+        const auto mapping = ktx.keyValues.find("iblbake.roughnessMapping");
+        const bool linear = mapping != ktx.keyValues.end() && mapping->second.rfind("linear", 0) == 0;
+        std::string levelsNote = "as baked (linear roughness mapping)";
+        if (!linear) {
+            const int base = chain.levels.front().faceSize;
+            if (base < 2) throw Error(ktxPath.string() + ": a 1-texel cube cannot hold roughness 0 and 1");
+            const int lowest = std::min(o->minFaceSize, base / 2);
+            if ((lowest & (lowest - 1)) != 0)
+                throw Error("--min-face-size: " + std::to_string(o->minFaceSize) + " is not a power of two");
+            SpecularSettings settings;
+            settings.mapping = MipMapping::Linear;
+            settings.levels = std::bit_width(unsigned(base / lowest));
+            settings.quality = parseQuality(o->quality);
+            Executor executor = o->backend.makeExecutor();
+            auto bakeStart = std::chrono::steady_clock::now();
+            chain = bakeSpecular(chain.levels.front(), settings, executor);
+            levelsNote = "re-filtered from level 0 with perceptual roughness m/(N-1), quality " + o->quality;
+            std::printf("refilter %d levels %d..%d px, %s: %.1f ms\n", settings.levels, base, lowest,
+                        executor.description().c_str(), millisecondsSince(bakeStart));
+        }
+        scene.specular = std::move(chain);
+        scene.extras["iblbake.specularLevels"] = levelsNote;
+        for (const auto& [key, value] : ktx.keyValues)
+            if (key.rfind("iblbake.calibration", 0) == 0 || key == "iblbake.units" ||
+                key == "iblbake.colorSpace" || key == "iblbake.source")
+                scene.extras[key] = value;
+
+        writeGltfIbl(output, scene);
+        std::printf("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
+                    o->output.c_str(), scene.specular.levels.size(), scene.specular.levels.front().faceSize,
+                    gltfIblIntensity(scene.specular), scene.sun ? ", sun as KHR_lights_punctual" : "");
+        std::printf("time    %.1f ms\n", millisecondsSince(start));
+        return 0;
+    };
+}
+
+} // namespace ibl::cli

@@ -1,0 +1,196 @@
+// Engine outputs read by independent parsers (tests/js, installed by the CTest fixture js_npm_ci):
+// every KTX2 iblbake writes through ktx-parse (tests/js/check_ktx2.mjs), and the glTF export through
+// Khronos' glTF-Validator (tests/js/validate_gltf.mjs). Skipped, with the reason, without Node.js.
+#include "bake_dir_support.h"
+
+#include <iblbake/ktx2.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+
+namespace fs = std::filesystem;
+using ibl::test::CliRun;
+using ibl::test::runCli;
+
+namespace {
+
+struct NodeRun {
+    int exitCode = -1;
+    std::string out;
+};
+
+// Runs a script of the installed tests/js package with Node.js; output and errors together.
+NodeRun runNode(const std::string& script, const std::string& args) {
+    const std::string command =
+        std::string(IBLBAKE_NODE) + " " + IBLBAKE_JS_DIR + "/" + script + " " + args + " 2>&1";
+    NodeRun r;
+    FILE* pipe = ::popen(command.c_str(), "r");
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe))
+        r.out.append(buffer, n);
+    const int status = ::pclose(pipe);
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+// The JSON as one single-quoted shell word (it holds no single quote).
+std::string quoted(const nlohmann::json& j) {
+    std::string word = j.dump();
+    word.insert(word.begin(), '\'');
+    word.push_back('\'');
+    return word;
+}
+
+class IndependentParser : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        if (std::string(IBLBAKE_NODE).empty())
+            GTEST_SKIP()
+                << "Node.js was not found when CMake configured the build (.ci/install-deps installs it)";
+        ASSERT_TRUE(fs::exists(fs::path(IBLBAKE_JS_DIR) / "node_modules" / "ktx-parse"))
+            << IBLBAKE_JS_DIR << ": npm ci has not run (the CTest fixture js_npm_ci installs the packages)";
+    }
+};
+
+// A --format name and the vkFormat the Vulkan specification gives it.
+struct FormatCase {
+    const char* name;
+    int vkFormat;
+    friend std::ostream& operator<<(std::ostream& os, const FormatCase& c) { return os << c.name; }
+};
+
+class Ktx2ByKtxParse : public IndependentParser, public ::testing::WithParamInterface<FormatCase> {};
+
+const FormatCase kFormats[] = {{"rgba16f", 97}, {"rgba32f", 109}, {"b10g11r11", 122}, {"e5b9g9r9", 123}};
+
+std::string formatName(const ::testing::TestParamInfo<FormatCase>& info) {
+    return info.param.name;
+}
+
+} // namespace
+
+TEST_P(Ktx2ByKtxParse, SpecularChain) {
+    const auto [format, vkFormat] = GetParam();
+    const fs::path dir = ibl::test::freshTempDir(std::string("ktx_spec_") + format);
+    CliRun bake =
+        runCli("specular " + ibl::test::sampleHdri() + " --size 32 --quality draft --ev100 12 --format " +
+               format + " -o " + (dir / "specular.ktx2").string());
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    const nlohmann::json expect = {
+        {"vkFormat", vkFormat},
+        {"pixelWidth", 32},
+        {"levelCount", 6},
+        {"faceCount", 6},
+        {"layerCount", 0},
+        {"keys",
+         {"iblbake.roughnessMapping", "iblbake.colorSpace", "iblbake.source", "iblbake.settings",
+          "iblbake.units", "iblbake.calibration.factor"}},
+        {"keyValues",
+         {{"iblbake.product", "specular-ld"}, {"iblbake.levelCount", "6"}, {"iblbake.units", "cd/m2"}}}};
+    NodeRun r = runNode("check_ktx2.mjs", (dir / "specular.ktx2").string() + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    std::printf("%s", r.out.c_str());
+    fs::remove_all(dir);
+}
+
+TEST_P(Ktx2ByKtxParse, IrradianceCube) {
+    const auto [format, vkFormat] = GetParam();
+    const fs::path dir = ibl::test::freshTempDir(std::string("ktx_irr_") + format);
+    CliRun bake =
+        runCli("diffuse " + ibl::test::sampleHdri() + " --size 32 --quality draft --irradiance-size 8 " +
+               "--format " + format + " -o " + (dir / "diffuse.json").string() + " --irradiance-cube " +
+               (dir / "irradiance.ktx2").string());
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    const nlohmann::json expect = {
+        {"vkFormat", vkFormat},
+        {"pixelWidth", 8},
+        {"levelCount", 1},
+        {"faceCount", 6},
+        {"layerCount", 0},
+        {"keys",
+         {"iblbake.irradianceNormalization", "iblbake.method", "iblbake.colorSpace", "iblbake.units"}},
+        {"keyValues", {{"iblbake.product", "irradiance"}, {"iblbake.units", "relative"}}}};
+    NodeRun r = runNode("check_ktx2.mjs", (dir / "irradiance.ktx2").string() + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    std::printf("%s", r.out.c_str());
+    fs::remove_all(dir);
+}
+
+// writeKtx2Image (2D, e.g. a LUT): no command writes one today, so the library call is checked directly.
+TEST_P(Ktx2ByKtxParse, TwoDimensionalImage) {
+    const auto [format, vkFormat] = GetParam();
+    const fs::path dir = ibl::test::freshTempDir(std::string("ktx_2d_") + format);
+    ibl::ImageRGBA image(12, 5);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = glm::vec4(0.1f * float(i), 1.0f, 2.0f, 1.0f);
+    const std::string name = format;
+    const ibl::Ktx2Format ktxFormat = name == "rgba16f"     ? ibl::Ktx2Format::RGBA16F
+                                      : name == "rgba32f"   ? ibl::Ktx2Format::RGBA32F
+                                      : name == "b10g11r11" ? ibl::Ktx2Format::B10G11R11
+                                                            : ibl::Ktx2Format::E5B9G9R9;
+    ibl::writeKtx2Image(dir / "image.ktx2", image, ktxFormat, {{"iblbake.product", "test-image"}});
+    const nlohmann::json expect = {{"vkFormat", vkFormat},
+                                   {"pixelWidth", 12},
+                                   {"pixelHeight", 5},
+                                   {"levelCount", 1},
+                                   {"faceCount", 1},
+                                   {"layerCount", 0},
+                                   {"keyValues", {{"iblbake.product", "test-image"}}}};
+    NodeRun r = runNode("check_ktx2.mjs", (dir / "image.ktx2").string() + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryFormat, Ktx2ByKtxParse, ::testing::ValuesIn(kFormats), formatName);
+
+// The checker itself can fail: a wrong expectation and a damaged file are both reported.
+TEST_F(IndependentParser, Ktx2CheckerRejectsWrongExpectationsAndDamage) {
+    const fs::path dir = ibl::test::freshTempDir("ktx_negative");
+    const fs::path file = dir / "specular.ktx2";
+    CliRun bake =
+        runCli("specular " + ibl::test::sampleHdri() + " --size 8 --quality draft -o " + file.string());
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    nlohmann::json expect = {
+        {"vkFormat", 97}, {"pixelWidth", 8}, {"levelCount", 4}, {"faceCount", 6}, {"layerCount", 0}};
+    EXPECT_EQ(runNode("check_ktx2.mjs", file.string() + " " + quoted(expect)).exitCode, 0);
+    for (const auto& [key, wrong] : std::vector<std::pair<std::string, nlohmann::json>>{
+             {"vkFormat", 109}, {"pixelWidth", 16}, {"levelCount", 3}, {"faceCount", 1}, {"layerCount", 1}}) {
+        nlohmann::json bad = expect;
+        bad[key] = wrong;
+        NodeRun r = runNode("check_ktx2.mjs", file.string() + " " + quoted(bad));
+        EXPECT_EQ(r.exitCode, 1) << key << ": " << r.out;
+    }
+    expect["keyValues"] = {{"iblbake.product", "irradiance"}};
+    EXPECT_EQ(runNode("check_ktx2.mjs", file.string() + " " + quoted(expect)).exitCode, 1);
+    expect.erase("keyValues");
+    fs::resize_file(file, fs::file_size(file) - 64); // the smallest levels lose their bytes
+    NodeRun damaged = runNode("check_ktx2.mjs", file.string() + " " + quoted(expect));
+    EXPECT_EQ(damaged.exitCode, 1) << damaged.out;
+    fs::remove_all(dir);
+}
+
+TEST_F(IndependentParser, GltfPassesKhronosValidator) {
+    const fs::path bake = ibl::test::makeBakeDir("validator_bake");
+    const fs::path out = ibl::test::freshTempDir("validator_out");
+    CliRun r = runCli("gltf " + bake.string() + " -o " + (out / "scene.gltf").string() + " --quality draft");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    NodeRun v = runNode("validate_gltf.mjs", (out / "scene.gltf").string());
+    std::printf("%s", v.out.c_str());
+    EXPECT_EQ(v.exitCode, 0) << v.out;
+    const std::size_t at = v.out.find("report ");
+    ASSERT_NE(at, std::string::npos) << v.out;
+    const nlohmann::json counts = nlohmann::json::parse(v.out.substr(at + 7, v.out.find('\n', at) - at - 7));
+    EXPECT_EQ(counts["errors"], 0);
+    EXPECT_EQ(counts["warnings"], 0);
+    EXPECT_EQ(counts["images"], 12); // every referenced PNG was found and parsed by the validator
+    // The validator checks the files it is given: a missing image is an error.
+    fs::remove(out / "scene_specular_1_nz.png");
+    NodeRun missing = runNode("validate_gltf.mjs", (out / "scene.gltf").string());
+    EXPECT_EQ(missing.exitCode, 1) << missing.out;
+    fs::remove_all(bake);
+    fs::remove_all(out);
+}

@@ -1,0 +1,239 @@
+// iblbake gltf: the exported EXT_lights_image_based / KHR_lights_punctual glTF against the bake it came
+// from, numerically (conventions in baker/include/iblbake/gltf_ibl.h), and its refusals of bad input.
+#include "bake_dir_support.h"
+
+#include <iblbake/ktx2.h>
+#include <iblbake/sh.h>
+#include <iblbake/sun.h>
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <glm/geometric.hpp>
+
+namespace fs = std::filesystem;
+using ibl::test::CliRun;
+using ibl::test::runCli;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+nlohmann::json readJson(const fs::path& path) {
+    std::ifstream in(path);
+    return nlohmann::json::parse(in);
+}
+
+ibl::ShRgb shFromJson(const nlohmann::json& a) {
+    ibl::ShRgb sh{};
+    for (std::size_t i = 0; i < 9; ++i)
+        sh[i] = glm::dvec3(a[i][0].get<double>(), a[i][1].get<double>(), a[i][2].get<double>());
+    return sh;
+}
+
+// The extension's irradiance, written out here from Ramamoorthi & Hanrahan 2001 eq. 3 (the basis the
+// extension cites) rather than taken from the library: E(n) = sum_lm E_lm Y_lm(n).
+glm::dvec3 irradianceFromExtension(const ibl::ShRgb& e, const glm::dvec3& n) {
+    const double k0 = 0.5 * std::sqrt(1.0 / kPi), k1 = std::sqrt(3.0 / (4.0 * kPi));
+    const double k2 = 0.5 * std::sqrt(15.0 / kPi), k20 = 0.25 * std::sqrt(5.0 / kPi);
+    const double k22 = 0.25 * std::sqrt(15.0 / kPi);
+    const double x = n.x, y = n.y, z = n.z;
+    return e[0] * k0 + e[1] * (k1 * y) + e[2] * (k1 * z) + e[3] * (k1 * x) + e[4] * (k2 * x * y) +
+           e[5] * (k2 * y * z) + e[6] * (k20 * (3.0 * z * z - 1.0)) + e[7] * (k2 * x * z) +
+           e[8] * (k22 * (x * x - y * y));
+}
+
+// Babylon.js's fromRGBD (the extension's reference loader), from the raw 8-bit PNG: rgb^2.2 / a.
+std::vector<glm::dvec3> decodeRgbdPng(const fs::path& path, int& width) {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path.string(), &config);
+    EXPECT_TRUE(in) << path;
+    if (!in) return {};
+    width = in->spec().width;
+    EXPECT_EQ(in->spec().nchannels, 4);
+    std::vector<unsigned char> px(std::size_t(width) * in->spec().height * 4);
+    EXPECT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, px.data()));
+    std::vector<glm::dvec3> out;
+    for (std::size_t i = 0; i < px.size(); i += 4) {
+        const double d = px[i + 3] / 255.0;
+        out.emplace_back(std::pow(px[i] / 255.0, 2.2) / d, std::pow(px[i + 1] / 255.0, 2.2) / d,
+                         std::pow(px[i + 2] / 255.0, 2.2) / d);
+    }
+    return out;
+}
+
+// The largest error RGBD can make on channel value v (already divided by the intensity) of a texel whose
+// brightest channel is maxRgb: D = floor(255 / maxRgb) / 255 is exact, g = (v D)^(1/2.2) is rounded to
+// 1/255, so the decoded value lies between the neighbours (g -+ 0.5/255)^2.2 / D.
+double rgbdBound(double v, double maxRgb) {
+    const double d =
+        std::clamp(std::floor(std::max(255.0 / std::max(maxRgb, 1e-7), 1.0)), 1.0, 255.0) / 255.0;
+    const double g = std::pow(std::min(v * d, 1.0), 1.0 / 2.2), h = 0.5 / 255.0;
+    return (std::pow(std::min(g + h, 1.0), 2.2) - std::pow(std::max(g - h, 0.0), 2.2)) / d * 1.0001 + 1e-9;
+}
+
+// Every texel of level `level` of the export against level `ktxLevel` of the KTX2; returns the largest
+// relative error (for the report) and fails on any texel outside the RGBD bound.
+double compareLevel(const fs::path& dir, const nlohmann::json& light, int level, const ibl::Ktx2Image& ktx,
+                    int ktxLevel) {
+    const double intensity = light.at("intensity").get<double>();
+    const char* faces[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+    double worst = 0.0;
+    for (int f = 0; f < 6; ++f) {
+        int width = 0;
+        const std::vector<glm::dvec3> decoded =
+            decodeRgbdPng(dir / ("scene_specular_" + std::to_string(level) + "_" + faces[f] + ".png"), width);
+        const ibl::ImageRGBA& ref = ktx.levels[std::size_t(ktxLevel)][std::size_t(f)];
+        EXPECT_EQ(width, ref.width);
+        if (decoded.size() != ref.pixels.size()) return 1.0;
+        for (std::size_t i = 0; i < decoded.size(); ++i) {
+            const glm::dvec3 v = glm::dvec3(glm::vec3(ref.pixels[i])) / intensity;
+            const double maxRgb = std::max({v.x, v.y, v.z});
+            for (int c = 0; c < 3; ++c) {
+                if (std::abs(decoded[i][c] - v[c]) > rgbdBound(v[c], maxRgb)) {
+                    ADD_FAILURE() << "level " << level << " face " << f << " texel " << i << " channel " << c
+                                  << ": decoded " << decoded[i][c] << ", baked " << v[c];
+                    return worst;
+                }
+                if (maxRgb > 1.0) worst = std::max(worst, std::abs(decoded[i][c] - v[c]) / maxRgb);
+            }
+        }
+    }
+    return worst;
+}
+
+class GltfExport : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        bake = ibl::test::makeBakeDir("gltf_bake");
+        out = ibl::test::freshTempDir("gltf_out");
+        CliRun r =
+            runCli("gltf " + bake.string() + " -o " + (out / "scene.gltf").string() + " --quality draft");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        gltf = readJson(out / "scene.gltf");
+        light = gltf["extensions"]["EXT_lights_image_based"]["lights"][0];
+    }
+    void TearDown() override {
+        fs::remove_all(bake);
+        fs::remove_all(out);
+    }
+    fs::path bake, out;
+    nlohmann::json gltf, light;
+};
+
+} // namespace
+
+TEST_F(GltfExport, IrradianceCoefficientsReproduceOurShIrradiance) {
+    const ibl::ShRgb ours = shFromJson(readJson(bake / "diffuse.json")["sh"]["irradiance"]);
+    ibl::ShRgb fromGltf = shFromJson(light["irradianceCoefficients"]);
+    const double intensity = light["intensity"].get<double>();
+    for (glm::dvec3& c : fromGltf)
+        c *= intensity; // loaders scale the coefficients by the light's intensity
+    const glm::dvec3 directions[] = {{0, 1, 0},  {0, -1, 0}, {1, 0, 0},        {-1, 0, 0},        {0, 0, 1},
+                                     {0, 0, -1}, {1, 1, 1},  {-0.3, 0.8, 0.5}, {0.6, -0.2, -0.77}};
+    for (glm::dvec3 n : directions) {
+        n = glm::normalize(n);
+        const glm::dvec3 expected = ibl::evalPrescaledSH(ours, n), got = irradianceFromExtension(fromGltf, n);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(got[c], expected[c], 1e-5 * std::abs(expected[c]))
+                << "n = " << n.x << " " << n.y << " " << n.z << " channel " << c;
+    }
+}
+
+TEST_F(GltfExport, StructureFollowsTheExtension) {
+    EXPECT_EQ(gltf["asset"]["version"], "2.0");
+    EXPECT_EQ(gltf["scenes"][0]["extensions"]["EXT_lights_image_based"]["light"], 0);
+    EXPECT_EQ(light["rotation"], nlohmann::json::array({0.0, 0.0, 0.0, 1.0}));
+    EXPECT_EQ(light["specularImageSize"], 32);
+    // The sample bake uses the Frostbite mapping, so the chain is re-filtered 32..16 (linear, 2 levels).
+    ASSERT_EQ(light["specularImages"].size(), 2u);
+    for (const auto& level : light["specularImages"]) {
+        ASSERT_EQ(level.size(), 6u);
+        for (const auto& image : level) {
+            const std::string uri = gltf["images"][image.get<std::size_t>()]["uri"];
+            EXPECT_TRUE(fs::exists(out / uri)) << uri;
+        }
+    }
+    EXPECT_EQ(gltf["images"].size(), 12u);
+}
+
+TEST_F(GltfExport, FirstSpecularLevelRoundTripsLdLevel0) {
+    const ibl::Ktx2Image ktx = ibl::readKtx2(bake / "specular.ktx2");
+    const double worst = compareLevel(out, light, 0, ktx, 0);
+    std::printf("level 0: largest RGBD error %.4f%% of the texel's brightest channel\n", 100.0 * worst);
+    EXPECT_GT(light["intensity"].get<double>(), 1.0); // calibrated values need the multiplier
+}
+
+TEST_F(GltfExport, SunIsADirectionalLightWithTheSameIlluminance) {
+    const ibl::DiskLight sun = [&] {
+        std::ifstream in(bake / "sun.json");
+        return ibl::diskLightFromJson(std::string(std::istreambuf_iterator<char>(in), {}));
+    }();
+    const nlohmann::json& punctual = gltf["extensions"]["KHR_lights_punctual"]["lights"][0];
+    EXPECT_EQ(punctual["type"], "directional");
+    glm::dvec3 color(punctual["color"][0].get<double>(), punctual["color"][1].get<double>(),
+                     punctual["color"][2].get<double>());
+    EXPECT_DOUBLE_EQ(std::max({color.r, color.g, color.b}), 1.0);
+    const glm::dvec3 rgbIlluminance = color * punctual["intensity"].get<double>();
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(rgbIlluminance[c], sun.illuminance * sun.color[c], 1e-9 * sun.illuminance);
+    // The node's rotation turns -Z (where a directional light shines) away from the sun.
+    const nlohmann::json& node = gltf["nodes"][gltf["scenes"][0]["nodes"][0].get<std::size_t>()];
+    EXPECT_EQ(node["extensions"]["KHR_lights_punctual"]["light"], 0);
+    const glm::dvec3 q(node["rotation"][0].get<double>(), node["rotation"][1].get<double>(),
+                       node["rotation"][2].get<double>());
+    const double w = node["rotation"][3].get<double>();
+    const glm::dvec3 v(0.0, 0.0, -1.0);
+    const glm::dvec3 rotated = v + 2.0 * glm::cross(q, glm::cross(q, v) + w * v);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(rotated[c], -sun.direction[c], 1e-9);
+}
+
+TEST(GltfExportLinear, LinearBakeIsExportedAsBaked) {
+    const fs::path bake = ibl::test::makeBakeDir("gltf_linear", "--mip-mapping linear");
+    const fs::path out = ibl::test::freshTempDir("gltf_linear_out");
+    CliRun r = runCli("gltf " + bake.string() + " -o " + (out / "scene.gltf").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_EQ(r.out.find("refilter"), std::string::npos) << r.out;
+    const nlohmann::json gltf = readJson(out / "scene.gltf");
+    const nlohmann::json& light = gltf["extensions"]["EXT_lights_image_based"]["lights"][0];
+    const ibl::Ktx2Image ktx = ibl::readKtx2(bake / "specular.ktx2");
+    ASSERT_EQ(light["specularImages"].size(), ktx.levels.size());
+    for (int m : {0, 3, 5})
+        compareLevel(out, light, m, ktx, m);
+    fs::remove_all(bake);
+    fs::remove_all(out);
+}
+
+TEST(GltfExportErrors, BadBakeDirectoriesFailWithOneLineAndNoOutput) {
+    const fs::path bake = ibl::test::makeBakeDir("gltf_bad");
+    const fs::path out = ibl::test::freshTempDir("gltf_bad_out");
+    const fs::path target = out / "scene.gltf";
+    { std::ofstream(target) << "user's file\n"; }
+    auto expectRefused = [&](const std::string& args, const std::string& mention) {
+        CliRun r = runCli(args);
+        EXPECT_EQ(r.exitCode, 1) << args;
+        EXPECT_EQ(ibl::test::lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(mention), std::string::npos) << r.err;
+        EXPECT_EQ(ibl::test::entryCount(out), 1u) << "partial output after: " << args;
+        std::ifstream in(target);
+        EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "user's file\n");
+    };
+    expectRefused("gltf " + bake.string() + " -o " + (out / "scene.glb").string(), "scene.glb");
+    {
+        nlohmann::json diffuse = readJson(bake / "diffuse.json");
+        diffuse["sh"]["irradiance"].erase(8);
+        std::ofstream(bake / "diffuse.json") << diffuse.dump();
+    }
+    expectRefused("gltf " + bake.string() + " -o " + target.string(), "sh.irradiance needs 9 entries");
+    fs::remove(bake / "diffuse.json");
+    expectRefused("gltf " + bake.string() + " -o " + target.string(), "diffuse.json");
+    fs::resize_file(bake / "specular.ktx2", 100);
+    expectRefused("gltf " + bake.string() + " -o " + target.string(), "specular.ktx2");
+    fs::remove_all(bake);
+    fs::remove_all(out);
+}
