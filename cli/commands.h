@@ -16,5 +16,6 @@ Action addDiffuseCommand(CLI::App& app);
 Action addInspectCommand(CLI::App& app);
 Action addCalibrateCommand(CLI::App& app);
 Action addPreviewCommand(CLI::App& app);
+Action addAccuracyCommand(CLI::App& app);
 
 } // namespace ibl::cli

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addInspectCommand(app));
     add(ibl::cli::addCalibrateCommand(app));
     add(ibl::cli::addPreviewCommand(app));
+    add(ibl::cli::addAccuracyCommand(app));
 
     try {
         app.parse(argc, argv);
