@@ -123,6 +123,8 @@ Action addAccuracyCommand(CLI::App& app) {
         printStage(run.stages.back());
         run.stages.push_back(measureSpecular(plan, load, o->repeats, executor));
         printStage(run.stages.back());
+        run.stages.push_back(measureSpecularConvergence(plan, load, o->repeats, executor));
+        printStage(run.stages.back());
         for (AccuracyStage& stage : measureDiffuse(plan, env.cube, o->repeats, executor)) {
             run.stages.push_back(std::move(stage));
             printStage(run.stages.back());

@@ -25,6 +25,9 @@ SweepPlan SweepPlan::quick() {
     p.specularSizes = {16};
     p.specularSamples = {16, 64, 256, 1024};
     p.specularBiases = {-0.5f, 0.0f};
+    p.convergenceFaceSize = 32;
+    p.convergedSamples = 4096;
+    p.convergenceSamples = {32, 128, 512};
     p.irradianceFaceSize = 8;
     p.irradianceSamples = {32, 128, 512};
     p.runtimeRoughness = {0.0f, 0.5f, 1.0f};
@@ -215,6 +218,55 @@ AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int
                 }
                 stage.settings.push_back(std::move(s));
             }
+    }
+    markParetoFront(stage);
+    return stage;
+}
+
+AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader& load, int repeats,
+                                         const Executor& executor) {
+    const int size = plan.convergenceFaceSize;
+    AccuracyStage stage;
+    stage.name = "specular-converged";
+    stage.title = format("Specular LD chain at %d px (vs converged)", size);
+    stage.knobs = {"faceSize", "samples"};
+    stage.reference =
+        format("the same chain baked with %u samples per texel (self-convergence: the brute force "
+               "is not affordable at %d px; what it shows is the sampling error, not the bias of "
+               "the pre-filtered lookups)",
+               plan.convergedSamples, size);
+    stage.errorMetric =
+        "worst level's relative mean absolute error against the converged chain, levels m >= 1";
+    stage.maxErrorMetric = "largest |level - converged| of any texel and channel over that channel's mean, "
+                           "worst level";
+    stage.energyErrorMetric =
+        "|sum (level - converged) solid angle| / sum converged solid angle, worst level";
+    stage.timeMeaning = "bakeSpecular (every level)";
+    const CubeMap source = load(size);
+    SpecularSettings converged;
+    converged.samples = plan.convergedSamples;
+    const CubeMapChain reference = bakeSpecular(source, converged, executor);
+    const auto presets = specularPresets();
+    for (std::uint32_t samples : withPresets(plan.convergenceSamples, presets)) {
+        SpecularSettings settings;
+        settings.samples = samples;
+        CubeMapChain chain;
+        MeasuredSetting s;
+        setTimes(s, timeRuns(repeats, [&] { chain = bakeSpecular(source, settings, executor); }));
+        s.label = format("%d px, %u spp", size, samples);
+        s.knobs = {{"faceSize", std::to_string(size)}, {"samples", std::to_string(samples)}};
+        s.preset = presetOf(samples, presets);
+        for (std::size_t m = 1; m < chain.levels.size(); ++m) {
+            CubeErrors e = compareCubes(chain.levels[m], reference.levels[m]);
+            s.partErrors.emplace_back(
+                format("L%zu r=%.2f", m,
+                       perceptualRoughnessForLevel(int(m), int(chain.levels.size()), settings.mapping)),
+                e.relativeMeanAbs);
+            s.error = std::max(s.error, e.relativeMeanAbs);
+            s.maxError = std::max(s.maxError, e.maxRelativeToMean);
+            s.energyError = std::max(s.energyError, e.energy);
+        }
+        stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);
     return stage;

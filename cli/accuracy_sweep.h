@@ -26,6 +26,11 @@ struct SweepPlan {
     std::vector<int> specularSizes{32, 64};
     std::vector<std::uint32_t> specularSamples{16, 32, 64, 128, 256, 512, 1024, 2048};
     std::vector<float> specularBiases{-1.0f, -0.5f, 0.0f, 0.5f};
+    // Specular at the size bakes ship (iblbake specular's default --size), where the brute force is not
+    // affordable: against the same chain at convergedSamples (self-convergence, stated as such).
+    int convergenceFaceSize = 256;
+    std::uint32_t convergedSamples = 8192;
+    std::vector<std::uint32_t> convergenceSamples{32, 64, 128, 256, 512, 1024, 2048};
     // Irradiance cube (and the SH's irradiance) at this face size.
     int irradianceFaceSize = 32;
     std::vector<std::uint32_t> irradianceSamples{32, 64, 128, 256, 512, 1024, 2048, 4096};
@@ -45,6 +50,8 @@ using CubeLoader = std::function<CubeMap(int faceSize)>;
 AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& executor);
 AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int repeats,
                               const Executor& executor);
+AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader& load, int repeats,
+                                         const Executor& executor);
 // The SH and the irradiance cube share their reference (referenceIrradianceCube).
 std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& source, int repeats,
                                           const Executor& executor);

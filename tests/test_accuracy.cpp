@@ -98,7 +98,8 @@ TEST_F(QuickReport, EveryStageHasFiniteNonNegativeErrorsAndPositiveTimes) {
             EXPECT_EQ(setting["timesMs"].size(), 3u) << setting["label"];
         }
     }
-    EXPECT_EQ(names, (std::set<std::string>{"dfg", "specular", "sh", "irradiance", "runtime"}));
+    EXPECT_EQ(names, (std::set<std::string>{"dfg", "specular", "specular-converged", "sh", "irradiance",
+                                            "runtime"}));
     // Every level of the specular chain and every roughness column of the runtime is reported.
     for (const nlohmann::json& setting : stage("specular")["settings"])
         EXPECT_EQ(setting["partErrors"].size(), 4u); // 16 px source: levels 1..4
@@ -157,12 +158,13 @@ void expectFallingWithSamples(const nlohmann::json& stage) {
 
 TEST_F(QuickReport, SpecularDfgAndIrradianceErrorsFallAsSamplesIncrease) {
     expectFallingWithSamples(stage("specular"));
+    expectFallingWithSamples(stage("specular-converged"));
     expectFallingWithSamples(stage("dfg"));
     expectFallingWithSamples(stage("irradiance"));
 }
 
 TEST_F(QuickReport, PresetsAndParetoFrontAreMarked) {
-    for (const char* name : {"specular", "irradiance", "runtime"}) {
+    for (const char* name : {"specular", "specular-converged", "irradiance", "runtime"}) {
         std::set<std::string> presets;
         for (const nlohmann::json& setting : stage(name)["settings"])
             if (!setting["preset"].is_null()) presets.insert(setting["preset"].get<std::string>());
