@@ -20,5 +20,6 @@ Action addPlanCommand(CLI::App& app);
 Action addBakeCommand(CLI::App& app);
 Action addGltfCommand(CLI::App& app);
 Action addExportShCommand(CLI::App& app);
+Action addAccuracyCommand(CLI::App& app);
 
 } // namespace ibl::cli

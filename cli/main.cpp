@@ -48,6 +48,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addBakeCommand(app));
     add(ibl::cli::addGltfCommand(app));
     add(ibl::cli::addExportShCommand(app));
+    add(ibl::cli::addAccuracyCommand(app));
 
     try {
         app.parse(argc, argv);

@@ -1,0 +1,384 @@
+#include "accuracy_sweep.h"
+
+#include <iblbake/dfg_lut.h>
+#include <iblbake/dfg_reference.h>
+#include <iblbake/error_metrics.h>
+#include <iblbake/irradiance.h>
+#include <iblbake/sh.h>
+#include <iblbake/specular.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+namespace ibl::cli {
+
+SweepPlan SweepPlan::quick() {
+    SweepPlan p;
+    p.sourceFaceSize = 16;
+    p.dfgReferenceSize = 9;
+    p.dfgReferenceSamples = 4096;
+    p.dfgSizes = {8, 16, 32};
+    p.dfgSamples = {16, 64, 256};
+    p.specularSizes = {16};
+    p.specularSamples = {16, 64, 256, 1024};
+    p.specularBiases = {-0.5f, 0.0f};
+    p.convergenceFaceSize = 32;
+    p.convergedSamples = 4096;
+    p.convergenceSamples = {32, 128, 512};
+    p.irradianceFaceSize = 8;
+    p.irradianceSamples = {32, 128, 512};
+    p.runtimeRoughness = {0.0f, 0.5f, 1.0f};
+    p.runtimeGrid = 3;
+    p.runtimeReferenceSamples = 32;
+    return p;
+}
+
+std::vector<double> timeRuns(int repeats, const std::function<void()>& work) {
+    std::vector<double> times;
+    for (int i = 0; i < repeats; ++i) {
+        auto start = std::chrono::steady_clock::now();
+        work();
+        times.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    return times;
+}
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+namespace {
+
+void setTimes(MeasuredSetting& s, std::vector<double> times) {
+    s.timesMs = std::move(times);
+    s.timeMs = median(s.timesMs);
+}
+
+std::string format(const char* pattern, auto... values) {
+    char text[512];
+    std::snprintf(text, sizeof text, pattern, values...);
+    return text;
+}
+
+// The preset sample counts of the specular chain and the irradiance cube, from the library's presets, so
+// that the sweep always contains them.
+std::vector<std::pair<Quality, std::uint32_t>> specularPresets() {
+    std::vector<std::pair<Quality, std::uint32_t>> out;
+    for (Quality q : {Quality::Draft, Quality::Production, Quality::Reference}) {
+        SpecularSettings s;
+        s.quality = q;
+        out.emplace_back(q, samplesFor(s));
+    }
+    return out;
+}
+
+std::vector<std::pair<Quality, std::uint32_t>> irradiancePresets() {
+    std::vector<std::pair<Quality, std::uint32_t>> out;
+    for (Quality q : {Quality::Draft, Quality::Production, Quality::Reference}) {
+        IrradianceSettings s;
+        s.quality = q;
+        out.emplace_back(q, irradianceSamplesFor(s));
+    }
+    return out;
+}
+
+// The sweep's values plus the presets', ascending.
+std::vector<std::uint32_t> withPresets(const std::vector<std::uint32_t>& sweep,
+                                       const std::vector<std::pair<Quality, std::uint32_t>>& presets) {
+    std::set<std::uint32_t> all(sweep.begin(), sweep.end());
+    for (const auto& [quality, samples] : presets)
+        all.insert(samples);
+    return {all.begin(), all.end()};
+}
+
+std::string presetOf(std::uint32_t samples, const std::vector<std::pair<Quality, std::uint32_t>>& presets) {
+    for (const auto& [quality, count] : presets)
+        if (count == samples) return qualityName(quality);
+    return "";
+}
+
+// Bilinear read of a LUT at (NoV, roughness) in [0, 1]^2 with texel centres at (i + 0.5) / N, clamped at the
+// edges: how a renderer samples it.
+glm::dvec3 sampleLut(const ImageRGBA& lut, double u, double v) {
+    const int n = lut.width;
+    const double x = std::clamp(u * n - 0.5, 0.0, n - 1.0), y = std::clamp(v * n - 0.5, 0.0, n - 1.0);
+    const int x0 = std::min(int(x), n - 1), y0 = std::min(int(y), n - 1);
+    const int x1 = std::min(x0 + 1, n - 1), y1 = std::min(y0 + 1, n - 1);
+    const double fx = x - x0, fy = y - y0;
+    auto at = [&](int i, int j) { return glm::dvec3(glm::vec3(lut.at(i, j))); };
+    return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) +
+           (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
+}
+
+} // namespace
+
+AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& executor) {
+    AccuracyStage stage;
+    stage.name = "dfg";
+    stage.title = "DFG / diffuse LUT";
+    stage.knobs = {"size", "samples"};
+    stage.reference = format("Frostbite Listing 18 in fp64 (iblbake/dfg_reference.h), %u samples, at the "
+                             "centres of a %ux%u grid over (NoV, roughness); each LUT is read bilinearly "
+                             "there, as a renderer reads it",
+                             plan.dfgReferenceSamples, plan.dfgReferenceSize, plan.dfgReferenceSize);
+    stage.errorMetric = "relative mean absolute error: sum |LUT - reference| / sum |reference| over the grid "
+                        "and the three channels (DFG1, DFG2, Disney diffuse)";
+    stage.maxErrorMetric = "largest absolute error of any grid point and channel (the LUT's values are 0..1)";
+    stage.energyErrorMetric = "|sum (LUT - reference)| / sum reference over the grid and channels";
+    stage.timeMeaning = "bakeDfgLut";
+    const std::vector<glm::dvec3> reference =
+        referenceDfgGrid(plan.dfgReferenceSize, plan.dfgReferenceSamples);
+    const DfgSettings defaults;
+    bakeDfgLut(DfgSettings{8, 16}, executor); // builds the OpenCL program outside the timed runs
+    for (std::uint32_t size : plan.dfgSizes)
+        for (std::uint32_t samples : plan.dfgSamples) {
+            DfgSettings settings{size, samples};
+            ImageRGBA lut;
+            MeasuredSetting s;
+            setTimes(s, timeRuns(repeats, [&] { lut = bakeDfgLut(settings, executor); }));
+            s.label = format("%u px, %u spp", size, samples);
+            s.knobs = {{"size", std::to_string(size)}, {"samples", std::to_string(samples)}};
+            if (size == defaults.size && samples == defaults.sampleCount) s.preset = "default";
+            double absError = 0.0, absRef = 0.0, signedError = 0.0, sumRef = 0.0;
+            const std::uint32_t g = plan.dfgReferenceSize;
+            for (std::uint32_t k = 0; k < g * g; ++k) {
+                glm::dvec3 got = sampleLut(lut, (k % g + 0.5) / g, (k / g + 0.5) / g), want = reference[k];
+                for (int c = 0; c < 3; ++c) {
+                    absError += std::abs(got[c] - want[c]);
+                    absRef += std::abs(want[c]);
+                    signedError += got[c] - want[c];
+                    sumRef += want[c];
+                    s.maxError = std::max(s.maxError, std::abs(got[c] - want[c]));
+                }
+            }
+            s.error = absError / absRef;
+            s.energyError = std::abs(signedError) / sumRef;
+            stage.settings.push_back(std::move(s));
+        }
+    markParetoFront(stage);
+    return stage;
+}
+
+AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int repeats,
+                              const Executor& executor) {
+    AccuracyStage stage;
+    stage.name = "specular";
+    stage.title = "Specular LD chain";
+    stage.knobs = {"faceSize", "samples", "lodBias"};
+    stage.reference = "referenceSpecularLevel: every source texel, solid-angle weighted, fp64, per level";
+    stage.errorMetric = "worst level's relative mean absolute error: max over levels m >= 1 of sum |level - "
+                        "reference| / sum |reference| over texels and RGB";
+    stage.maxErrorMetric = "largest |level - reference| of any texel and channel over that channel's mean "
+                           "reference value, worst level";
+    stage.energyErrorMetric =
+        "|sum (level - reference) solid angle| / sum reference solid angle, worst level";
+    stage.timeMeaning = "bakeSpecular (every level; the source cube is ingested once per face size, untimed)";
+    const auto presets = specularPresets();
+    const std::vector<std::uint32_t> samplesList = withPresets(plan.specularSamples, presets);
+    const int presetSize = *std::max_element(plan.specularSizes.begin(), plan.specularSizes.end());
+    const float presetBias = SpecularSettings{}.lodBias;
+    bool warmed = false;
+    for (int size : plan.specularSizes) {
+        const CubeMap source = load(size);
+        SpecularSettings base;
+        const int levelCount = levelCountFor(size, base);
+        std::vector<CubeMap> references;
+        std::vector<float> roughness;
+        for (int m = 1; m < levelCount; ++m) {
+            roughness.push_back(perceptualRoughnessForLevel(m, levelCount, base.mapping));
+            references.push_back(referenceSpecularLevel(source, size >> m, roughness.back()));
+        }
+        if (!warmed) bakeSpecular(source, base, executor), warmed = true; // program build, untimed
+        for (float bias : plan.specularBiases)
+            for (std::uint32_t samples : samplesList) {
+                SpecularSettings settings;
+                settings.samples = samples;
+                settings.lodBias = bias;
+                CubeMapChain chain;
+                MeasuredSetting s;
+                setTimes(s, timeRuns(repeats, [&] { chain = bakeSpecular(source, settings, executor); }));
+                s.label = format("%d px, %u spp, bias %+.1f", size, samples, bias);
+                s.knobs = {{"faceSize", std::to_string(size)},
+                           {"samples", std::to_string(samples)},
+                           {"lodBias", format("%g", bias)}};
+                if (size == presetSize && bias == presetBias) s.preset = presetOf(samples, presets);
+                for (int m = 1; m < levelCount; ++m) {
+                    CubeErrors e = compareCubes(chain.levels[std::size_t(m)], references[std::size_t(m - 1)]);
+                    s.partErrors.emplace_back(format("L%d r=%.2f", m, roughness[std::size_t(m - 1)]),
+                                              e.relativeMeanAbs);
+                    s.error = std::max(s.error, e.relativeMeanAbs);
+                    s.maxError = std::max(s.maxError, e.maxRelativeToMean);
+                    s.energyError = std::max(s.energyError, e.energy);
+                }
+                stage.settings.push_back(std::move(s));
+            }
+    }
+    markParetoFront(stage);
+    return stage;
+}
+
+AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader& load, int repeats,
+                                         const Executor& executor) {
+    const int size = plan.convergenceFaceSize;
+    AccuracyStage stage;
+    stage.name = "specular-converged";
+    stage.title = format("Specular LD chain at %d px (vs converged)", size);
+    stage.knobs = {"faceSize", "samples"};
+    stage.reference =
+        format("the same chain baked with %u samples per texel (self-convergence: the brute force "
+               "is not affordable at %d px; what it shows is the sampling error, not the bias of "
+               "the pre-filtered lookups)",
+               plan.convergedSamples, size);
+    stage.errorMetric =
+        "worst level's relative mean absolute error against the converged chain, levels m >= 1";
+    stage.maxErrorMetric = "largest |level - converged| of any texel and channel over that channel's mean, "
+                           "worst level";
+    stage.energyErrorMetric =
+        "|sum (level - converged) solid angle| / sum converged solid angle, worst level";
+    stage.timeMeaning = "bakeSpecular (every level)";
+    const CubeMap source = load(size);
+    SpecularSettings converged;
+    converged.samples = plan.convergedSamples;
+    const CubeMapChain reference = bakeSpecular(source, converged, executor);
+    const auto presets = specularPresets();
+    for (std::uint32_t samples : withPresets(plan.convergenceSamples, presets)) {
+        SpecularSettings settings;
+        settings.samples = samples;
+        CubeMapChain chain;
+        MeasuredSetting s;
+        setTimes(s, timeRuns(repeats, [&] { chain = bakeSpecular(source, settings, executor); }));
+        s.label = format("%d px, %u spp", size, samples);
+        s.knobs = {{"faceSize", std::to_string(size)}, {"samples", std::to_string(samples)}};
+        s.preset = presetOf(samples, presets);
+        for (std::size_t m = 1; m < chain.levels.size(); ++m) {
+            CubeErrors e = compareCubes(chain.levels[m], reference.levels[m]);
+            s.partErrors.emplace_back(
+                format("L%zu r=%.2f", m,
+                       perceptualRoughnessForLevel(int(m), int(chain.levels.size()), settings.mapping)),
+                e.relativeMeanAbs);
+            s.error = std::max(s.error, e.relativeMeanAbs);
+            s.maxError = std::max(s.maxError, e.maxRelativeToMean);
+            s.energyError = std::max(s.energyError, e.energy);
+        }
+        stage.settings.push_back(std::move(s));
+    }
+    markParetoFront(stage);
+    return stage;
+}
+
+namespace {
+
+// Radiance SH with the bands above `order` set to zero.
+ShRgb truncated(ShRgb radiance, int order) {
+    for (int i = (order + 1) * (order + 1); i < 9; ++i)
+        radiance[std::size_t(i)] = glm::dvec3(0.0);
+    return radiance;
+}
+
+const char* kCubeErrorMetric = "relative mean absolute error: sum |cube - reference| / sum |reference| over "
+                               "texels and RGB";
+const char* kCubeMaxMetric =
+    "largest |cube - reference| of any texel and channel over that channel's mean reference value";
+const char* kCubeEnergyMetric = "|sum (cube - reference) solid angle| / sum reference solid angle";
+
+void setCubeErrors(MeasuredSetting& s, const CubeMap& cube, const CubeMap& reference) {
+    CubeErrors e = compareCubes(cube, reference);
+    s.error = e.relativeMeanAbs;
+    s.maxError = e.maxRelativeToMean;
+    s.energyError = e.energy;
+}
+
+} // namespace
+
+std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& source, int repeats,
+                                          const Executor& executor) {
+    const int n = plan.irradianceFaceSize;
+    const CubeMap reference = referenceIrradianceCube(source, n);
+    const std::string referenceText =
+        format("referenceIrradianceCube: every texel of the %d px source, "
+               "L max(0, n.l) omega in fp64 at each texel of a %d px cube (E/pi)",
+               source.faceSize, n);
+    AccuracyStage sh;
+    sh.name = "sh";
+    sh.title = "SH irradiance (order x window)";
+    sh.knobs = {"order", "window"};
+    sh.reference = referenceText;
+    sh.errorMetric = std::string(kCubeErrorMetric) + " of the SH irradiance evaluated at the texel centres";
+    sh.maxErrorMetric = kCubeMaxMetric;
+    sh.energyErrorMetric = kCubeEnergyMetric;
+    sh.timeMeaning = "bakeDiffuseSH (projection and window search)";
+    struct ShCase {
+        int order;
+        ShWindowSettings window;
+        std::string name;
+    };
+    std::vector<ShCase> cases;
+    for (int order = 0; order <= 2; ++order)
+        cases.push_back({order, {false, ShWindow::None, {}}, "none"});
+    for (ShWindow w : {ShWindow::Sloan, ShWindow::Hanning, ShWindow::Lanczos})
+        cases.push_back({2, {false, w, {}}, shWindowName(w)});
+    cases.push_back({2, {}, "auto"});
+    for (const ShCase& c : cases) {
+        DiffuseSH result;
+        MeasuredSetting s;
+        setTimes(s, timeRuns(repeats, [&] { result = bakeDiffuseSH(source, c.window); }));
+        s.label = format("L%d, window %s", c.order, c.name.c_str());
+        if (c.window.automatic && result.window.window != ShWindow::None)
+            s.label += format(" (%s)", shWindowName(result.window.window));
+        s.knobs = {{"order", std::to_string(c.order)}, {"window", c.name}};
+        if (c.order == 2 && c.window.automatic) s.preset = "default";
+        const ShRgb prescaled = prescaleIrradiance(truncated(result.radiance, c.order));
+        setCubeErrors(s, irradianceCubeFromSH(prescaled, n), reference);
+        sh.settings.push_back(std::move(s));
+    }
+    markParetoFront(sh);
+
+    AccuracyStage cube;
+    cube.name = "irradiance";
+    cube.title = "Irradiance cube (samples)";
+    cube.knobs = {"samples"};
+    cube.reference = referenceText;
+    cube.errorMetric = kCubeErrorMetric;
+    cube.maxErrorMetric = kCubeMaxMetric;
+    cube.energyErrorMetric = kCubeEnergyMetric;
+    cube.timeMeaning = "bakeIrradianceCube (sampled method)";
+    const auto presets = irradiancePresets();
+    IrradianceSettings warm;
+    warm.faceSize = n;
+    bakeIrradianceCube(source, warm, executor); // program build, untimed
+    for (std::uint32_t samples : withPresets(plan.irradianceSamples, presets)) {
+        IrradianceSettings settings;
+        settings.faceSize = n;
+        settings.samples = samples;
+        CubeMap result;
+        MeasuredSetting s;
+        setTimes(s, timeRuns(repeats, [&] { result = bakeIrradianceCube(source, settings, executor); }));
+        s.label = format("%u spp", samples);
+        s.knobs = {{"samples", std::to_string(samples)}};
+        s.preset = presetOf(samples, presets);
+        setCubeErrors(s, result, reference);
+        cube.settings.push_back(std::move(s));
+    }
+    markParetoFront(cube);
+    return {sh, cube};
+}
+
+void markParetoFront(AccuracyStage& stage) {
+    for (MeasuredSetting& a : stage.settings) {
+        a.pareto = true;
+        for (const MeasuredSetting& b : stage.settings)
+            if (&a != &b && b.timeMs <= a.timeMs && b.error <= a.error &&
+                (b.timeMs < a.timeMs || b.error < a.error)) {
+                a.pareto = false;
+                break;
+            }
+    }
+}
+
+} // namespace ibl::cli
