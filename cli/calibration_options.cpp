@@ -60,10 +60,18 @@ void CalibrationOptions::addTo(CLI::App& command) {
                                             "take the detected sun out of the environment as a disk light");
     CLI::Option* json =
         command.add_option("--sun-json", sunJson, "where --extract-sun writes the sun's disk light (JSON)");
+    CLI::Option* maxSolidAngle =
+        command
+            .add_option("--sun-max-solid-angle", sunMaxSolidAngle,
+                        "largest bright core taken out as the disk (sr); above the default the detector "
+                        "also takes a compact area light (a studio softbox: 7e-3 sr) as the disk")
+            ->capture_default_str()
+            ->check(CLI::Range(1e-6, 0.5));
     extract->needs(json);
     json->needs(extract);
-    extract->group("Sun extraction");
-    json->group("Sun extraction");
+    maxSolidAngle->needs(extract);
+    for (CLI::Option* o : {extract, json, maxSolidAngle})
+        o->group("Sun extraction");
 }
 
 bool CalibrationOptions::anySource() const {
@@ -106,8 +114,10 @@ CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnv
         if (options.extractSun) {
             SunDetectSettings sunSettings = settings.sun;
             sunSettings.luminanceWeights = weights;
+            sunSettings.maxSolidAngle = options.sunMaxSolidAngle;
             const SunDetection sun = detectSun(env.cube, sunSettings);
             if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
+            out.withSun = env.cube;
             out.sun = extractSun(env.cube, sun, weights);
         }
     } catch (const Error& e) {

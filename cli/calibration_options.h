@@ -29,7 +29,8 @@ namespace ibl::cli {
 
 struct CalibrationOutcome {
     CalibrationRecord record;
-    std::optional<DiskLight> sun; // the extracted sun (with --extract-sun)
+    std::optional<DiskLight> sun;   // the extracted sun (with --extract-sun)
+    std::optional<CubeMap> withSun; // the calibrated cube before the extraction (with --extract-sun)
 
     // calibrationMetadata(record, prefix) plus prefix + "sun": "extracted: <one-line JSON>" or "kept in
     // the environment" (and prefix + "sunLight" = the light's JSON when extracted).
@@ -41,9 +42,11 @@ struct CalibrationOptions {
     bool radiometric = false;
     bool extractSun = false;
     std::string sunJson;
+    double sunMaxSolidAngle = SunDetectSettings{}.maxSolidAngle;
 
     // --scale, --ev100, --illuminance, --sun-illuminance, --sky-luminance, --radiometric (at most one: a
-    // second is a one-line parse error), --extract-sun and --sun-json (each needs the other).
+    // second is a one-line parse error), --extract-sun and --sun-json (each needs the other),
+    // --sun-max-solid-angle.
     void addTo(CLI::App& command);
     bool anySource() const;
     CalibrationSettings settings(const glm::dvec3& luminanceWeights) const; // throws ibl::Error on > 1 source

@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "common_options.h"
 
+#include <iblbake/calibration.h>
 #include <iblbake/error.h>
 #include <iblbake/gltf_ibl.h>
 #include <iblbake/ktx2.h>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -43,6 +45,36 @@ CubeMapChain chainFromKtx2(const fs::path& path, const Ktx2Image& ktx) {
         chain.levels.push_back(std::move(level));
     }
     return chain;
+}
+
+// The residual the bake took the sun out of, from a level 0 that kept it (iblbake.sunInLevel0): the same
+// detection (iblbake.sunMaxSolidAngle) on the same pixels, checked against the bake's sun.json.
+CubeMap residualLevel0(CubeMap level0, const Ktx2Image& ktx, const std::optional<DiskLight>& sun,
+                       const std::filesystem::path& ktxPath) {
+    auto value = [&](const char* key) {
+        auto it = ktx.keyValues.find(key);
+        return it == ktx.keyValues.end() ? std::string() : it->second;
+    };
+    if (!sun)
+        throw Error(ktxPath.string() + ": level 0 holds the extracted sun, but the bake has no sun.json");
+    const glm::dvec3 weights = workingLuminanceWeights(value("iblbake.colorSpace"));
+    SunDetectSettings settings;
+    settings.luminanceWeights = weights;
+    try {
+        if (std::string limit = value("iblbake.sunMaxSolidAngle"); !limit.empty())
+            settings.maxSolidAngle = std::stod(limit);
+    } catch (const std::exception&) {
+        throw Error(ktxPath.string() + ": iblbake.sunMaxSolidAngle is not a number");
+    }
+    const SunDetection detection = detectSun(level0, settings);
+    if (!detection.found)
+        throw Error(ktxPath.string() +
+                    ": level 0 holds the extracted sun, but it is not found again: " + detection.reason);
+    const DiskLight light = extractSun(level0, detection, weights);
+    if (glm::dot(light.direction, sun->direction) < std::cos(0.1 * 3.14159265358979 / 180.0) ||
+        std::abs(light.illuminance / sun->illuminance - 1.0) > 0.01)
+        throw Error(ktxPath.string() + ": the sun in level 0 is not the one in sun.json");
+    return level0;
 }
 
 } // namespace
@@ -85,6 +117,13 @@ Action addGltfCommand(CLI::App& app) {
                 throw Error((dir / "sun.json").string() + ": " + e.what());
             }
         }
+
+        // A bake whose level 0 kept the extracted sun (iblbake.sunInLevel0): the glTF carries the sun as a
+        // KHR light, so level 0 must be the residual. The same detection on the same pixels gives the bake's
+        // residual; the light it finds is checked against sun.json.
+        if (auto in0 = ktx.keyValues.find("iblbake.sunInLevel0");
+            in0 != ktx.keyValues.end() && in0->second == "true")
+            chain.levels.front() = residualLevel0(chain.levels.front(), ktx, scene.sun, ktxPath);
 
         // The extension maps its levels evenly to roughness 0..1; a linear bake already does, any other
         // is re-filtered from its level 0 (the unconvolved source) down to --min-face-size.

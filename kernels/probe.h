@@ -46,8 +46,12 @@ IBL_BEGIN_NAMESPACE
 #define IBL_RT_F90_FROM_F0 (1u << 10) // f90 = saturate(50 * 0.33 * (f0.r + f0.g + f0.b)) (Filament 5.6.2)
 #define IBL_RT_SH_OVER_PI (1u << 11)  // the SH evaluates to E / pi (Lambert folded in) instead of E
 #define IBL_RT_SUN_NORMALIZATION (1u << 12) // (alpha / alpha')^2 on the sun's representative-point GGX
-#define IBL_RT_SUN_QUADRATURE (1u << 14)    // sun specular integrated over the disk, not Listing 6's point
 #define IBL_RT_IRRADIANCE_CUBE (1u << 13)   // diffuse from the irradiance cube (E / pi) instead of the SH
+#define IBL_RT_SUN_QUADRATURE (1u << 14)    // sun specular integrated over the disk, not Listing 6's point
+// The distant LD chain's level 0 still holds the sun (the unconvolved source; the extraction's residual
+// from level 1 on): where the lookup reads level 0 with trilinear weight w0, the disk's specular gets 1 - w0,
+// so a mirror shows the sun's own pixels and every roughness counts the sun once.
+#define IBL_RT_SUN_IN_LEVEL0 (1u << 15)
 
 // One LD chain inside a float buffer that may hold several (local probes share one buffer).
 typedef struct {
@@ -436,9 +440,12 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_GLOBAL const
                             : v3scale(sunSpecularRepresentativePoint(p.sun, N, V, R, NoVc, alpha, f0, f90,
                                                                      flags & IBL_RT_SUN_NORMALIZATION),
                                       NoD);
-            out.specular = v3add(out.specular, v3(spec.x * energy.x * p.sun.color.x * p.sun.illuminance,
-                                                  spec.y * energy.y * p.sun.color.y * p.sun.illuminance,
-                                                  spec.z * energy.z * p.sun.color.z * p.sun.illuminance));
+            float sunWeight = p.sun.illuminance;
+            if (flags & IBL_RT_SUN_IN_LEVEL0)
+                sunWeight *= saturate(ldLodForRoughness(p.distant, perceptualRoughness));
+            out.specular = v3add(out.specular, v3(spec.x * energy.x * p.sun.color.x * sunWeight,
+                                                  spec.y * energy.y * p.sun.color.y * sunWeight,
+                                                  spec.z * energy.z * p.sun.color.z * sunWeight));
         }
     }
     return out;

@@ -117,6 +117,20 @@ inline ProbeSet distantSet(const CubeMap& cube, bool irradianceCube = false) {
     return set;
 }
 
+// The probe set of a bake with the sun extracted: residual LD chain whose level 0 keeps the sun (the full
+// cube, LdPyramid::sunInLevel0), SH and irradiance cube of the residual, the disk light.
+inline ProbeSet distantSetWithSun(const CubeMap& full, const CubeMap& residual, const SunDisk& sun) {
+    static Executor executor = openclOrCpu();
+    CubeMapChain chain = bakeSpecular(residual, SpecularSettings{}, executor);
+    chain.levels[0] = full;
+    LdPyramid ld = ldPyramidFromChain(chain, LdMapping::Frostbite);
+    ld.sunInLevel0 = true;
+    ProbeSet set(std::move(ld), dfgTableFromImage(dfgLut()), projectIrradianceSH(residual));
+    set.setIrradianceCube(bakeIrradianceCube(residual, IrradianceSettings{}, executor));
+    set.setSun(sun);
+    return set;
+}
+
 inline double relativeDifference(const glm::vec4& a, const glm::vec4& b, float floor) {
     double m = 0.0;
     for (int c = 0; c < 3; ++c)

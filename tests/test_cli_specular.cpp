@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -58,6 +59,25 @@ TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
     std::ifstream sun(dir / "sun.json");
     std::string text(std::istreambuf_iterator<char>(sun), {});
     EXPECT_NE(text.find("\"illuminanceLux\": 99999.99"), std::string::npos) << text;
+    // A calibrated sun (~1e9 cd/m2) does not fit half floats: level 0 is the residual, as every level.
+    EXPECT_EQ(ktx.keyValues.count("iblbake.sunInLevel0"), 0u);
+    // In 32-bit floats level 0 keeps it (the unconvolved source): the sun's pixels, far above the residual.
+    r = runCli("specular " + kSample + " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
+               "--extract-sun --sun-json " + (dir / "sun32.json").string() + " --format rgba32f -o " +
+               (dir / "env32.ktx2").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    ibl::Ktx2Image full = ibl::readKtx2(dir / "env32.ktx2");
+    EXPECT_EQ(full.keyValues.at("iblbake.sunInLevel0"), "true");
+    float peakFull = 0.0f, peakResidual = 0.0f;
+    for (int f = 0; f < 6; ++f)
+        for (std::size_t i = 0; i < full.levels[0][f].pixels.size(); ++i) {
+            peakFull = std::max(peakFull, full.levels[0][f].pixels[i].g);
+            peakResidual = std::max(peakResidual, ktx.levels[0][f].pixels[i].g);
+        }
+    EXPECT_GT(peakFull, 1000.0f * peakResidual);
+    for (std::size_t i = 0; i < full.levels[1][0].pixels.size(); ++i) // level 1 on: the residual's (half)
+        ASSERT_NEAR(full.levels[1][0].pixels[i].g, ktx.levels[1][0].pixels[i].g,
+                    1e-3f * std::abs(full.levels[1][0].pixels[i].g) + 1e-6f);
     // Two calibration sources: one line, non-zero, nothing written.
     CliRun two = runCli("specular " + kSample + " --size 8 --ev100 12 --illuminance 5 -o " +
                         (dir / "two.ktx2").string());

@@ -209,6 +209,32 @@ TEST(GltfExportLinear, LinearBakeIsExportedAsBaked) {
     fs::remove_all(out);
 }
 
+// In 32-bit floats the bake's level 0 keeps the extracted sun (iblbake.sunInLevel0); the glTF carries the
+// sun as the KHR light, so its first specular image must be the residual, not count the sun twice.
+TEST(GltfExportSunInLevel0, FirstImageIsTheResidual) {
+    const fs::path bake = ibl::test::makeBakeDir("gltf_sun_level0", "--mip-mapping linear --format rgba32f");
+    const fs::path out = ibl::test::freshTempDir("gltf_sun_level0_out");
+    const ibl::Ktx2Image ktx = ibl::readKtx2(bake / "specular.ktx2");
+    ASSERT_EQ(ktx.keyValues.at("iblbake.sunInLevel0"), "true");
+    CliRun r = runCli("gltf " + bake.string() + " -o " + (out / "scene.gltf").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    float peakLevel0 = 0.0f, peakLevel1 = 0.0f;
+    for (int f = 0; f < 6; ++f) {
+        for (const glm::vec4& p : ktx.levels[0][std::size_t(f)].pixels)
+            peakLevel0 = std::max({peakLevel0, p.r, p.g, p.b});
+        for (const glm::vec4& p : ktx.levels[1][std::size_t(f)].pixels)
+            peakLevel1 = std::max({peakLevel1, p.r, p.g, p.b});
+    }
+    // intensity = the brightest exported channel / 255: the residual's, far below the sun's pixels.
+    const nlohmann::json gltf = readJson(out / "scene.gltf");
+    const double exportedPeak =
+        255.0 * gltf["extensions"]["EXT_lights_image_based"]["lights"][0]["intensity"].get<double>();
+    EXPECT_LT(exportedPeak, 1e-2 * peakLevel0);
+    EXPECT_GT(exportedPeak, 0.5 * peakLevel1);
+    fs::remove_all(bake);
+    fs::remove_all(out);
+}
+
 TEST(GltfExportErrors, BadBakeDirectoriesFailWithOneLineAndNoOutput) {
     const fs::path bake = ibl::test::makeBakeDir("gltf_bad");
     const fs::path out = ibl::test::freshTempDir("gltf_bad_out");

@@ -21,7 +21,10 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
     auto it = image.keyValues.find("iblbake.roughnessMapping");
     try {
         if (it != image.keyValues.end()) mapping = parseLdMapping(it->second);
-        return ldPyramidFromChain(chain, mapping);
+        LdPyramid pyramid = ldPyramidFromChain(chain, mapping);
+        auto sun = image.keyValues.find("iblbake.sunInLevel0");
+        pyramid.sunInLevel0 = sun != image.keyValues.end() && sun->second == "true";
+        return pyramid;
     } catch (const Error& e) {
         throw Error(path.string() + ": " + e.what());
     }

@@ -159,6 +159,7 @@ RuntimeParams makeRuntimeParams(const ProbeSet& set, const RuntimeOptions& o, st
     if (o.sun && set.sun()) f |= IBL_RT_SUN;
     if (o.sunEnergyNormalization) f |= IBL_RT_SUN_NORMALIZATION;
     if (o.sunQuadrature) f |= IBL_RT_SUN_QUADRATURE;
+    if (set.distantLd().sunInLevel0) f |= IBL_RT_SUN_IN_LEVEL0;
     if (o.f90FromF0) f |= IBL_RT_F90_FROM_F0;
     if (set.sh().overPi) f |= IBL_RT_SH_OVER_PI;
     if (o.irradianceCube && set.hasIrradianceCube()) f |= IBL_RT_IRRADIANCE_CUBE;

@@ -47,6 +47,9 @@ LdMapping parseLdMapping(const std::string& text);
 struct LdPyramid {
     CubePyramidLayout layout{};
     LdMapping mapping = LdMapping::Frostbite;
+    // Level 0 is the source with the extracted sun still in it (KTX2 key "iblbake.sunInLevel0" = "true";
+    // kernels/probe.h IBL_RT_SUN_IN_LEVEL0): the sun's disk light then fades out where level 0 is read.
+    bool sunInLevel0 = false;
     std::vector<float> data;
 };
 
@@ -92,7 +95,8 @@ SunDisk sunDiskFrom(const Light& light) {
 }
 
 // Loaders for the baker's KTX2 outputs (no OIIO: baker/src/io/ktx2_reader.cpp). The LD chain's mapping
-// comes from its "iblbake.roughnessMapping" key (Frostbite when absent).
+// comes from its "iblbake.roughnessMapping" key (Frostbite when absent), sunInLevel0 from
+// "iblbake.sunInLevel0".
 LdPyramid loadLdKtx2(const std::filesystem::path& path);
 DfgTable loadDfgKtx2(const std::filesystem::path& path);
 // The baker's irradiance cube (`iblbake diffuse --irradiance-cube`: one level of E / pi).
