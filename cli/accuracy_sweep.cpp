@@ -66,26 +66,40 @@ std::string format(const char* pattern, auto... values) {
     return text;
 }
 
-// The preset sample counts of the specular chain and the irradiance cube, from the library's presets, so
-// that the sweep always contains them.
-std::vector<std::pair<Quality, std::uint32_t>> specularPresets() {
+// The preset sample counts of a stage (its Settings and samples-for function), from the library's presets,
+// so that the sweep always contains them.
+template <class Settings, class SamplesFor>
+std::vector<std::pair<Quality, std::uint32_t>> presetSamples(SamplesFor samplesFor) {
     std::vector<std::pair<Quality, std::uint32_t>> out;
     for (Quality q : {Quality::Draft, Quality::Production, Quality::Reference}) {
-        SpecularSettings s;
+        Settings s;
         s.quality = q;
         out.emplace_back(q, samplesFor(s));
     }
     return out;
 }
 
+std::vector<std::pair<Quality, std::uint32_t>> specularPresets() {
+    return presetSamples<SpecularSettings>([](const SpecularSettings& s) { return samplesFor(s); });
+}
+
 std::vector<std::pair<Quality, std::uint32_t>> irradiancePresets() {
-    std::vector<std::pair<Quality, std::uint32_t>> out;
-    for (Quality q : {Quality::Draft, Quality::Production, Quality::Reference}) {
-        IrradianceSettings s;
-        s.quality = q;
-        out.emplace_back(q, irradianceSamplesFor(s));
+    return presetSamples<IrradianceSettings>(
+        [](const IrradianceSettings& s) { return irradianceSamplesFor(s); });
+}
+
+// Levels m >= 1 of `chain` against reference(m): one part error per level, the worst level's figures.
+template <class Reference>
+void addLevelErrors(MeasuredSetting& s, const CubeMapChain& chain, MipMapping mapping, Reference reference) {
+    const int levelCount = int(chain.levels.size());
+    for (int m = 1; m < levelCount; ++m) {
+        CubeErrors e = compareCubes(chain.levels[std::size_t(m)], reference(m));
+        s.partErrors.emplace_back(
+            format("L%d r=%.2f", m, perceptualRoughnessForLevel(m, levelCount, mapping)), e.relativeMeanAbs);
+        s.error = std::max(s.error, e.relativeMeanAbs);
+        s.maxError = std::max(s.maxError, e.maxRelativeToMean);
+        s.energyError = std::max(s.energyError, e.energy);
     }
-    return out;
 }
 
 // The sweep's values plus the presets', ascending.
@@ -189,11 +203,9 @@ AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int
         SpecularSettings base;
         const int levelCount = levelCountFor(size, base);
         std::vector<CubeMap> references;
-        std::vector<float> roughness;
-        for (int m = 1; m < levelCount; ++m) {
-            roughness.push_back(perceptualRoughnessForLevel(m, levelCount, base.mapping));
-            references.push_back(referenceSpecularLevel(source, size >> m, roughness.back()));
-        }
+        for (int m = 1; m < levelCount; ++m)
+            references.push_back(referenceSpecularLevel(
+                source, size >> m, perceptualRoughnessForLevel(m, levelCount, base.mapping)));
         if (!warmed) bakeSpecular(source, base, executor), warmed = true; // program build, untimed
         for (float bias : plan.specularBiases)
             for (std::uint32_t samples : samplesList) {
@@ -208,14 +220,8 @@ AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int
                            {"samples", std::to_string(samples)},
                            {"lodBias", format("%g", bias)}};
                 if (size == presetSize && bias == presetBias) s.preset = presetOf(samples, presets);
-                for (int m = 1; m < levelCount; ++m) {
-                    CubeErrors e = compareCubes(chain.levels[std::size_t(m)], references[std::size_t(m - 1)]);
-                    s.partErrors.emplace_back(format("L%d r=%.2f", m, roughness[std::size_t(m - 1)]),
-                                              e.relativeMeanAbs);
-                    s.error = std::max(s.error, e.relativeMeanAbs);
-                    s.maxError = std::max(s.maxError, e.maxRelativeToMean);
-                    s.energyError = std::max(s.energyError, e.energy);
-                }
+                addLevelErrors(s, chain, settings.mapping,
+                               [&](int m) -> const CubeMap& { return references[std::size_t(m - 1)]; });
                 stage.settings.push_back(std::move(s));
             }
     }
@@ -256,16 +262,8 @@ AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader
         s.label = format("%d px, %u spp", size, samples);
         s.knobs = {{"faceSize", std::to_string(size)}, {"samples", std::to_string(samples)}};
         s.preset = presetOf(samples, presets);
-        for (std::size_t m = 1; m < chain.levels.size(); ++m) {
-            CubeErrors e = compareCubes(chain.levels[m], reference.levels[m]);
-            s.partErrors.emplace_back(
-                format("L%zu r=%.2f", m,
-                       perceptualRoughnessForLevel(int(m), int(chain.levels.size()), settings.mapping)),
-                e.relativeMeanAbs);
-            s.error = std::max(s.error, e.relativeMeanAbs);
-            s.maxError = std::max(s.maxError, e.maxRelativeToMean);
-            s.energyError = std::max(s.energyError, e.energy);
-        }
+        addLevelErrors(s, chain, settings.mapping,
+                       [&](int m) -> const CubeMap& { return reference.levels[std::size_t(m)]; });
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);
