@@ -18,6 +18,7 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -59,6 +60,16 @@ ImageRGBA readDfgLut(const fs::path& path) {
         lut.pixels[i] = glm::vec4(pixels[i * spec.nchannels], pixels[i * spec.nchannels + 1],
                                   pixels[i * spec.nchannels + 2], 1.0f);
     return lut;
+}
+
+// The "iblbake.calibration.factor" value of a bake's KTX2: a finite, positive number and nothing else.
+double calibrationFactorFrom(const std::string& text, const fs::path& file) {
+    double factor = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), factor);
+    if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(factor) || factor <= 0.0)
+        throw Error(file.string() + ": iblbake.calibration.factor " + quotedForMessage(text) +
+                    " is not a positive number");
+    return factor;
 }
 
 // The probe set of a bake directory as the README's first command writes it.
@@ -160,10 +171,11 @@ Action addPreviewCommand(CLI::App& app) {
         std::vector<glm::vec3> reference;
         if (!o->reference.empty()) {
             // The same calibration as the bake (its factor is in the KTX2), the full map (sun included).
-            Ktx2Image ktx = readKtx2(fs::path(o->bakeDir) / "specular.ktx2");
+            const fs::path specular = fs::path(o->bakeDir) / "specular.ktx2";
+            Ktx2Image ktx = readKtx2(specular);
             double factor = 1.0;
             if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())
-                factor = std::stod(it->second);
+                factor = calibrationFactorFrom(it->second, specular);
             IngestSettings ingest;
             ingest.sourceFaceSize = 128;
             SourceEnvironment env = ingestEnvironment({fs::path(o->reference)}, ingest);
