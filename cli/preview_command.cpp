@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -63,6 +64,16 @@ ImageRGBA readDfgLut(const fs::path& path) {
     return lut;
 }
 
+// The "iblbake.calibration.factor" value of a bake's KTX2: a finite, positive number and nothing else.
+double calibrationFactorFrom(const std::string& text, const fs::path& file) {
+    double factor = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), factor);
+    if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(factor) || factor <= 0.0)
+        throw Error(file.string() + ": iblbake.calibration.factor " + quotedForMessage(text) +
+                    " is not a positive number");
+    return factor;
+}
+
 // The probe set of a bake directory as the README's first command writes it.
 ProbeSet loadLooseBake(const fs::path& dir) {
     LdPyramid ld = loadLdKtx2(dir / "specular.ktx2");
@@ -103,7 +114,7 @@ LoadedBake loadBake(const fs::path& dir) {
     LoadedBake bake{loadLooseBake(dir), RuntimeOptions{}, 1.0};
     Ktx2Image ktx = readKtx2(dir / "specular.ktx2");
     if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())
-        bake.calibrationFactor = std::stod(it->second);
+        bake.calibrationFactor = calibrationFactorFrom(it->second, dir / "specular.ktx2");
     return bake;
 }
 

@@ -1,6 +1,11 @@
 // Damaged image files (truncated, bit-flipped; made here from good ones): the CLI answers each with
-// success or a one-line error and a non-zero exit, never a crash, a hang or output without an error.
+// success or a one-line error and a non-zero exit, never a crash, a hang (ctest TIMEOUT, tests/
+// CMakeLists.txt) or output without an error. KTX2 goes through every path that reads it.
 #include "cli_runner.h"
+
+#include <iblbake/error.h>
+#include <iblbake/ktx2.h>
+#include <iblbake/runtime.h>
 
 #include <gtest/gtest.h>
 
@@ -14,6 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using namespace ibl;
 using namespace ibl::test;
 
 std::vector<char> readBytes(const fs::path& path) {
@@ -81,6 +87,113 @@ TEST(DamagedInputs, TruncatedAndBitFlippedImagesNeverCrash) {
         }
     }
     EXPECT_EQ(cases, 33);
+    fs::remove_all(dir);
+}
+
+// A clean refusal of `input` by the CLI: exit 1, one line on stderr naming the file, `output` not written.
+void expectCleanRefusalOrSuccess(const CliRun& r, const std::string& input, const fs::path& output) {
+    ASSERT_TRUE(r.exitCode == 0 || r.exitCode == 1) << input << " exit " << r.exitCode << ": " << r.err;
+    if (r.exitCode == 0) {
+        EXPECT_TRUE(fs::exists(output)) << input;
+    } else {
+        EXPECT_EQ(lineCount(r.err), 1) << input << ": " << r.err;
+        EXPECT_NE(r.err.find(input), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(output)) << input;
+    }
+}
+
+// Damaged copies of a good KTX2: truncations at every structure boundary, random bit flips in the
+// metadata and anywhere.
+std::vector<std::vector<char>> damagedCopies(const std::vector<char>& good) {
+    std::vector<std::vector<char>> damaged;
+    for (std::size_t keep : {std::size_t(0), std::size_t(1), std::size_t(12), std::size_t(79),
+                             std::size_t(80), std::size_t(104), good.size() / 2, good.size() - 1})
+        damaged.emplace_back(good.begin(), good.begin() + std::ptrdiff_t(keep));
+    std::mt19937 random(4321);
+    for (int flips = 0; flips < 12; ++flips) {
+        std::vector<char> bytes = good;
+        const std::size_t limit = flips < 8 ? 400 : bytes.size(); // header, index, DFD and key/values
+        for (int k = 0; k < 4; ++k)
+            bytes[random() % limit] ^= char(1 << (random() % 8));
+        damaged.push_back(bytes);
+    }
+    return damaged;
+}
+
+TEST(DamagedInputs, DamagedKtx2IsRefusedByEveryReader) {
+    const fs::path dir = freshTempDir("damaged_ktx2");
+    const fs::path bake = dir / "bake";
+    fs::create_directories(bake);
+    const std::string sample = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
+    const fs::path good = dir / "good.ktx2";
+    ASSERT_EQ(
+        runCli("dfg --size 16 --samples 64 --backend cpu -o " + (bake / "dfg_lut.exr").string()).exitCode, 0);
+    ASSERT_EQ(runCli("diffuse " + sample + " --size 16 --quality draft --backend cpu -o " +
+                     (bake / "diffuse.json").string())
+                  .exitCode,
+              0);
+    ASSERT_EQ(runCli("specular " + sample + " --size 16 --quality draft --backend cpu --scale 2 -o " +
+                     good.string())
+                  .exitCode,
+              0);
+    const fs::path preview = dir / "preview.png";
+    const std::string previewArgs = " -o " + preview.string() + " --sphere-size 8 --backend cpu";
+    fs::copy_file(good, bake / "specular.ktx2");
+    ASSERT_EQ(runCli("preview " + bake.string() + previewArgs).exitCode, 0) << "the good bake must render";
+    fs::remove(preview);
+    fs::remove(dir / "preview.exr");
+
+    const std::vector<std::vector<char>> damaged = damagedCopies(readBytes(good));
+    int refused = 0;
+    for (std::size_t i = 0; i < damaged.size(); ++i) {
+        const fs::path input = dir / ("damaged_" + std::to_string(i) + ".ktx2");
+        writeBytes(input, damaged[i]);
+        // The runtime's loader: a probe chain or ibl::Error naming the file on one line, nothing else.
+        try {
+            loadLdKtx2(input);
+        } catch (const ibl::Error& e) {
+            ++refused;
+            const std::string message = e.what();
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+            EXPECT_NE(message.find(input.string()), std::string::npos) << message;
+        }
+        // `iblbake preview` on a bake directory holding it.
+        fs::copy_file(input, bake / "specular.ktx2", fs::copy_options::overwrite_existing);
+        expectCleanRefusalOrSuccess(runCli("preview " + bake.string() + previewArgs), "specular.ktx2",
+                                    preview);
+        fs::remove(preview);
+        fs::remove(dir / "preview.exr");
+        // `iblbake inspect` reads images through OpenImageIO, which has no KTX2 reader: always a refusal.
+        CliRun inspected = runCli("inspect " + input.string());
+        EXPECT_EQ(inspected.exitCode, 1) << inspected.err;
+        EXPECT_EQ(lineCount(inspected.err), 1) << inspected.err;
+        EXPECT_NE(inspected.err.find(input.string()), std::string::npos) << inspected.err;
+    }
+    // Every truncation and most flips in the metadata must be caught (flips in texel data may not be).
+    EXPECT_GE(refused, 8 + 4);
+
+    // Structurally valid files whose iblbake metadata is damaged: the loader and `preview --reference`
+    // (which reads the calibration factor) refuse them by name.
+    const Ktx2Image goodImage = readKtx2(good);
+    CubeMapChain chain;
+    for (const std::vector<ImageRGBA>& level : goodImage.levels) {
+        CubeMap cube(level[0].width);
+        for (int f = 0; f < 6; ++f)
+            cube.faces[f] = level[std::size_t(f)];
+        chain.levels.push_back(cube);
+    }
+    const std::pair<std::string, std::string> badValues[] = {
+        {"iblbake.roughnessMapping", "bogus\nsecond line"},
+        {"iblbake.calibration.factor", "nan"},
+        {"iblbake.calibration.factor", "-2"},
+        {"iblbake.calibration.factor", "1e999"},
+        {"iblbake.calibration.factor", "2 lux"}};
+    for (const auto& [key, value] : badValues) {
+        writeKtx2Cube(bake / "specular.ktx2", chain, Ktx2Format::RGBA16F, {{key, value}});
+        CliRun r = runCli("preview " + bake.string() + " --reference " + sample + previewArgs);
+        EXPECT_EQ(r.exitCode, 1) << key << " = " << value << ": " << r.err;
+        expectCleanRefusalOrSuccess(r, "specular.ktx2", preview);
+    }
     fs::remove_all(dir);
 }
 

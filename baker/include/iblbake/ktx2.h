@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -56,5 +57,8 @@ struct Ktx2Image {
 // formats above. Every structural field is validated against the specification and the file size before
 // use; damage of any kind gives ibl::Error "<file>: <problem>".
 Ktx2Image readKtx2(const std::filesystem::path& path);
+
+// The same for a file's bytes already in memory; `name` stands for the file in error messages.
+Ktx2Image parseKtx2(std::span<const std::uint8_t> bytes, const std::string& name);
 
 } // namespace ibl

@@ -17,7 +17,7 @@ LdMapping parseLdMapping(const std::string& text) {
     }
     if (name == "frostbite") return LdMapping::Frostbite;
     if (name == "linear") return LdMapping::Linear;
-    throw Error("LD roughness mapping '" + text + "' is neither frostbite nor linear");
+    throw Error("LD roughness mapping " + quotedForMessage(text) + " is neither frostbite nor linear");
 }
 
 LdPyramid ldPyramidFromChain(const CubeMapChain& chain, LdMapping mapping) {

@@ -1,6 +1,7 @@
 // KTX 2.0 reader for the formats of ktx2_format.h. A file is untrusted input: every offset and length is
 // checked against the file size (with 64-bit arithmetic that cannot overflow) before anything is read or
-// allocated, so the largest allocation is bounded by a small multiple of the file size.
+// allocated, so the largest allocation is bounded by a small multiple of the file size. The file is read
+// whole and parsed from memory, which is also the entry point of the fuzz target (fuzz/ktx2_reader.cpp).
 #include "iblbake/error.h"
 #include "iblbake/ktx2.h"
 #include "ktx2_format.h"
@@ -10,6 +11,7 @@
 #include <bit>
 #include <climits>
 #include <fstream>
+#include <span>
 
 namespace ibl {
 
@@ -21,7 +23,7 @@ using ktx2::FormatInfo;
 // Bounds-checked little-endian reads from a byte buffer; running past the end is a damaged file.
 class ByteSource {
   public:
-    ByteSource(const std::vector<std::uint8_t>& bytes, const std::string& name, const char* section)
+    ByteSource(std::span<const std::uint8_t> bytes, const std::string& name, const char* section)
         : bytes_(bytes), name_(name), section_(section) {}
     std::uint32_t u32() { return std::uint32_t(take(4)); }
     std::uint64_t u64() { return take(8); }
@@ -42,39 +44,31 @@ class ByteSource {
         pos_ += n;
         return v;
     }
-    const std::vector<std::uint8_t>& bytes_;
+    std::span<const std::uint8_t> bytes_;
     const std::string& name_;
     const char* section_;
     std::size_t pos_ = 0;
 };
 
-class InputFile {
-  public:
-    InputFile(const fs::path& path, std::string name) : name_(std::move(name)) {
-        std::error_code ec;
-        if (!fs::exists(path, ec)) throw Error(name_ + ": no such file");
-        if (!fs::is_regular_file(path, ec)) throw Error(name_ + ": not a regular file");
-        size_ = fs::file_size(path, ec);
-        if (ec) throw Error(name_ + ": cannot determine the file size: " + ec.message());
-        in_.open(path, std::ios::binary);
-        if (!in_) throw Error(name_ + ": cannot open for reading");
-    }
-    std::uint64_t size() const { return size_; }
+std::vector<std::uint8_t> readWholeFile(const fs::path& path, const std::string& name) {
+    std::error_code ec;
+    if (!fs::exists(path, ec)) throw Error(name + ": no such file");
+    if (!fs::is_regular_file(path, ec)) throw Error(name + ": not a regular file");
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (ec) throw Error(name + ": cannot determine the file size: " + ec.message());
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(name + ": cannot open for reading");
+    std::vector<std::uint8_t> bytes(size);
+    in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size));
+    if (!in || std::uintmax_t(in.gcount()) != size) throw Error(name + ": cannot read the file");
+    return bytes;
+}
 
-    // Reads [offset, offset + length); the caller has already checked that range against size().
-    std::vector<std::uint8_t> read(std::uint64_t offset, std::uint64_t length, const char* what) {
-        std::vector<std::uint8_t> bytes(length);
-        in_.seekg(std::streamoff(offset));
-        in_.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(length));
-        if (!in_ || std::uint64_t(in_.gcount()) != length) throw Error(name_ + ": cannot read the " + what);
-        return bytes;
-    }
-
-  private:
-    std::string name_;
-    std::ifstream in_;
-    std::uint64_t size_ = 0;
-};
+// The bytes [offset, offset + length) of the file; the caller has already checked that range.
+std::span<const std::uint8_t> slice(std::span<const std::uint8_t> file, std::uint64_t offset,
+                                    std::uint64_t length) {
+    return file.subspan(std::size_t(offset), std::size_t(length));
+}
 
 // True when [offset, offset + length) lies inside a file of `fileSize` bytes.
 bool inside(std::uint64_t offset, std::uint64_t length, std::uint64_t fileSize) {
@@ -91,7 +85,7 @@ struct LevelEntry {
     std::uint64_t byteOffset, byteLength, uncompressedByteLength;
 };
 
-Header parseHeader(const std::vector<std::uint8_t>& bytes, const std::string& name) {
+Header parseHeader(std::span<const std::uint8_t> bytes, const std::string& name) {
     if (!std::equal(ktx2::kIdentifier.begin(), ktx2::kIdentifier.end(), bytes.begin()))
         throw Error(name + ": not a KTX 2.0 file (wrong identifier)");
     ByteSource in(bytes, name, "header");
@@ -148,7 +142,7 @@ FormatInfo checkHeader(const Header& h, const std::string& name) {
 // (KTX 2.0 "Data Format Descriptor" restrictions; only the LINEAR qualifier bit may differ). Colour
 // primaries and alpha flags are informational; the transfer function must be linear, since the texels
 // are returned as linear values.
-void checkDfd(const std::vector<std::uint8_t>& bytes, const FormatInfo& info, const std::string& name) {
+void checkDfd(std::span<const std::uint8_t> bytes, const FormatInfo& info, const std::string& name) {
     const std::vector<std::uint32_t> expected = ktx2::dataFormatDescriptor(info.format);
     ByteSource in(bytes, name, "data format descriptor");
     if (in.u32() != bytes.size()) throw Error(name + ": dfdTotalSize does not match dfdByteLength");
@@ -177,7 +171,7 @@ void checkDfd(const std::vector<std::uint8_t>& bytes, const FormatInfo& info, co
 
 // KTX 2.0 "Key/Value Data": the entries must exactly fill kvdByteLength, keys must be non-empty,
 // NUL-terminated, sorted and unique.
-std::map<std::string, std::string> parseKeyValues(const std::vector<std::uint8_t>& bytes,
+std::map<std::string, std::string> parseKeyValues(std::span<const std::uint8_t> bytes,
                                                   const std::string& name) {
     std::map<std::string, std::string> result;
     ByteSource in(bytes, name, "key/value data");
@@ -194,7 +188,7 @@ std::map<std::string, std::string> parseKeyValues(const std::vector<std::uint8_t
         std::string value(nul + 1, last);
         if (!value.empty() && value.back() == '\0') value.pop_back();
         if (!result.empty() && !(previous < key))
-            throw Error(name + ": key/value data is not sorted by unique keys at " + key);
+            throw Error(name + ": key/value data is not sorted by unique keys at " + quotedForMessage(key));
         const std::size_t padded = (std::size_t(length) + 3) / 4 * 4;
         if (padded > in.remaining()) throw Error(name + ": key/value data ends inside an entry's padding");
         in.skip(padded);
@@ -246,11 +240,14 @@ glm::vec4 decodeTexel(const std::uint8_t* p, Ktx2Format format) {
 
 Ktx2Image readKtx2(const fs::path& path) {
     const std::string name = path.string();
-    InputFile file(path, name);
+    return parseKtx2(readWholeFile(path, name), name);
+}
+
+Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name) {
     const std::uint64_t fileSize = file.size();
     if (fileSize < ktx2::kHeaderBytes)
         throw Error(name + ": too short for a KTX 2.0 header (" + std::to_string(fileSize) + " bytes)");
-    const Header h = parseHeader(file.read(0, ktx2::kHeaderBytes, "header"), name);
+    const Header h = parseHeader(slice(file, 0, ktx2::kHeaderBytes), name);
     const FormatInfo info = checkHeader(h, name);
 
     const std::uint32_t numLevels = std::max<std::uint32_t>(1, h.levelCount);
@@ -258,9 +255,7 @@ Ktx2Image readKtx2(const fs::path& path) {
         ktx2::kHeaderBytes + std::uint64_t(ktx2::kLevelIndexEntryBytes) * numLevels;
     if (!inside(ktx2::kHeaderBytes, indexEnd - ktx2::kHeaderBytes, fileSize))
         throw Error(name + ": file ends inside the level index");
-    const std::vector<std::uint8_t> indexBytes =
-        file.read(ktx2::kHeaderBytes, indexEnd - ktx2::kHeaderBytes, "level index");
-    ByteSource index(indexBytes, name, "level index");
+    ByteSource index(slice(file, ktx2::kHeaderBytes, indexEnd - ktx2::kHeaderBytes), name, "level index");
     std::vector<LevelEntry> levels(numLevels);
     for (LevelEntry& e : levels)
         e = {index.u64(), index.u64(), index.u64()};
@@ -270,7 +265,7 @@ Ktx2Image readKtx2(const fs::path& path) {
     if (h.dfdByteOffset != indexEnd || h.dfdByteLength % 4 != 0 ||
         !inside(h.dfdByteOffset, h.dfdByteLength, fileSize))
         throw Error(name + ": data format descriptor does not follow the level index inside the file");
-    checkDfd(file.read(h.dfdByteOffset, h.dfdByteLength, "data format descriptor"), info, name);
+    checkDfd(slice(file, h.dfdByteOffset, h.dfdByteLength), info, name);
     std::uint64_t metadataEnd = std::uint64_t(h.dfdByteOffset) + h.dfdByteLength;
 
     Ktx2Image image;
@@ -279,7 +274,7 @@ Ktx2Image readKtx2(const fs::path& path) {
     } else {
         if (h.kvdByteOffset != metadataEnd || !inside(h.kvdByteOffset, h.kvdByteLength, fileSize))
             throw Error(name + ": key/value data does not follow the data format descriptor inside the file");
-        image.keyValues = parseKeyValues(file.read(h.kvdByteOffset, h.kvdByteLength, "key/value data"), name);
+        image.keyValues = parseKeyValues(slice(file, h.kvdByteOffset, h.kvdByteLength), name);
         metadataEnd += h.kvdByteLength;
     }
 
@@ -306,8 +301,7 @@ Ktx2Image readKtx2(const fs::path& path) {
     image.levelCount = h.levelCount;
     image.levels.resize(numLevels);
     for (std::uint32_t p = 0; p < numLevels; ++p) {
-        const std::vector<std::uint8_t> data =
-            file.read(levels[p].byteOffset, levels[p].byteLength, "image data");
+        const std::span<const std::uint8_t> data = slice(file, levels[p].byteOffset, levels[p].byteLength);
         const int width = int(std::max<std::uint32_t>(1, h.pixelWidth >> p));
         const int height = int(std::max<std::uint32_t>(1, h.pixelHeight >> p));
         const std::uint8_t* cursor = data.data();
