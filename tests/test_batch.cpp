@@ -153,6 +153,8 @@ TEST(Batch, ManifestErrorsNameTheKeyPath) {
               "b.json: items[0].faceSize: must be a power of two up to 4096");
     EXPECT_EQ(error(R"([{"hdri": "x.hdr"}, {"scene": "x.hdr"}])"),
               "b.json: items[1].id: 'x.hdr' is used by an earlier item");
+    EXPECT_EQ(error(R"([{"hdri": "a/x.hdr"}, {"hdri": "b/x.hdr"}])"),
+              "b.json: items[1].output: /base/x is also the output of items[0]");
     EXPECT_EQ(error(R"({"itemz": []})"), "b.json: itemz: unknown key");
     EXPECT_EQ(error(R"({"items": 3})"), "b.json: items: must be an array of items");
 
@@ -396,7 +398,8 @@ TEST(Batch, KilledAndRestartedFinishesTheRestWithoutRedoingFinishedItems) {
             EXPECT_EQ(s, "pending") << id;
 
     std::map<std::string, fs::path> outputOf;
-    for (const json& item : d.summary()["items"])
+    const json killedSummary = d.summary();
+    for (const json& item : killedSummary["items"])
         if (item.contains("output")) outputOf[item["id"]] = item["output"].get<std::string>();
     std::map<std::string, std::map<std::string, FileStamp>> before;
     for (const std::string& id : finished)

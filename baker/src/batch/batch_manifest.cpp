@@ -8,6 +8,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <set>
 
 namespace ibl {
@@ -104,8 +105,16 @@ BatchManifest parseBatchManifest(std::string_view text, const std::string& name,
     if (!items->is_array()) throw Error(name + ": items: must be an array of items");
     BatchManifest manifest{name, {}};
     std::set<std::string> ids;
+    std::map<fs::path, std::size_t> outputs; // HDRI items' output -> index: two bakes in one directory clash
     for (std::size_t i = 0; i < items->size(); ++i) {
         manifest.items.push_back(parseItem((*items)[i], i, name, base));
+        const BatchItem& item = manifest.items.back();
+        if (!item.isScene()) {
+            const auto [it, added] = outputs.emplace(item.output.lexically_normal(), i);
+            if (!added)
+                throw Error(name + ": items[" + std::to_string(i) + "].output: " + item.output.string() +
+                            " is also the output of items[" + std::to_string(it->second) + "]");
+        }
         if (!ids.insert(manifest.items.back().id).second)
             throw Error(name + ": items[" + std::to_string(i) + "].id: '" + manifest.items.back().id +
                         "' is used by an earlier item");
