@@ -12,9 +12,12 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <mutex>
+#include <optional>
 #include <thread>
 
 namespace ibl::cli {
@@ -88,9 +91,16 @@ class BatchRun {
         // One bake per worker at a time; each bakeScene makes its own Executor (its own OpenCL context and
         // queue), so parallel items share no OpenCL objects.
         std::atomic<std::size_t> next{0};
+        std::exception_ptr summaryFailure; // the summary file became unwritable: stop taking items
         auto worker = [&] {
-            for (std::size_t i; (i = next++) < mine.size();)
-                runItem(manifest_.items[mine[i]]);
+            try {
+                for (std::size_t i; (i = next++) < mine.size();)
+                    runItem(manifest_.items[mine[i]]);
+            } catch (...) {
+                next = mine.size();
+                std::lock_guard lock(mutex_);
+                if (!summaryFailure) summaryFailure = std::current_exception();
+            }
         };
         std::vector<std::thread> threads;
         for (int t = 1; t < std::min<int>(jobs_, int(mine.size())); ++t)
@@ -98,6 +108,7 @@ class BatchRun {
         worker();
         for (std::thread& t : threads)
             t.join();
+        if (summaryFailure) std::rethrow_exception(summaryFailure);
         writeSummary(true);
         progress_.event("done", {{"summary", summaryJson(true)}});
         return failed_;
