@@ -18,6 +18,7 @@ Action addCalibrateCommand(CLI::App& app);
 Action addPreviewCommand(CLI::App& app);
 Action addPlanCommand(CLI::App& app);
 Action addBakeCommand(CLI::App& app);
+Action addBatchCommand(CLI::App& app);
 Action addGltfCommand(CLI::App& app);
 Action addExportShCommand(CLI::App& app);
 Action addAccuracyCommand(CLI::App& app);

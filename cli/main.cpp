@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addPreviewCommand(app));
     add(ibl::cli::addPlanCommand(app));
     add(ibl::cli::addBakeCommand(app));
+    add(ibl::cli::addBatchCommand(app));
     add(ibl::cli::addGltfCommand(app));
     add(ibl::cli::addExportShCommand(app));
     add(ibl::cli::addAccuracyCommand(app));

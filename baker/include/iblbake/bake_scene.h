@@ -60,6 +60,17 @@ class ProgressSink {
 // every stage succeeded, the manifest last).
 BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress);
 
+// Whether scene.outputs.directory already holds a complete bake of this scene, found without baking: its
+// manifest.json parses, lists exactly the plan's stages with the keys the current inputs and settings give
+// (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
+// every product it lists holds the bytes of its recorded contentHash. Never throws.
+struct UpToDate {
+    bool upToDate = false;
+    std::string reason;                          // why not (the first reason found)
+    std::vector<std::filesystem::path> products; // when up to date: the products, manifest.json last
+};
+UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
+
 // The summary as JSON: {ok, error, backend, seconds, ran, cached, stages: [{id, kind, status, key, seconds,
 // products}], skipped: [...], products: [...], manifest}.
 nlohmann::json bakeSummaryJson(const BakeSummary& summary);

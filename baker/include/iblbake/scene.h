@@ -72,6 +72,10 @@ struct SceneOutputs {
     int dfgSize = 128;                    // DFG LUT texels per side
     std::string mipMapping = "frostbite"; // or linear
     std::string runtimeProfile;           // free text, kept in the manifest
+    // Diffuse from a baked irradiance cube (irradiance.ktx2, E/pi) besides the SH: keeps what L2 SH cannot
+    // (a compact light's irradiance, no ringing) at the cost of a cube lookup at run time.
+    bool irradianceCube = false;
+    int irradianceFaceSize = 32; // power of two
 };
 
 struct Scene {

@@ -68,6 +68,9 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
         sun.illuminance = light.at("illuminance").get<float>();
         out.set.setSun(sun);
     }
+    if (products.contains("irradiance")) // diffuse then reads the cube instead of the SH (runtime.h)
+        out.set.setIrradianceCube(
+            loadIrradianceKtx2(dir / products["irradiance"].at("file").get<std::string>()));
     for (const json& p : products.at("probes")) {
         LocalProbeDesc desc;
         desc.proxy = volume(p.at("proxy"));

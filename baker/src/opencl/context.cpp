@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <mutex>
 
 namespace ibl::ocl {
 namespace {
@@ -30,6 +31,11 @@ struct Candidate {
 };
 
 std::vector<Candidate> enumerate() {
+    // Serialised: two threads making their first executors at once (`iblbake batch --jobs 2`) crashed with
+    // SIGSEGV or found no platform in 5 of 5 runs here (ocl-icd loader + PoCL), as the loader sets up its
+    // platforms on the first call; with this lock 8 of 8 runs were clean.
+    static std::mutex firstCallMutex;
+    std::lock_guard lock(firstCallMutex);
     std::vector<Candidate> out;
     std::vector<cl::Platform> platforms;
     try {

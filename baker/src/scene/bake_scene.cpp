@@ -7,6 +7,7 @@
 #include "scene_manifest.h"
 #include "scene_stages.h"
 #include "stage_cache.h"
+#include "stage_keys.h"
 
 #include <chrono>
 #include <fstream>
@@ -22,21 +23,6 @@ namespace fs = std::filesystem;
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Everything a stage's files depend on: the tool version, its kind and settings, the content of the files
-// it reads, its dependencies' keys and, for kernel stages, the backend (OpenCL and CPU results may differ
-// in the last bits).
-std::string stageKey(const PlanStage& stage, const std::map<std::string, std::string>& inputHashes,
-                     const std::map<std::string, std::string>& keys, const std::string& backend) {
-    ContentHasher h;
-    h.add("iblbake " IBLBAKE_VERSION).add(stage.kind).add(stage.settings.dump());
-    for (const PlanInput& in : stage.inputs) // the name too: products record it (iblbake.source)
-        h.add(in.file.filename().string()).add(inputHashes.at(in.file.string()));
-    for (const std::string& dependency : stage.dependsOn)
-        h.add(keys.at(dependency));
-    h.add(stage.usesBackend ? backend : "no-backend");
-    return h.hex();
 }
 
 bool needsBackend(const Plan& plan) {
@@ -108,14 +94,7 @@ BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSi
     std::size_t current = 0;
     try {
         // Every input is read (hashed) before anything is written: a missing file fails the bake here.
-        std::map<std::string, std::string> inputHashes;
-        for (const PlanStage& s : plan.stages)
-            for (const PlanInput& in : s.inputs)
-                if (!inputHashes.count(in.file.string())) try {
-                        inputHashes[in.file.string()] = hashFile(in.file);
-                    } catch (const Error& e) {
-                        throw Error(scene.name + ": " + in.keyPath + ": " + e.what());
-                    }
+        const std::map<std::string, std::string> inputHashes = hashPlanInputs(scene, plan);
 
         std::optional<Executor> executor;
         summary.backend = "none";
@@ -127,11 +106,9 @@ BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSi
             summary.backend = backendName(executor->backend());
         }
 
-        std::map<std::string, std::string> keys;
-        for (std::size_t i = 0; i < plan.stages.size(); ++i) {
-            keys[plan.stages[i].id] = stageKey(plan.stages[i], inputHashes, keys, summary.backend);
-            summary.stages[i].key = keys[plan.stages[i].id];
-        }
+        const std::map<std::string, std::string> keys = planStageKeys(plan, inputHashes, summary.backend);
+        for (std::size_t i = 0; i < plan.stages.size(); ++i)
+            summary.stages[i].key = keys.at(plan.stages[i].id);
 
         const fs::path outputDirectory = scene.outputs.directory;
         std::error_code ec;

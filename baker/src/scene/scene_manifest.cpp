@@ -1,5 +1,6 @@
 #include "scene_manifest.h"
 
+#include "iblbake/irradiance.h"
 #include "iblbake/sun.h"
 #include "scene_stages.h"
 
@@ -14,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-json vec3(const glm::dvec3& v) {
+json vec3Json(const glm::dvec3& v) {
     return json::array({v.x, v.y, v.z});
 }
 
@@ -34,9 +35,15 @@ json volumeJson(const SceneVolume& v) {
     const bool sphere = v.shape == SceneVolume::Shape::Sphere;
     const std::array<glm::dvec3, 3> r = axes(sphere ? glm::dvec3(0.0) : v.rotationDegrees);
     return {{"shape", sphere ? "sphere" : "box"},
-            {"center", vec3(v.center)},
-            {"extent", sphere ? vec3(glm::dvec3(v.radius)) : vec3(v.halfExtents)},
-            {"axes", {vec3(r[0]), vec3(r[1]), vec3(r[2])}}};
+            {"center", vec3Json(v.center)},
+            {"extent", sphere ? vec3Json(glm::dvec3(v.radius)) : vec3Json(v.halfExtents)},
+            {"axes", {vec3Json(r[0]), vec3Json(r[1]), vec3Json(r[2])}}};
+}
+
+std::uint32_t irradianceSamples(const std::string& quality) {
+    IrradianceSettings settings;
+    settings.quality = parseQuality(quality);
+    return irradianceSamplesFor(settings);
 }
 
 json ldProduct(const PlanStage& stage, const std::string& file, const std::string& hash) {
@@ -93,14 +100,27 @@ json buildManifest(const ManifestInputs& in) {
               {"window", diffuse.at("sh").at("window")}}},
             {"contentHash", in.productHashes.at("diffuse.json")}};
     }
+    if (stages.count("irradiance")) {
+        const json& s = stages["irradiance"]->settings;
+        products["irradiance"] = {
+            {"file", "irradiance.ktx2"},
+            {"faceSize", s.at("faceSize")},
+            {"format", s.at("ktx2Format")},
+            {"method", "sampled"},
+            {"samples", irradianceSamples(s.at("quality").get<std::string>())},
+            {"normalization",
+             "E/pi: each texel stores the cosine-weighted mean radiance; irradiance E = pi x "
+             "value"},
+            {"contentHash", in.productHashes.at("irradiance.ktx2")}};
+    }
     if (stages.count("sun")) {
         const DiskLight light = diskLightFromJson(calibration.at("sunLight").dump());
         products["sun"] = {
             {"file", "sun.json"},
             {"light",
-             {{"direction", vec3(light.direction)},
+             {{"direction", vec3Json(light.direction)},
               {"angularRadius", light.angularRadius},
-              {"color", vec3(light.color)},
+              {"color", vec3Json(light.color)},
               {"illuminance", light.illuminance},
               {"meaning", "disk light toward direction, angular radius in radians, illuminance "
                           "perpendicular to it (lux when calibrated) times color"}}},
@@ -113,13 +133,13 @@ json buildManifest(const ManifestInputs& in) {
         const std::string file = it->second->products.at(0);
         json probe = ldProduct(*it->second, file, in.productHashes.at(file));
         probe["name"] = p.name;
-        probe["position"] = vec3(p.position);
+        probe["position"] = vec3Json(p.position);
         probe["proxy"] = volumeJson(p.proxy);
         probe["influence"] = volumeJson(p.influence.value_or(p.proxy));
         const std::array<glm::dvec3, 3> r =
             axes(p.proxy.shape == SceneVolume::Shape::Box ? p.proxy.rotationDegrees : glm::dvec3(0.0));
         const glm::dvec3 d = p.position - p.proxy.center;
-        probe["captureOffset"] = vec3(glm::dvec3(glm::dot(d, r[0]), glm::dot(d, r[1]), glm::dot(d, r[2])));
+        probe["captureOffset"] = vec3Json(glm::dvec3(glm::dot(d, r[0]), glm::dot(d, r[1]), glm::dot(d, r[2])));
         probe["fadeDistance"] = p.fadeDistance;
         probes.push_back(std::move(probe));
     }

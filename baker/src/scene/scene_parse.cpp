@@ -300,6 +300,9 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     o.dfgSize = r.integer("dfgSize", 128, 1, 1024);
     o.mipMapping = r.choice("mipMapping", "frostbite", {"frostbite", "linear"});
     o.runtimeProfile = r.string("runtimeProfile", "");
+    o.irradianceCube = r.boolean("irradianceCube", false);
+    o.irradianceFaceSize = r.integer("irradianceFaceSize", 32, 1, 1024);
+    if (!isPowerOfTwo(o.irradianceFaceSize)) fail(r.key("irradianceFaceSize"), "must be a power of two");
     r.finish();
     return o;
 }

@@ -132,6 +132,18 @@ Plan planScene(const Scene& scene) {
         plan.stages.push_back(std::move(s));
     }
 
+    // Diffuse is always needed (every material has a diffuse lobe); the cube only when the scene asks.
+    if (o.irradianceCube) {
+        PlanStage s{"irradiance", "irradiance-cube", {lightSource}, {}, {}, {"irradiance.ktx2"}, true, ""};
+        s.settings = {
+            {"faceSize", o.irradianceFaceSize}, {"quality", o.quality}, {"ktx2Format", o.ktx2Format}};
+        s.reason = "outputs.irradianceCube: diffuse from a cube of E/pi (sampled, bright texels exact)";
+        plan.stages.push_back(std::move(s));
+    } else {
+        plan.skipped.push_back({"irradiance", "irradiance-cube",
+                                "outputs.irradianceCube is false: the SH carry the diffuse light"});
+    }
+
     if (scene.probes.empty()) {
         plan.skipped.push_back({"probe:*", "probe-ld", "the scene has no local probes"});
     } else {

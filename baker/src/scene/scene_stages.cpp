@@ -4,6 +4,7 @@
 #include "iblbake/dfg_lut.h"
 #include "iblbake/error.h"
 #include "iblbake/ingest.h"
+#include "iblbake/irradiance.h"
 #include "iblbake/ktx2.h"
 #include "iblbake/sh.h"
 #include "iblbake/specular.h"
@@ -251,6 +252,35 @@ void runDiffuse(const StageContext& c) {
     writeJson(c.outputDirectory / "diffuse.json", doc);
 }
 
+// The same cube and key/values as `iblbake diffuse --irradiance-cube` (cli/diffuse_command.cpp).
+void runIrradiance(const StageContext& c) {
+    const json& s = c.stage.settings;
+    const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
+    const json calibration = readJsonFile(from / kCalibrationFile);
+    IrradianceSettings settings;
+    settings.faceSize = s.at("faceSize").get<int>();
+    settings.quality = parseQuality(s.at("quality").get<std::string>());
+    settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
+    CubeMapChain chain;
+    chain.levels.push_back(bakeIrradianceCube(readCube(from / kCubeFile), settings, *c.executor));
+    Ktx2KeyValues kv = {
+        {"iblbake.product", "irradiance"},
+        {"iblbake.irradianceNormalization",
+         "E/pi: each texel stores (1/pi) integral L(l) max(0,n.l) dl, the cosine-weighted mean radiance "
+         "(Frostbite Listing 20's LD of a Lambert lobe); irradiance E = pi x value"},
+        {"iblbake.method",
+         "sampled: cosine importance sampling, " + std::to_string(settings.samples) +
+             " samples/texel, pre-filtered lookups (Frostbite Listing 20 + Listing 19 LOD), "
+             "bright texels integrated exactly"},
+        {"iblbake.colorSpace", calibration.at("colorSpace").get<std::string>()}};
+    if (calibration.contains("source"))
+        kv.emplace_back("iblbake.source", calibration["source"].at("file").get<std::string>());
+    for (auto& entry : calibrationKeyValues(calibration))
+        kv.push_back(entry);
+    writeKtx2Cube(c.outputDirectory / "irradiance.ktx2", chain,
+                  ktx2Format(s.at("ktx2Format").get<std::string>()), kv);
+}
+
 void runProbe(const StageContext& c) {
     const json& s = c.stage.settings;
     forInput(c, [&] {
@@ -297,6 +327,7 @@ void runStage(const StageContext& c) {
     if (kind == "specular-ld") return runSpecular(c);
     if (kind == "diffuse-sh") return runDiffuse(c);
     if (kind == "probe-ld") return runProbe(c);
+    if (kind == "irradiance-cube") return runIrradiance(c);
     throw Error("scene: unknown stage kind '" + kind + "'");
 }
 

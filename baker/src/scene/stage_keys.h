@@ -1,0 +1,24 @@
+// Cache keys of a plan's stages (README "Cache"): shared by bakeScene and the up-to-date check, so that
+// both agree on what "the same inputs" means.
+#pragma once
+
+#include "iblbake/scene.h"
+#include "iblbake/scene_plan.h"
+
+#include <map>
+#include <string>
+
+namespace ibl {
+
+// The content hash of every file the plan reads, by path. Throws ibl::Error "<scene>: <key path>: ..." for
+// a file that cannot be read.
+std::map<std::string, std::string> hashPlanInputs(const Scene& scene, const Plan& plan);
+
+// Stage id -> key: XXH3-128 of the tool version, the stage kind and settings, the name and content of every
+// file it reads, its dependencies' keys and, for kernel stages, `backend` ("opencl" or "cpu": their results
+// may differ in the last bits).
+std::map<std::string, std::string> planStageKeys(const Plan& plan,
+                                                 const std::map<std::string, std::string>& inputHashes,
+                                                 const std::string& backend);
+
+} // namespace ibl
