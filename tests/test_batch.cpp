@@ -4,6 +4,7 @@
 // rest without touching finished items; a failing item fails the batch (one line in the summary) while the
 // others complete; manifest errors name the key path.
 #include "cli_runner.h"
+#include "scene_test_support.h"
 
 #include <iblbake/batch.h>
 #include <iblbake/error.h>
@@ -28,33 +29,6 @@ using nlohmann::json;
 using namespace ibl::test;
 
 namespace {
-
-// A 64 x 32 lat-long sky gradient whose colour depends on `seed`.
-void writeLatLong(const fs::path& file, float seed) {
-    const int w = 64, h = 32;
-    std::vector<float> pixels(std::size_t(w) * h * 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float* p = &pixels[(std::size_t(y) * w + x) * 3];
-            p[0] = 0.2f + seed * float(x) / w;
-            p[1] = 0.5f + 0.5f * float(h - y) / h;
-            p[2] = 1.0f - 0.5f * float(y) / h;
-        }
-    auto out = OIIO::ImageOutput::create(file.string());
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    out->close();
-}
-
-std::string readBytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void writeText(const fs::path& file, const std::string& text) {
-    std::ofstream(file) << text;
-}
 
 json smallOutputs(const std::string& directory) {
     return {{"directory", directory}, {"quality", "draft"}, {"faceSize", 16}, {"dfgSize", 16}};

@@ -3,6 +3,7 @@
 // fail with one line naming the key path and leave earlier outputs byte for byte; outputs are deterministic;
 // the runtime loads the manifest and shades like the probe set built by hand from the products.
 #include "cli_runner.h"
+#include "scene_test_support.h"
 
 #include <iblbake/bake_scene.h>
 #include <iblbake/ktx2.h>
@@ -32,33 +33,6 @@ using namespace ibl::test;
 namespace {
 
 const std::string kSample = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
-
-// A 64 x 32 lat-long: a sky gradient whose colour depends on `seed`.
-void writeLatLong(const fs::path& file, float seed) {
-    const int w = 64, h = 32;
-    std::vector<float> pixels(std::size_t(w) * h * 3);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) {
-            float* p = &pixels[(std::size_t(y) * w + x) * 3];
-            p[0] = 0.2f + seed * float(x) / w;
-            p[1] = 0.5f + 0.5f * float(h - y) / h;
-            p[2] = 1.0f - 0.5f * float(y) / h;
-        }
-    auto out = OIIO::ImageOutput::create(file.string());
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    out->close();
-}
-
-std::string readBytes(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-void writeText(const fs::path& file, const std::string& text) {
-    std::ofstream(file) << text;
-}
 
 json probeJson(const std::string& name, const std::string& capture, const glm::dvec3& position) {
     return {{"name", name},
