@@ -3,6 +3,7 @@
 #include "accuracy_sweep.h"
 
 #include <iblbake/dfg_lut.h>
+#include <iblbake/irradiance.h>
 #include <iblbake/runtime.h>
 #include <iblbake/runtime_reference.h>
 #include <iblbake/sh.h>
@@ -59,12 +60,14 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     stage.timeMeaning = "bakeSpecular of the probe's LD chain at the source face size (the only cost that "
                         "changes; DFG LUT at its defaults and the SH are shared)";
 
-    // The product's setup: a detected sun is extracted into the disk light, the residual goes to the probe.
+    // The product's setup, as `iblbake specular/diffuse --extract-sun` bake it: a detected sun is extracted
+    // into the disk light, the residual goes to the probe (LD chain from level 1 on, SH, irradiance cube) and
+    // level 0 keeps the sun's pixels. The reference is lit by the full map.
     CubeMap residual = source;
     std::optional<SunDisk> sun;
     SunDetection detection = detectSun(residual);
     if (detection.found) sun = sunDiskFrom(extractSun(residual, detection));
-    const ReferenceLighting lighting = ReferenceLighting::distant(residual, sun);
+    const ReferenceLighting lighting = ReferenceLighting::distant(source);
 
     std::vector<ShadingPoint> points;
     std::vector<std::size_t> columnStart;
@@ -82,11 +85,14 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     stage.reference = "renderReference (Frostbite Appendix A, multiple importance sampling, " +
                       std::to_string(plan.runtimeReferenceSamples) + " samples per strategy) of " +
                       std::to_string(points.size()) + " points on dielectric and metal spheres, lit by the " +
-                      (sun ? "residual environment plus the extracted sun as a disk light"
-                           : "environment (no sun detected)");
+                      "full environment; the probe: " +
+                      (sun ? "the residual (LD chain from level 1, irradiance cube) with the sun's pixels in "
+                             "level 0 and the extracted sun as a disk light"
+                           : "LD chain and irradiance cube (no sun detected)");
 
     const DfgTable dfg = dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor));
     const ShCoefficients sh = shCoefficientsFrom(bakeDiffuseSH(residual, {}).irradiance, false);
+    const CubeMap irradiance = bakeIrradianceCube(residual, IrradianceSettings{}, executor);
     for (Quality quality : {Quality::Draft, Quality::Production, Quality::Reference}) {
         SpecularSettings settings;
         settings.quality = quality;
@@ -98,7 +104,11 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.label = std::string(qualityName(quality)) + " LD chain";
         s.knobs = {{"specularQuality", qualityName(quality)}};
         s.preset = qualityName(quality);
-        ProbeSet set(ldPyramidFromChain(chain, LdMapping::Frostbite), dfg, sh);
+        if (sun) chain.levels[0] = source;
+        LdPyramid ld = ldPyramidFromChain(chain, LdMapping::Frostbite);
+        ld.sunInLevel0 = sun.has_value();
+        ProbeSet set(std::move(ld), dfg, sh);
+        set.setIrradianceCube(irradiance);
         if (sun) set.setSun(*sun);
         const std::vector<glm::vec4> shaded = evaluateCpu(set, points, options);
         double signedError = 0.0, total = 0.0, columnSum = 0.0;
