@@ -139,7 +139,8 @@ json buildManifest(const ManifestInputs& in) {
         const std::array<glm::dvec3, 3> r =
             axes(p.proxy.shape == SceneVolume::Shape::Box ? p.proxy.rotationDegrees : glm::dvec3(0.0));
         const glm::dvec3 d = p.position - p.proxy.center;
-        probe["captureOffset"] = vec3Json(glm::dvec3(glm::dot(d, r[0]), glm::dot(d, r[1]), glm::dot(d, r[2])));
+        probe["captureOffset"] =
+            vec3Json(glm::dvec3(glm::dot(d, r[0]), glm::dot(d, r[1]), glm::dot(d, r[2])));
         probe["fadeDistance"] = p.fadeDistance;
         probes.push_back(std::move(probe));
     }
