@@ -3,6 +3,7 @@
 // scheduler (or a person) can watch it (README "Batch").
 #include "batch_progress.h"
 #include "commands.h"
+#include "common_options.h"
 
 #include <iblbake/atomic_file.h>
 #include <iblbake/bake_scene.h>
@@ -241,9 +242,7 @@ Action addBatchCommand(CLI::App& app) {
     cmd->add_flag("--quiet", o->quiet, "no progress output (failures still go to stderr)");
     cmd->add_flag("--force", o->force, "recompute every stage of every item");
     cmd->add_option("--cache", o->cache, "cache directory shared by every item (default: each output's own)");
-    cmd->add_option("--backend", o->backend, "auto (OpenCL, else CPU with a warning), opencl or cpu")
-        ->check(CLI::IsMember({"auto", "opencl", "cpu"}));
-    cmd->add_option("--device", o->device, "OpenCL device: P:D index or part of its name");
+    addBackendAndDevice(*cmd, o->backend, o->device);
     return [o] {
         const BatchManifest manifest = loadBatchManifest(o->manifest);
         const Shard shard = chooseShard(*o);

@@ -104,7 +104,8 @@ CalibrationSettings CalibrationOptions::settings(const glm::dvec3& luminanceWeig
     return s;
 }
 
-CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env) {
+CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env,
+                                    bool keepCubeWithSun) {
     const glm::dvec3 weights = workingLuminanceWeights(env.report.workingColorSpace);
     const CalibrationSettings settings = options.settings(weights);
     CalibrationOutcome out;
@@ -117,7 +118,7 @@ CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnv
             sunSettings.maxSolidAngle = options.sunMaxSolidAngle;
             const SunDetection sun = detectSun(env.cube, sunSettings);
             if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
-            out.withSun = env.cube;
+            if (keepCubeWithSun) out.withSun = env.cube;
             out.sun = extractSun(env.cube, sun, weights);
         }
     } catch (const Error& e) {
@@ -138,9 +139,9 @@ std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
 }
 
 CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
-                                 int sourceFaceSize) {
+                                 int sourceFaceSize, bool keepCubeWithSun) {
     CalibratedInput out{ingestEnvironment(input.files(), input.settings(sourceFaceSize)), {}};
-    out.calibration = applyCalibration(calibration, out.env);
+    out.calibration = applyCalibration(calibration, out.env, keepCubeWithSun);
     printIngestReport(out.env.report);
     const CalibrationOutcome& c = out.calibration;
     if (c.record.absolute()) std::printf("%s\n", c.record.summary().c_str());

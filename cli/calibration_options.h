@@ -30,7 +30,7 @@ namespace ibl::cli {
 struct CalibrationOutcome {
     CalibrationRecord record;
     std::optional<DiskLight> sun;   // the extracted sun (with --extract-sun)
-    std::optional<CubeMap> withSun; // the calibrated cube before the extraction (with --extract-sun)
+    std::optional<CubeMap> withSun; // the calibrated cube before the extraction (keepCubeWithSun)
 
     // calibrationMetadata(record, prefix) plus prefix + "sun": "extracted: <one-line JSON>" or "kept in
     // the environment" (and prefix + "sunLight" = the light's JSON when extracted).
@@ -54,8 +54,10 @@ struct CalibrationOptions {
 
 // Computes the factor on env.cube (environment_stats.h / calibration.h), scales every texel by it, and
 // with --extract-sun takes the sun out of the scaled cube. Throws ibl::Error "<input>: --option: ..."
-// when the source cannot be used (e.g. --sun-illuminance on a map without a sun).
-CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env);
+// when the source cannot be used (e.g. --sun-illuminance on a map without a sun). With keepCubeWithSun,
+// the outcome also holds the calibrated cube before the extraction (the specular chain's level 0).
+CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env,
+                                    bool keepCubeWithSun = false);
 
 // With --sun-json: the light written to a temporary file beside the target; commit() it once the main
 // output is written, so that a failed run leaves neither. nullptr without --sun-json.
@@ -72,8 +74,8 @@ struct CalibratedInput {
 };
 
 // Ingests the input at `sourceFaceSize`, applies the calibration, and prints the input report, the
-// calibration and the extracted sun.
+// calibration and the extracted sun. keepCubeWithSun: as applyCalibration's.
 CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
-                                 int sourceFaceSize);
+                                 int sourceFaceSize, bool keepCubeWithSun = false);
 
 } // namespace ibl::cli

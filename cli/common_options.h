@@ -11,6 +11,9 @@
 
 namespace ibl::cli {
 
+// --backend (auto, opencl, cpu) and --device, bound to the caller's strings.
+void addBackendAndDevice(CLI::App& command, std::string& backend, std::string& device);
+
 struct BackendOptions {
     std::string backend = "auto";
     std::string device;

@@ -1,5 +1,6 @@
 // iblbake plan SCENE / iblbake bake SCENE: scene-driven bakes (README "Scenes").
 #include "commands.h"
+#include "common_options.h"
 #include "scene_progress.h"
 
 #include <iblbake/bake_scene.h>
@@ -79,9 +80,7 @@ Action addBakeCommand(CLI::App& app) {
     cmd->add_flag("--quiet", o->quiet, "no progress output");
     cmd->add_flag("--force", o->force, "recompute every stage");
     cmd->add_option("--cache", o->cache, "cache directory (default: <outputs.directory>/.iblbake-cache)");
-    cmd->add_option("--backend", o->backend, "auto (OpenCL, else CPU with a warning), opencl or cpu")
-        ->check(CLI::IsMember({"auto", "opencl", "cpu"}));
-    cmd->add_option("--device", o->device, "OpenCL device: P:D index or part of its name");
+    addBackendAndDevice(*cmd, o->backend, o->device);
     return [o] {
         const Scene scene = loadSceneFile(o->scene);
         BakeOptions options;

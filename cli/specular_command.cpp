@@ -109,7 +109,8 @@ Action addSpecularCommand(CLI::App& app) {
         settings.mapping = parseMipMapping(o->mipMapping);
         settings.lodBias = o->lodBias;
         Executor executor = o->backend.makeExecutor();
-        CalibratedInput input = ingestCalibrated(o->input, o->calibration, o->size);
+        // The cube with the sun is kept for level 0 (below).
+        CalibratedInput input = ingestCalibrated(o->input, o->calibration, o->size, true);
         const SourceEnvironment& env = input.env;
         const CalibrationOutcome& calibration = input.calibration;
         const double ingestMs = millisecondsSince(start);
