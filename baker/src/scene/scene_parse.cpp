@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -119,7 +120,13 @@ class ObjectReader {
     }
 
     void finish() const {
-        if (!remaining_.empty()) fail_(key(*remaining_.begin()), "unknown key");
+        if (remaining_.empty()) return;
+        // The key is the file's text: one with control bytes (an escaped line break) is quoted, so the
+        // error stays one line (found by fuzz/scene_parser.cpp).
+        const std::string& unknown = *remaining_.begin();
+        const bool printable = std::all_of(unknown.begin(), unknown.end(),
+                                           [](unsigned char c) { return c >= 0x20 && c != 0x7f; });
+        fail_(key(printable ? unknown : quotedForMessage(unknown)), "unknown key");
     }
     const Fail& fail() const { return fail_; }
 
