@@ -7,15 +7,6 @@
 
 namespace ibl::cli {
 
-void addBackendAndDevice(CLI::App& command, std::string& backend, std::string& device) {
-    command.add_option("--backend", backend, "auto (OpenCL, else CPU with a warning), opencl or cpu")
-        ->check(CLI::IsMember({"auto", "opencl", "cpu"}));
-    command.add_option(
-        "--device", device,
-        "OpenCL device: P:D index or part of its name (default: $IBLBAKE_CL_DEVICE, else first GPU, "
-        "else first device)");
-}
-
 void BackendOptions::addTo(CLI::App& command) {
     addBackendAndDevice(command, backend, device);
     command.add_flag("--timing", timing, "print per-dispatch device times and stage wall time");

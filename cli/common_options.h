@@ -1,6 +1,8 @@
 // Options every baking subcommand shares: backend, device and timing.
 #pragma once
 
+#include "backend_choice.h"
+
 #include <iblbake/executor.h>
 #include <iblbake/ktx2.h>
 
@@ -10,9 +12,6 @@
 #include <string>
 
 namespace ibl::cli {
-
-// --backend (auto, opencl, cpu) and --device, bound to the caller's strings.
-void addBackendAndDevice(CLI::App& command, std::string& backend, std::string& device);
 
 struct BackendOptions {
     std::string backend = "auto";

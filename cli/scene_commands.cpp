@@ -1,6 +1,6 @@
 // iblbake plan SCENE / iblbake bake SCENE: scene-driven bakes (README "Scenes").
+#include "bake_options.h"
 #include "commands.h"
-#include "common_options.h"
 #include "scene_progress.h"
 
 #include <iblbake/bake_scene.h>
@@ -9,7 +9,6 @@
 #include <iblbake/scene_plan.h>
 
 #include <cstdio>
-#include <iostream>
 #include <memory>
 
 namespace ibl::cli {
@@ -19,16 +18,6 @@ namespace {
 struct PlanOptions {
     std::string scene;
     bool json = false;
-};
-
-struct BakeCommandOptions {
-    std::string scene;
-    bool json = false;
-    bool quiet = false;
-    bool force = false;
-    std::string cache;
-    std::string backend = "auto";
-    std::string device;
 };
 
 void printPlan(const Scene& scene, const Plan& plan) {
@@ -74,23 +63,11 @@ Action addPlanCommand(CLI::App& app) {
 
 Action addBakeCommand(CLI::App& app) {
     auto o = std::make_shared<BakeCommandOptions>();
-    CLI::App* cmd = app.add_subcommand("bake", "bake what a scene needs (cached stages are not recomputed)");
-    cmd->add_option("scene", o->scene, "scene file (JSON, README \"Scenes\")")->required();
-    cmd->add_flag("--json", o->json, "JSON event lines on stdout (stage-start, stage-end, done)");
-    cmd->add_flag("--quiet", o->quiet, "no progress output");
-    cmd->add_flag("--force", o->force, "recompute every stage");
-    cmd->add_option("--cache", o->cache, "cache directory (default: <outputs.directory>/.iblbake-cache)");
-    addBackendAndDevice(*cmd, o->backend, o->device);
+    addBakeSubcommand(app, *o);
     return [o] {
         const Scene scene = loadSceneFile(o->scene);
-        BakeOptions options;
-        options.cacheDirectory = o->cache;
-        options.force = o->force;
-        options.backend = parseBackend(o->backend);
-        options.device = o->device;
-        options.warnings = &std::cerr;
         ConsoleProgress progress(chooseProgressMode(o->quiet, o->json));
-        const BakeSummary summary = bakeScene(scene, options, progress);
+        const BakeSummary summary = bakeScene(scene, o->bakeOptions(), progress);
         if (!summary.ok) throw Error(summary.error);
         return 0;
     };

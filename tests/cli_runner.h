@@ -19,10 +19,11 @@ struct CliRun {
     std::string err;
 };
 
-inline CliRun runCli(const std::string& args) {
+// `program` is a shell command prefix, e.g. "env IBLBAKE_ENGINE=/x " IBLBAKE_CLI.
+inline CliRun runProgram(const std::string& program, const std::string& args) {
     namespace fs = std::filesystem;
     fs::path errFile = fs::temp_directory_path() / ("iblbake_cli_err_" + std::to_string(::getpid()));
-    std::string cmd = std::string(IBLBAKE_CLI) + " " + args + " 2>" + errFile.string();
+    std::string cmd = program + " " + args + " 2>" + errFile.string();
     CliRun r;
     FILE* pipe = ::popen(cmd.c_str(), "r");
     std::array<char, 4096> buf;
@@ -34,6 +35,15 @@ inline CliRun runCli(const std::string& args) {
     r.err.assign(std::istreambuf_iterator<char>(in), {});
     fs::remove(errFile);
     return r;
+}
+
+inline CliRun runCli(const std::string& args) {
+    return runProgram(IBLBAKE_CLI, args);
+}
+
+// The engine behind the front end (cli/front_end.cpp), run directly.
+inline std::string enginePath() {
+    return (std::filesystem::path(IBLBAKE_CLI).parent_path() / "iblbake-engine").string();
 }
 
 inline int lineCount(const std::string& s) {

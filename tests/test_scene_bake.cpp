@@ -73,8 +73,9 @@ struct JsonRun {
     json summary;                     // the done event's summary
 };
 
-JsonRun bakeJson(const fs::path& scene, const std::string& extra = "") {
-    JsonRun r{runCli("bake " + scene.string() + " --json" + extra), {}, {}};
+JsonRun bakeJson(const fs::path& scene, const std::string& extra = "",
+                 const std::string& program = IBLBAKE_CLI) {
+    JsonRun r{runProgram(program, "bake " + scene.string() + " --json" + extra), {}, {}};
     std::istringstream lines(r.run.out);
     for (std::string line; std::getline(lines, line);) {
         json event = json::parse(line);
@@ -161,9 +162,10 @@ TEST(SceneBake, RunsExactlyThePlannedStagesForEachNeed) {
         EXPECT_EQ(manifest["products"].contains("sun"), v.expected.count("sun") == 1);
         EXPECT_EQ(manifest["products"]["probes"].size(), v.expected.count("probe:a"));
         for (const auto& [name, product] : manifest["products"].items())
-            if (product.is_object())
+            if (product.is_object()) {
                 EXPECT_TRUE(fs::exists(d.dir / ("out-" + v.name) / product["file"].get<std::string>()))
                     << name;
+            }
     }
 }
 
@@ -219,6 +221,68 @@ TEST(SceneBake, RerunIsCachedAndTouchingOneCaptureRerunsOnlyItsProbe) {
     ASSERT_EQ(forced.run.exitCode, 0) << forced.run.err;
     EXPECT_EQ(forced.summary["ran"], 6);
     EXPECT_EQ(snapshot(d.out()), after); // recomputed, same bytes
+}
+
+// The front end (cli/front_end.cpp) answers an unchanged scene without the engine (so without loading
+// OpenImageIO or starting OpenCL), and says what the engine would say; anything else needs the engine.
+TEST(SceneBake, UnchangedRerunIsAnsweredWithoutTheEngineAndAsTheEngineWould) {
+    SceneDir d("scene_front_end");
+    d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
+    const fs::path scene = d.write();
+    JsonRun first = bakeJson(scene);
+    ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
+    EXPECT_EQ(first.summary["upToDate"], false);
+    const auto before = snapshot(d.out());
+    const fs::path cache = d.out() / ".iblbake-cache", away = d.dir / "cache-away";
+    fs::rename(cache, away); // not read when the outputs are up to date
+
+    const std::string withoutEngine =
+        "env IBLBAKE_ENGINE=" + (d.dir / "no-engine").string() + " " + IBLBAKE_CLI;
+    JsonRun front = bakeJson(scene, "", withoutEngine);
+    ASSERT_EQ(front.run.exitCode, 0) << front.run.err;
+    EXPECT_EQ(front.summary["upToDate"], true);
+    EXPECT_EQ(front.summary["ran"], 0);
+    EXPECT_EQ(front.summary["cached"], first.summary["stages"].size());
+    EXPECT_EQ(front.started, first.started);
+    EXPECT_FALSE(fs::exists(cache));
+    fs::rename(away, cache);
+    EXPECT_EQ(snapshot(d.out()), before);
+
+    JsonRun engine = bakeJson(scene, "", enginePath()); // bakeScene's own up-to-date answer
+    ASSERT_EQ(engine.run.exitCode, 0) << engine.run.err;
+    for (JsonRun* r : {&first, &front, &engine})
+        for (json& stage : r->summary["stages"])
+            stage.erase("seconds");
+    for (const char* field : {"seconds", "upToDate", "ran", "cached"}) {
+        first.summary.erase(field);
+        front.summary.erase(field);
+        engine.summary.erase(field);
+    }
+    for (json& stage : first.summary["stages"])
+        stage["status"] = "cached";
+    EXPECT_EQ(front.summary, engine.summary);
+    EXPECT_EQ(front.summary, first.summary); // same keys, products (manifest last) and backend
+
+    const CliRun text = runProgram(withoutEngine, "bake " + scene.string());
+    EXPECT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("(0 ran, " + std::to_string(first.started.size()) + " cached, "),
+              std::string::npos)
+        << text.out;
+
+    // Everything else goes to the engine: --force, a changed input, other commands.
+    for (const std::string& args : {"bake " + scene.string() + " --force", std::string("--version")}) {
+        const CliRun r = runProgram(withoutEngine, args);
+        EXPECT_EQ(r.exitCode, 1) << args;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("cannot run the engine " + (d.dir / "no-engine").string()), std::string::npos)
+            << r.err;
+    }
+    writeLatLong(d.dir / "a.hdr", 5.0f);
+    EXPECT_EQ(runProgram(withoutEngine, "bake " + scene.string()).exitCode, 1);
+    JsonRun changed = bakeJson(scene);
+    ASSERT_EQ(changed.run.exitCode, 0) << changed.run.err;
+    EXPECT_EQ(changed.summary["ran"], 1);
+    EXPECT_EQ(changed.summary["upToDate"], false);
 }
 
 TEST(SceneBake, DamagedCacheEntryAndTamperedProductAreRepaired) {

@@ -5,24 +5,6 @@
 
 namespace ibl {
 
-Backend parseBackend(const std::string& name) {
-    if (name == "auto") return Backend::Auto;
-    if (name == "opencl") return Backend::OpenCL;
-    if (name == "cpu") return Backend::Cpu;
-    throw Error("--backend: '" + name + "' is not one of auto, opencl, cpu");
-}
-
-const char* backendName(Backend backend) {
-    switch (backend) {
-    case Backend::OpenCL:
-        return "opencl";
-    case Backend::Cpu:
-        return "cpu";
-    default:
-        return "auto";
-    }
-}
-
 Executor Executor::create(Backend requested, const std::string& device, std::ostream& warnings) {
     if (requested == Backend::Cpu) return cpu();
     if (requested == Backend::OpenCL) return Executor(ocl::Context::create(device));

@@ -3,10 +3,11 @@
 // may call bakeScene for many scenes, one after another or from several processes sharing a cache.
 #pragma once
 
-#include "iblbake/executor.h"
+#include "iblbake/backend.h"
 #include "iblbake/scene.h"
 #include "iblbake/scene_plan.h"
 
+#include <chrono>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -42,6 +43,7 @@ struct BakeSummary {
     std::filesystem::path manifest;
     std::string backend; // "opencl" / "cpu" / "none" (no stage ran kernels)
     double seconds = 0.0;
+    bool upToDate = false; // the output directory held this bake already: nothing was read from the cache
     int ran() const;
     int cached() const;
 };
@@ -57,22 +59,33 @@ class ProgressSink {
 
 // Never throws for a bad scene input, a failed stage or an unwritable output: the summary says what went
 // wrong (ok = false, error) and the output directory keeps what it had (products are copied in only once
-// every stage succeeded, the manifest last).
+// every stage succeeded, the manifest last). Unless options.force, a bake that checkBakeUpToDate finds up to
+// date is reported as such (reportUpToDateBake) without starting a backend or reading the cache.
 BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress);
 
 // Whether scene.outputs.directory already holds a complete bake of this scene, found without baking: its
 // manifest.json parses, lists exactly the plan's stages with the keys the current inputs and settings give
 // (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
-// every product it lists holds the bytes of its recorded contentHash. Never throws.
+// every product the plan names holds the bytes of the contentHash the manifest records. Reads the inputs
+// and products, never the cache; starts no backend and never throws.
 struct UpToDate {
     bool upToDate = false;
     std::string reason;                          // why not (the first reason found)
-    std::vector<std::filesystem::path> products; // when up to date: the products, manifest.json last
+    std::vector<std::filesystem::path> products; // when up to date: the products in plan order, manifest last
+    std::vector<std::string> keys;               // when up to date: the plan's stage keys, in plan order
+    std::string backend;                         // when up to date: the backend the manifest records
 };
 UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
 
-// The summary as JSON: {ok, error, backend, seconds, ran, cached, stages: [{id, kind, status, key, seconds,
-// products}], skipped: [...], products: [...], manifest}.
+// The summary of a bake found up to date, as bakeScene reports it: every stage of the plan cached, with its
+// key, no time spent in it; `progress` sees each stage start and end, then done. `start` is when the caller
+// began (the summary's seconds count from it). bakeScene answers an unchanged scene this way, and so does
+// the front end (cli/front_end.cpp) without loading the engine.
+BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, ProgressSink& progress,
+                               std::chrono::steady_clock::time_point start);
+
+// The summary as JSON: {ok, error, backend, seconds, upToDate, ran, cached, stages: [{id, kind, status, key,
+// seconds, products}], skipped: [...], products: [...], manifest}.
 nlohmann::json bakeSummaryJson(const BakeSummary& summary);
 
 } // namespace ibl

@@ -2,6 +2,7 @@
 // kernel functions. When OpenCL has no device, Auto falls back to the CPU with one warning line.
 #pragma once
 
+#include "iblbake/backend.h"
 #include "iblbake/opencl_context.h"
 
 #include <iosfwd>
@@ -9,11 +10,6 @@
 #include <string>
 
 namespace ibl {
-
-enum class Backend { Auto, OpenCL, Cpu };
-
-Backend parseBackend(const std::string& name); // "auto" | "opencl" | "cpu"; throws ibl::Error otherwise
-const char* backendName(Backend backend);
 
 class Executor {
   public:

@@ -4,6 +4,7 @@
 #include "iblbake/atomic_file.h"
 #include "iblbake/content_hash.h"
 #include "iblbake/error.h"
+#include "iblbake/executor.h"
 #include "scene_manifest.h"
 #include "scene_stages.h"
 #include "stage_cache.h"
@@ -57,35 +58,12 @@ std::map<std::string, std::string> publishProducts(const Plan& plan,
 
 } // namespace
 
-const char* stageStatusName(StageStatus status) {
-    switch (status) {
-    case StageStatus::Ran:
-        return "ran";
-    case StageStatus::Cached:
-        return "cached";
-    case StageStatus::Failed:
-        return "failed";
-    default:
-        return "pending";
-    }
-}
-
-int BakeSummary::ran() const {
-    int n = 0;
-    for (const StageResult& s : stages)
-        n += s.status == StageStatus::Ran;
-    return n;
-}
-
-int BakeSummary::cached() const {
-    int n = 0;
-    for (const StageResult& s : stages)
-        n += s.status == StageStatus::Cached;
-    return n;
-}
-
 BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress) {
     const auto start = std::chrono::steady_clock::now();
+    if (!options.force) {
+        const UpToDate upToDate = checkBakeUpToDate(scene, options);
+        if (upToDate.upToDate) return reportUpToDateBake(scene, upToDate, progress, start);
+    }
     BakeSummary summary;
     const Plan plan = planScene(scene);
     summary.skipped = plan.skipped;
@@ -175,27 +153,6 @@ BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSi
     summary.seconds = secondsSince(start);
     progress.done(summary);
     return summary;
-}
-
-nlohmann::json bakeSummaryJson(const BakeSummary& s) {
-    nlohmann::json stages = nlohmann::json::array(), skipped = nlohmann::json::array(),
-                   products = nlohmann::json::array();
-    for (const StageResult& r : s.stages)
-        stages.push_back({{"id", r.id},
-                          {"kind", r.kind},
-                          {"status", stageStatusName(r.status)},
-                          {"key", r.key},
-                          {"seconds", r.seconds},
-                          {"products", r.products}});
-    for (const SkippedStage& k : s.skipped)
-        skipped.push_back({{"id", k.id}, {"kind", k.kind}, {"reason", k.reason}});
-    for (const fs::path& p : s.products)
-        products.push_back(p.string());
-    return {{"ok", s.ok},           {"error", s.error},
-            {"backend", s.backend}, {"seconds", s.seconds},
-            {"ran", s.ran()},       {"cached", s.cached()},
-            {"stages", stages},     {"skipped", skipped},
-            {"products", products}, {"manifest", s.manifest.string()}};
 }
 
 } // namespace ibl

@@ -1,5 +1,6 @@
-// checkBakeUpToDate (bake_scene.h): a finished bake is recognised from its manifest alone, so a batch killed
-// and restarted skips it without starting OpenCL or touching the cache.
+// checkBakeUpToDate (bake_scene.h): a finished bake is recognised from its manifest and the content hashes
+// alone, so a re-run of an unchanged scene (and a batch killed and restarted) starts no backend and reads
+// no cache entry.
 #include "iblbake/bake_scene.h"
 
 #include "iblbake/content_hash.h"
@@ -17,10 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Every {file, contentHash} the manifest lists (products.* and products.probes[]).
-std::vector<std::pair<std::string, std::string>> listedProducts(const json& products) {
-    std::vector<std::pair<std::string, std::string>> out;
-    auto add = [&](const json& p) { out.emplace_back(p.at("file"), p.at("contentHash")); };
+// File -> contentHash of every product the manifest lists (products.* and products.probes[]).
+std::map<std::string, std::string> listedHashes(const json& products) {
+    std::map<std::string, std::string> out;
+    auto add = [&](const json& p) { out[p.at("file")] = p.at("contentHash"); };
     for (const auto& [name, value] : products.items()) {
         if (name == "probes")
             for (const json& p : value)
@@ -31,7 +32,7 @@ std::vector<std::pair<std::string, std::string>> listedProducts(const json& prod
     return out;
 }
 
-std::string check(const Scene& scene, const BakeOptions& options, std::vector<fs::path>& files) {
+std::string check(const Scene& scene, const BakeOptions& options, UpToDate& out) {
     const fs::path file = scene.outputs.directory / "manifest.json";
     std::ifstream in(file);
     if (!in) return "no manifest.json";
@@ -50,14 +51,22 @@ std::string check(const Scene& scene, const BakeOptions& options, std::vector<fs
     const std::map<std::string, std::string> keys = planStageKeys(plan, hashPlanInputs(scene, plan), backend);
     const json& stages = manifest.at("stages");
     if (stages.size() != plan.stages.size()) return "the plan changed";
-    for (std::size_t i = 0; i < stages.size(); ++i)
-        if (stages[i].at("id") != plan.stages[i].id || stages[i].at("key") != keys.at(plan.stages[i].id))
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+        const std::string& key = keys.at(plan.stages[i].id);
+        if (stages[i].at("id") != plan.stages[i].id || stages[i].at("key") != key)
             return "stage " + plan.stages[i].id + " has new inputs or settings";
-    for (const auto& [product, hash] : listedProducts(manifest.at("products"))) {
-        if (hashFile(scene.outputs.directory / product) != hash) return product + " changed";
-        files.push_back(scene.outputs.directory / product);
+        out.keys.push_back(key);
     }
-    files.push_back(file);
+    const std::map<std::string, std::string> hashes = listedHashes(manifest.at("products"));
+    for (const PlanStage& stage : plan.stages)
+        for (const std::string& product : stage.products) {
+            const auto listed = hashes.find(product);
+            if (listed == hashes.end()) return "manifest.json does not list " + product;
+            if (hashFile(scene.outputs.directory / product) != listed->second) return product + " changed";
+            out.products.push_back(scene.outputs.directory / product);
+        }
+    out.products.push_back(file);
+    out.backend = backend;
     return "";
 }
 
@@ -69,13 +78,13 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options) {
         out.reason = "--force";
     } else {
         try {
-            out.reason = check(scene, options, out.products);
+            out.reason = check(scene, options, out);
         } catch (const std::exception& e) { // a missing product or input, a malformed manifest
             out.reason = e.what();
         }
     }
     out.upToDate = out.reason.empty();
-    if (!out.upToDate) out.products.clear();
+    if (!out.upToDate) out = UpToDate{false, out.reason, {}, {}, {}};
     return out;
 }
 

@@ -1,0 +1,64 @@
+// iblbake: the front end. `iblbake bake SCENE` on a scene whose bake directory is up to date is answered
+// here, from manifest.json and content hashes alone; every other command line goes, unchanged, to the
+// engine (iblbake-engine beside this program, or $IBLBAKE_ENGINE) by exec. Why two programs: the engine
+// links OpenImageIO, whose ~260 shared libraries take the dynamic loader 0.15-0.2 s to map and relocate
+// on our 2-core machine, several times what the whole up-to-date check costs (README "Cache").
+#include "bake_options.h"
+#include "scene_progress.h"
+
+#include <iblbake/bake_scene.h>
+#include <iblbake/scene.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <string_view>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// The exit code when the bake is up to date and reported; nullopt when the engine must answer: any other
+// command, --force, --help, a parse error, a bad scene (the engine gives the one-line error), a stale bake.
+std::optional<int> answerUpToDateBake(int argc, char** argv) {
+    const auto start = std::chrono::steady_clock::now();
+    CLI::App app{"iblbake", "iblbake"};
+    ibl::cli::BakeCommandOptions options;
+    ibl::cli::addBakeSubcommand(app, options);
+    try {
+        app.parse(argc, argv);
+        if (options.force) return std::nullopt;
+        const ibl::Scene scene = ibl::loadSceneFile(options.scene);
+        const ibl::UpToDate upToDate = ibl::checkBakeUpToDate(scene, options.bakeOptions());
+        if (!upToDate.upToDate) return std::nullopt;
+        ibl::cli::ConsoleProgress progress(ibl::cli::chooseProgressMode(options.quiet, options.json));
+        ibl::reportUpToDateBake(scene, upToDate, progress, start);
+        return 0;
+    } catch (...) { // CLI::ParseError, CLI::Success (--help), ibl::Error: the engine reports them
+        return std::nullopt;
+    }
+}
+
+fs::path enginePath() {
+    if (const char* path = std::getenv("IBLBAKE_ENGINE"); path && *path) return path;
+    std::error_code ec;
+    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+    return (ec ? fs::path("iblbake-engine") : self.parent_path() / "iblbake-engine");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc >= 2 && std::string_view(argv[1]) == "bake")
+        if (const std::optional<int> exitCode = answerUpToDateBake(argc, argv)) return *exitCode;
+    const fs::path engine = enginePath();
+    ::execvp(engine.c_str(), argv); // a bare name (no /proc) is looked up in PATH
+    std::fprintf(stderr, "iblbake: error: cannot run the engine %s: %s\n", engine.c_str(),
+                 std::strerror(errno));
+    return 1;
+}
