@@ -131,6 +131,16 @@ TEST(Batch, ManifestErrorsNameTheKeyPath) {
               "b.json: items[1].output: /base/x is also the output of items[0]");
     EXPECT_EQ(error(R"({"itemz": []})"), "b.json: itemz: unknown key");
     EXPECT_EQ(error(R"({"items": 3})"), "b.json: items: must be an array of items");
+    // Text from the file with control bytes (an escaped line break) is quoted: the error stays one line.
+    EXPECT_EQ(error(R"({"it\nems": []})"), "b.json: 'it\\x0Aems': unknown key");
+    EXPECT_EQ(error(R"([{"scene": "a.json", "i\td": "x"}])"),
+              "b.json: items[0].'i\\x09d': unknown key (a scene item has \"scene\" and \"id\")");
+    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "preset": "dr\naft"}])"),
+              "b.json: items[0].preset: 'dr\\x0Aaft' is not one of draft, production, reference");
+    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "id": "a\rb"}, {"scene": "s.json", "id": "a\rb"}])"),
+              "b.json: items[1].id: 'a\\x0Db' is used by an earlier item");
+    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "output": "o\n"}, {"hdri": "y.hdr", "output": "o\n"}])"),
+              "b.json: items[1].output: '/base/o\\x0A' is also the output of items[0]");
 
     const ibl::BatchManifest m = ibl::parseBatchManifest(
         R"([{"hdri": "h/x.hdr"}, {"scene": "s.json", "id": "s"}])", "b.json", "/base");

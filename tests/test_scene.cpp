@@ -141,6 +141,11 @@ TEST(SceneParse, ErrorsNameTheKeyPathAndTheProblem) {
                      "scene.json: materials.roughness: min must not exceed max"});
     cases.push_back(
         {with([](json& d) { d["probes"] = 3; }), "scene.json: probes: must be an array, not a number"});
+    // Text from the file with control bytes (an escaped line break) is quoted: the error stays one line.
+    cases.push_back({with([](json& d) { d["probes"][0]["proxy"]["shape"] = "bo\nx"; }),
+                     "scene.json: probes[0].proxy.shape: 'bo\\x0Ax' is not one of sphere, box"});
+    cases.push_back(
+        {with([](json& d) { d["outputs"]["ktx\r2"] = 1; }), "scene.json: outputs.'ktx\\x0D2': unknown key"});
     for (const Case& c : cases) {
         const std::string e = errorOf(c.doc.dump());
         EXPECT_EQ(e.rfind(c.expected, 0), 0u) << "got: " << e;

@@ -33,4 +33,26 @@ inline std::string quotedForMessage(std::string_view text) {
     return out + "'";
 }
 
+// Whether text holds a control byte (a line break, an escape): then it cannot go into a message as it is.
+inline bool hasControlBytes(std::string_view text) {
+    for (const char c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) return true;
+    return false;
+}
+
+// A key or path from an input file for a message: as it is (UTF-8 included), or quotedForMessage when it
+// holds control bytes, so the message stays one line (found by the fuzz targets of fuzz/).
+inline std::string printableForMessage(std::string_view text) {
+    return hasControlBytes(text) ? quotedForMessage(text) : std::string(text);
+}
+
+// A value from an input file for a message: in single quotes, escaped like quotedForMessage when it holds
+// control bytes.
+inline std::string valueForMessage(std::string_view value) {
+    if (hasControlBytes(value)) return quotedForMessage(value);
+    std::string out = "'";
+    out.append(value);
+    return out += '\'';
+}
+
 } // namespace ibl

@@ -57,8 +57,9 @@ BatchItem parseItem(const json& v, std::size_t index, const std::string& name, c
     static const std::set<std::string> hdriKeys = {"hdri", "id", "output", "preset", "faceSize"};
     for (auto it = v.begin(); it != v.end(); ++it)
         if (!(scene ? sceneKeys : hdriKeys).count(it.key()))
-            r.fail(it.key(), scene ? "unknown key (a scene item has \"scene\" and \"id\")"
-                                   : "unknown key (an HDRI item has hdri, id, output, preset, faceSize)");
+            r.fail(printableForMessage(it.key()),
+                   scene ? "unknown key (a scene item has \"scene\" and \"id\")"
+                         : "unknown key (an HDRI item has hdri, id, output, preset, faceSize)");
     if (scene) {
         const std::string file = r.string(v, "scene");
         item.sceneFile = resolve(file, base);
@@ -71,7 +72,8 @@ BatchItem parseItem(const json& v, std::size_t index, const std::string& name, c
         if (v.contains("preset")) {
             item.preset = r.string(v, "preset");
             if (item.preset != "draft" && item.preset != "production" && item.preset != "reference")
-                r.fail("preset", "'" + item.preset + "' is not one of draft, production, reference");
+                r.fail("preset",
+                       valueForMessage(item.preset) + " is not one of draft, production, reference");
         }
         if (v.contains("faceSize")) {
             const json& f = v["faceSize"];
@@ -98,7 +100,7 @@ BatchManifest parseBatchManifest(std::string_view text, const std::string& name,
     if (doc.is_object()) {
         for (auto it = doc.begin(); it != doc.end(); ++it)
             if (it.key() != "items" && it.key() != "$schema")
-                throw Error(name + ": " + it.key() + ": unknown key");
+                throw Error(name + ": " + printableForMessage(it.key()) + ": unknown key");
         if (!doc.contains("items")) throw Error(name + ": items: is required");
         items = &doc["items"];
     }
@@ -112,12 +114,13 @@ BatchManifest parseBatchManifest(std::string_view text, const std::string& name,
         if (!item.isScene()) {
             const auto [it, added] = outputs.emplace(item.output.lexically_normal(), i);
             if (!added)
-                throw Error(name + ": items[" + std::to_string(i) + "].output: " + item.output.string() +
+                throw Error(name + ": items[" + std::to_string(i) +
+                            "].output: " + printableForMessage(item.output.string()) +
                             " is also the output of items[" + std::to_string(it->second) + "]");
         }
         if (!ids.insert(manifest.items.back().id).second)
-            throw Error(name + ": items[" + std::to_string(i) + "].id: '" + manifest.items.back().id +
-                        "' is used by an earlier item");
+            throw Error(name + ": items[" + std::to_string(i) +
+                        "].id: " + valueForMessage(manifest.items.back().id) + " is used by an earlier item");
     }
     return manifest;
 }

@@ -7,7 +7,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -105,7 +104,7 @@ class ObjectReader {
         std::string list;
         for (const std::string& a : allowed)
             list += (list.empty() ? "" : ", ") + a;
-        fail_(key(k), "'" + s + "' is not one of " + list);
+        fail_(key(k), valueForMessage(s) + " is not one of " + list);
     }
     glm::dvec3 vec3(const std::string& k, const glm::dvec3& fallback, const char* what = "3 numbers") {
         const json* v = take(k);
@@ -121,12 +120,7 @@ class ObjectReader {
 
     void finish() const {
         if (remaining_.empty()) return;
-        // The key is the file's text: one with control bytes (an escaped line break) is quoted, so the
-        // error stays one line (found by fuzz/scene_parser.cpp).
-        const std::string& unknown = *remaining_.begin();
-        const bool printable = std::all_of(unknown.begin(), unknown.end(),
-                                           [](unsigned char c) { return c >= 0x20 && c != 0x7f; });
-        fail_(key(printable ? unknown : quotedForMessage(unknown)), "unknown key");
+        fail_(key(printableForMessage(*remaining_.begin())), "unknown key");
     }
     const Fail& fail() const { return fail_; }
 
@@ -356,7 +350,8 @@ Scene parseScene(std::string_view text, const std::string& name, const fs::path&
                 const std::string path = "probes[" + std::to_string(i) + "]";
                 scene.probes.push_back(probe((*list)[i], path, baseDirectory, fail));
                 if (!names.insert(scene.probes.back().name).second)
-                    fail(path + ".name", "'" + scene.probes.back().name + "' is used by an earlier probe");
+                    fail(path + ".name",
+                         valueForMessage(scene.probes.back().name) + " is used by an earlier probe");
             }
         }
         if (const json* m = r.take("materials")) scene.materials = materials(*m, fail);
