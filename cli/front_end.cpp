@@ -1,9 +1,11 @@
-// iblbake: the front end. `iblbake bake SCENE` on a scene whose bake directory is up to date is answered
-// here, from manifest.json and content hashes alone; every other command line goes, unchanged, to the
-// engine (iblbake-engine beside this program, or $IBLBAKE_ENGINE) by exec. Why two programs: the engine
-// links OpenImageIO, whose ~260 shared libraries take the dynamic loader 0.15-0.2 s to map and relocate
-// on our 2-core machine, several times what the whole up-to-date check costs (README "Cache").
+// iblbake: the front end. `iblbake bake SCENE` on a scene whose bake directory is up to date, and
+// `iblbake batch MANIFEST` when every item of the shard is, are answered here, from manifest.json and
+// content hashes alone; every other command line goes, unchanged, to the engine (iblbake-engine beside this
+// program, or $IBLBAKE_ENGINE) by exec. Why two programs: the engine links OpenImageIO, whose ~260 shared
+// libraries take the dynamic loader 0.15-0.2 s to map and relocate on our 2-core machine, several times what
+// the whole up-to-date check costs (README "Cache").
 #include "bake_options.h"
+#include "batch_run.h"
 #include "scene_progress.h"
 
 #include <iblbake/bake_scene.h>
@@ -16,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 #include <unistd.h>
 
@@ -44,6 +47,42 @@ std::optional<int> answerUpToDateBake(int argc, char** argv) {
     }
 }
 
+// The same for a batch: answered when every item of the shard is up to date (then runBatch finds nothing to
+// bake and only writes the summary); a failure after that point is reported here, as the engine would.
+std::optional<int> answerUpToDateBatch(int argc, char** argv) {
+    CLI::App app{"iblbake", "iblbake"};
+    ibl::cli::BatchCommandOptions options;
+    ibl::cli::addBatchSubcommand(app, options);
+    ibl::BatchManifest manifest;
+    ibl::Shard shard;
+    ibl::cli::KnownUpToDate known;
+    try {
+        app.parse(argc, argv);
+        if (options.force) return std::nullopt;
+        manifest = ibl::loadBatchManifest(options.manifest);
+        shard = ibl::cli::chooseShard(options);
+        const ibl::BakeOptions bakeOptions = options.bakeOptions();
+        for (const ibl::BatchItem& item : manifest.items) {
+            if (!ibl::inShard(item, shard)) continue;
+            ibl::UpToDate upToDate = ibl::checkBakeUpToDate(ibl::batchItemScene(manifest, item), bakeOptions);
+            if (!upToDate.upToDate) return std::nullopt;
+            known.emplace(item.index, std::move(upToDate));
+        }
+    } catch (...) {
+        return std::nullopt;
+    }
+    const auto needsEngine = [](const ibl::Scene&, const ibl::BakeOptions&,
+                                ibl::ProgressSink&) -> ibl::BakeSummary {
+        throw std::logic_error("the front end was asked to bake"); // every item was found up to date
+    };
+    try {
+        return ibl::cli::runBatch(options, manifest, shard, needsEngine, known);
+    } catch (const std::exception& e) { // the summary could not be written
+        std::fprintf(stderr, "iblbake: error: %s\n", e.what());
+        return 1;
+    }
+}
+
 fs::path enginePath() {
     if (const char* path = std::getenv("IBLBAKE_ENGINE"); path && *path) return path;
     std::error_code ec;
@@ -56,6 +95,8 @@ fs::path enginePath() {
 int main(int argc, char** argv) {
     if (argc >= 2 && std::string_view(argv[1]) == "bake")
         if (const std::optional<int> exitCode = answerUpToDateBake(argc, argv)) return *exitCode;
+    if (argc >= 2 && std::string_view(argv[1]) == "batch")
+        if (const std::optional<int> exitCode = answerUpToDateBatch(argc, argv)) return *exitCode;
     const fs::path engine = enginePath();
     ::execvp(engine.c_str(), argv); // a bare name (no /proc) is looked up in PATH
     std::fprintf(stderr, "iblbake: error: cannot run the engine %s: %s\n", engine.c_str(),

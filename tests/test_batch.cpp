@@ -421,3 +421,47 @@ TEST(Batch, KilledAndRestartedFinishesTheRestWithoutRedoingFinishedItems) {
     }
     EXPECT_TRUE(ended.count(killedDuring)); // the interrupted item was finished by the restart
 }
+
+// The front end (cli/front_end.cpp) answers a batch whose shard is all up to date without the engine, with
+// the summary the engine would write; a batch with anything to bake needs the engine.
+TEST(Batch, UnchangedBatchIsAnsweredWithoutTheEngineAndAsTheEngineWould) {
+    BatchDir d("batch_front_end", 3);
+    const std::string manifest = d.write().string();
+    ASSERT_EQ(runCli("batch " + manifest + " --quiet").exitCode, 0);
+    const auto before = products(d.dir / "out");
+    const std::string withoutEngine =
+        "env IBLBAKE_ENGINE=" + (d.dir / "no-engine").string() + " " + IBLBAKE_CLI;
+
+    const auto comparable = [](json summary) {
+        summary.erase("seconds");
+        for (json& item : summary["items"])
+            item.erase("seconds");
+        return summary;
+    };
+    CliRun front = runProgram(withoutEngine, "batch " + manifest + " --json");
+    ASSERT_EQ(front.exitCode, 0) << front.err;
+    const json frontSummary = d.summary();
+    EXPECT_TRUE(frontSummary["complete"].get<bool>());
+    EXPECT_EQ(frontSummary["counts"]["up-to-date"], 3);
+    EXPECT_EQ(events(front.out).back()["event"], "done");
+    EXPECT_EQ(products(d.dir / "out"), before);
+
+    CliRun engine = runProgram(enginePath(), "batch " + manifest + " --json");
+    ASSERT_EQ(engine.exitCode, 0) << engine.err;
+    EXPECT_EQ(comparable(d.summary()), comparable(frontSummary));
+
+    CliRun shard = runProgram(withoutEngine, "batch " + manifest + " --quiet --shard 2/2");
+    EXPECT_EQ(shard.exitCode, 0) << shard.err;
+    EXPECT_EQ(d.summary("batch-summary-2-of-2.json")["counts"]["up-to-date"], 1);
+
+    writeLatLong(d.dir / "env1.hdr", 7.0f); // item hdri1 must be baked again
+    for (const std::string& args : {"batch " + manifest + " --quiet", "batch " + manifest + " --force"}) {
+        CliRun r = runProgram(withoutEngine, args);
+        EXPECT_EQ(r.exitCode, 1) << args;
+        EXPECT_NE(r.err.find("cannot run the engine"), std::string::npos) << r.err;
+    }
+    ASSERT_EQ(runCli("batch " + manifest + " --quiet").exitCode, 0);
+    EXPECT_EQ(statusById(d.summary()),
+              (std::map<std::string, std::string>{
+                  {"scene0.json", "up-to-date"}, {"hdri1", "ok"}, {"scene2.json", "up-to-date"}}));
+}
