@@ -104,9 +104,9 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.label = std::string(qualityName(quality)) + " LD chain";
         s.knobs = {{"specularQuality", qualityName(quality)}};
         s.preset = qualityName(quality);
-        if (sun) chain.levels[0] = source;
+        const bool sunInLevel0 = sun && keepSunInLevel0(chain, source, Ktx2Format::RGBA32F);
         LdPyramid ld = ldPyramidFromChain(chain, LdMapping::Frostbite);
-        ld.sunInLevel0 = sun.has_value();
+        ld.sunInLevel0 = sunInLevel0;
         ProbeSet set(std::move(ld), dfg, sh);
         set.setIrradianceCube(irradiance);
         if (sun) set.setSun(*sun);

@@ -58,20 +58,6 @@ void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, 
 
 } // namespace
 
-namespace {
-
-// Whether every texel of the cube is stored by the format without clamping (16-bit and packed floats end
-// near 65,000; a calibrated sun is ~1e9 cd/m2).
-bool fitsUnclamped(const CubeMap& cube, Ktx2Format format) {
-    if (format == Ktx2Format::RGBA32F) return true;
-    for (const ImageRGBA& face : cube.faces)
-        for (const glm::vec4& texel : face.pixels)
-            if (std::max({texel.r, texel.g, texel.b}) > 60000.0f) return false;
-    return true;
-}
-
-} // namespace
-
 Action addSpecularCommand(CLI::App& app) {
     auto o = std::make_shared<SpecularOptions>();
     CLI::App* cmd =
@@ -141,11 +127,7 @@ Action addSpecularCommand(CLI::App& app) {
                                                      " rotate=" + std::to_string(o->input.rotateDegrees)}};
         for (auto& entry : calibration.metadata("iblbake."))
             kv.push_back(entry);
-        // Level 0 is the unconvolved source: with the sun extracted it keeps the sun's own pixels where the
-        // format holds them unclamped (the runtime then fades the disk out where it reads level 0:
-        // kernels/probe.h IBL_RT_SUN_IN_LEVEL0), so a mirror reflects the sun's real shape.
-        if (calibration.withSun && fitsUnclamped(*calibration.withSun, format)) {
-            chain.levels[0] = *calibration.withSun;
+        if (calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format)) {
             kv.push_back({"iblbake.sunInLevel0", "true"});
             kv.push_back({"iblbake.sunMaxSolidAngle", std::to_string(o->calibration.sunMaxSolidAngle)});
         }

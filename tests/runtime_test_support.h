@@ -122,9 +122,9 @@ inline ProbeSet distantSet(const CubeMap& cube, bool irradianceCube = false) {
 inline ProbeSet distantSetWithSun(const CubeMap& full, const CubeMap& residual, const SunDisk& sun) {
     static Executor executor = openclOrCpu();
     CubeMapChain chain = bakeSpecular(residual, SpecularSettings{}, executor);
-    chain.levels[0] = full;
+    const bool sunInLevel0 = keepSunInLevel0(chain, full, Ktx2Format::RGBA32F);
     LdPyramid ld = ldPyramidFromChain(chain, LdMapping::Frostbite);
-    ld.sunInLevel0 = true;
+    ld.sunInLevel0 = sunInLevel0;
     ProbeSet set(std::move(ld), dfgTableFromImage(dfgLut()), projectIrradianceSH(residual));
     set.setIrradianceCube(bakeIrradianceCube(residual, IrradianceSettings{}, executor));
     set.setSun(sun);

@@ -411,6 +411,34 @@ TEST(SceneBake, QuietPrintsNothing) {
     EXPECT_TRUE(quiet.err.empty()) << quiet.err;
 }
 
+// With the sun extracted, level 0 of the specular chain keeps the sun's pixels when the format holds them
+// (keepSunInLevel0, as `iblbake specular --extract-sun`): rgba32f does, rgba16f cannot hold a sun
+// calibrated to 100,000 lux (~1e9 cd/m2) and keeps the residual. Manifest, KTX2 key and loader agree.
+TEST(SceneBake, ExtractedSunStaysInLevel0WhenTheFormatHoldsIt) {
+    SceneDir d("scene_sun_level0");
+    d.scene["environment"] = {
+        {"file", kSample}, {"calibration", {{"sunIlluminance", 100000}}}, {"extractSun", true}};
+    d.scene["outputs"]["faceSize"] = 32;
+    float maxOf[2] = {0.0f, 0.0f};
+    for (int wide = 0; wide < 2; ++wide) {
+        d.scene["outputs"]["directory"] = wide ? "out32" : "out16";
+        d.scene["outputs"]["ktx2Format"] = wide ? "rgba32f" : "rgba16f";
+        const JsonRun r = bakeJson(d.write());
+        ASSERT_EQ(r.run.exitCode, 0) << r.run.err;
+        const fs::path out = d.dir / (wide ? "out32" : "out16");
+        const json manifest = json::parse(readBytes(out / "manifest.json"));
+        EXPECT_EQ(manifest["products"]["specular"]["sunInLevel0"], bool(wide));
+        const ibl::Ktx2Image ld = ibl::readKtx2(out / "specular.ktx2");
+        EXPECT_EQ(ld.keyValues.count("iblbake.sunInLevel0"), std::size_t(wide));
+        for (const ibl::ImageRGBA& face : ld.levels[0])
+            for (const glm::vec4& t : face.pixels)
+                maxOf[wide] = std::max({maxOf[wide], t.r, t.g, t.b});
+        EXPECT_EQ(ibl::loadProbeSetFromManifest(out).set.distantLd().sunInLevel0, bool(wide));
+    }
+    EXPECT_LE(maxOf[0], 65504.0f); // the residual (half floats end there)
+    EXPECT_GT(maxOf[1], 1.0e6f);   // the sun's own texels
+}
+
 // The runtime's manifest loader against a probe set assembled by hand from the same products.
 TEST(SceneBake, ManifestLoadsAndShadesLikeTheHandBuiltSet) {
     SceneDir d("scene_manifest");

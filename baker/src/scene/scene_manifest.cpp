@@ -1,6 +1,7 @@
 #include "scene_manifest.h"
 
 #include "iblbake/irradiance.h"
+#include "iblbake/ktx2.h"
 #include "iblbake/sun.h"
 #include "scene_stages.h"
 
@@ -86,9 +87,15 @@ json buildManifest(const ManifestInputs& in) {
                            {"disneyChannelUsed", scene.materials.diffuseModel == SceneDiffuseModel::Disney},
                            {"contentHash", in.productHashes.at("dfg_lut.ktx2")}};
     }
-    if (stages.count("specular"))
-        products["specular"] =
-            ldProduct(*stages["specular"], "specular.ktx2", in.productHashes.at("specular.ktx2"));
+    if (stages.count("specular")) {
+        const PlanStage& stage = *stages["specular"];
+        json& specular = products["specular"] =
+            ldProduct(stage, "specular.ktx2", in.productHashes.at("specular.ktx2"));
+        // Whether level 0 kept the extracted sun's pixels (keepSunInLevel0) is the product's own key.
+        const Ktx2Image ld = readKtx2(in.entries.at("specular") / entryFileFor(stage, "specular.ktx2"));
+        const auto sunInLevel0 = ld.keyValues.find("iblbake.sunInLevel0");
+        specular["sunInLevel0"] = sunInLevel0 != ld.keyValues.end() && sunInLevel0->second == "true";
+    }
     {
         const json diffuse = readJsonFile(in.entries.at("diffuse") / "diffuse.json");
         products["diffuse"] = {

@@ -119,6 +119,9 @@ Plan planScene(const Scene& scene) {
         s.reason = std::string(m.specular ? "materials use specular" : "clear coat is used") + "; levels 0-" +
                    std::to_string(last) + " of " + std::to_string(levels) + " integrated (roughness max " +
                    json(m.roughnessMax).dump() + ")";
+        // Level 0 (the unconvolved source) keeps the sun's pixels when the format holds them (specular.h
+        // keepSunInLevel0): the cube from before the extraction is an input too.
+        if (env.extractSun) s.dependsOn.push_back("environment");
         plan.stages.push_back(std::move(s));
     } else {
         plan.skipped.push_back({"specular", "specular-ld", "no material uses specular or clear coat"});

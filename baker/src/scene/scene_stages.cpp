@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <optional>
 
 namespace ibl {
 
@@ -183,7 +184,7 @@ std::string mappingText(MipMapping mapping) {
 
 // Bakes and writes an LD chain (the distant environment's or a local probe's).
 void writeLdChain(const StageContext& c, const CubeMap& source, const json& calibration,
-                  const std::string& product, const fs::path& file) {
+                  const std::string& product, const fs::path& file, const CubeMap* withSun = nullptr) {
     const json& s = c.stage.settings;
     SpecularSettings settings;
     settings.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
@@ -202,13 +203,19 @@ void writeLdChain(const StageContext& c, const CubeMap& source, const json& cali
         kv.emplace_back("iblbake.source", calibration["source"].at("file").get<std::string>());
     for (auto& entry : calibrationKeyValues(calibration))
         kv.push_back(entry);
-    writeKtx2Cube(file, chain, ktx2Format(s.at("ktx2Format").get<std::string>()), kv);
+    const Ktx2Format format = ktx2Format(s.at("ktx2Format").get<std::string>());
+    if (withSun && keepSunInLevel0(chain, *withSun, format)) kv.emplace_back("iblbake.sunInLevel0", "true");
+    writeKtx2Cube(file, chain, format, kv);
 }
 
 void runSpecular(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    writeLdChain(c, readCube(from / kCubeFile), readJsonFile(from / kCalibrationFile), "specular-ld",
-                 c.outputDirectory / "specular.ktx2");
+    const CubeMap source = readCube(from / kCubeFile);
+    // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
+    std::optional<CubeMap> withSun;
+    if (c.stage.dependsOn.size() > 1) withSun = readCube(c.dependencies.at("environment") / kCubeFile);
+    writeLdChain(c, source, readJsonFile(from / kCalibrationFile), "specular-ld",
+                 c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
 }
 
 json rgb(const glm::dvec3& v) {
