@@ -6,7 +6,7 @@
 
 namespace ibl::cli {
 
-BakeOptions BakeCommandOptions::bakeOptions() const {
+BakeOptions BakeRunOptions::bakeOptions() const {
     BakeOptions options;
     options.cacheDirectory = cache;
     options.force = force;

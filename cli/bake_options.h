@@ -1,5 +1,6 @@
 // The command line of `iblbake bake SCENE`, declared once: the engine's bake command and the front end
-// (front_end.cpp), which answers an up-to-date bake itself, parse it the same way.
+// (front_end.cpp), which answers an up-to-date bake itself, parse it the same way; `iblbake batch` shares
+// BakeRunOptions.
 #pragma once
 
 #include <iblbake/bake_scene.h>
@@ -10,8 +11,8 @@
 
 namespace ibl::cli {
 
-struct BakeCommandOptions {
-    std::string scene;
+// What `iblbake bake` and `iblbake batch` share: how they report, the cache and the backend.
+struct BakeRunOptions {
     bool json = false;
     bool quiet = false;
     bool force = false;
@@ -20,6 +21,10 @@ struct BakeCommandOptions {
     std::string device;
 
     BakeOptions bakeOptions() const; // warnings to stderr
+};
+
+struct BakeCommandOptions : BakeRunOptions {
+    std::string scene;
 };
 
 // Adds the `bake` subcommand, bound to `options` (which must outlive `app`'s parse).

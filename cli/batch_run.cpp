@@ -12,7 +12,6 @@
 #include <cstdlib>
 #include <exception>
 #include <fstream>
-#include <iostream>
 #include <mutex>
 #include <optional>
 #include <thread>
@@ -238,16 +237,6 @@ fs::path summaryPathFor(const BatchCommandOptions& o, const Shard& shard) {
     if (shard.count == 1) return base / "batch-summary.json";
     return base / ("batch-summary-" + std::to_string(shard.index + 1) + "-of-" + std::to_string(shard.count) +
                    ".json");
-}
-
-BakeOptions BatchCommandOptions::bakeOptions() const {
-    BakeOptions options;
-    options.cacheDirectory = cache;
-    options.force = force;
-    options.backend = parseBackend(backend);
-    options.device = device;
-    options.warnings = &std::cerr;
-    return options;
 }
 
 int runBatch(const BatchCommandOptions& o, const BatchManifest& manifest, const Shard& shard,

@@ -4,6 +4,8 @@
 // (front_end.cpp), which answers a batch whose items are all up to date without loading the engine.
 #pragma once
 
+#include "bake_options.h"
+
 #include <iblbake/bake_scene.h>
 #include <iblbake/batch.h>
 
@@ -16,20 +18,12 @@
 
 namespace ibl::cli {
 
-struct BatchCommandOptions {
+struct BatchCommandOptions : BakeRunOptions {
     std::string manifest;
     int jobs = 1;
     std::string shard;
     int shardCount = 0; // 0: not given
     std::string summary;
-    bool json = false;
-    bool quiet = false;
-    bool force = false;
-    std::string cache;
-    std::string backend = "auto";
-    std::string device;
-
-    BakeOptions bakeOptions() const; // warnings to stderr
 };
 
 // Adds the `batch` subcommand, bound to `options` (which must outlive `app`'s parse).
