@@ -206,7 +206,9 @@ TEST(ScenePlan, StageSetsFollowTheMaterialsAndProbes) {
               (std::set<std::string>{"dfg", "environment", "specular", "diffuse", "probe:a", "probe:b"}));
     // Uncalibrated environment: the probes do not depend on it.
     for (const ibl::PlanStage& s : probePlan.stages)
-        if (s.kind == "probe-ld") EXPECT_TRUE(s.dependsOn.empty()) << s.id;
+        if (s.kind == "probe-ld") {
+            EXPECT_TRUE(s.dependsOn.empty()) << s.id;
+        }
 
     json probesDiffuseOnly = probes;
     probesDiffuseOnly["materials"] = {{"specular", false}};
@@ -228,8 +230,12 @@ TEST(ScenePlan, CalibratedEnvironmentMakesInheritingProbesDependOnIt) {
     doc["probes"][1]["calibration"] = {{"scale", 2}};
     const ibl::Plan plan = ibl::planScene(parse(doc));
     for (const ibl::PlanStage& s : plan.stages) {
-        if (s.id == "probe:a") EXPECT_EQ(s.dependsOn, std::vector<std::string>{"environment"});
-        if (s.id == "probe:b") EXPECT_TRUE(s.dependsOn.empty());
+        if (s.id == "probe:a") {
+            EXPECT_EQ(s.dependsOn, std::vector<std::string>{"environment"});
+        }
+        if (s.id == "probe:b") {
+            EXPECT_TRUE(s.dependsOn.empty());
+        }
     }
 }
 
@@ -244,5 +250,7 @@ TEST(ScenePlan, LdLevelsStopAtTheRoughestMaterial) {
     json doc = minimalScene();
     doc["materials"] = {{"roughness", {{"max", 0.5}}}};
     for (const ibl::PlanStage& s : ibl::planScene(parse(doc)).stages)
-        if (s.id == "specular") EXPECT_EQ(s.settings.at("integratedLevels"), 7);
+        if (s.id == "specular") {
+            EXPECT_EQ(s.settings.at("integratedLevels"), 7);
+        }
 }

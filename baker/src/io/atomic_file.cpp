@@ -20,8 +20,11 @@ AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
                     std::strerror(errno));
     if (fs::is_directory(target_, ec)) throw Error(target_.string() + ": is a directory");
     static std::atomic<unsigned> counter{0};
-    temp_ = dir / ("." + target_.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                   std::to_string(counter++) + target_.extension().string());
+    std::string name = "."; // built by appending: GCC 12 warns (-Wrestrict) on "." + std::string&&
+    name += target_.stem().string();
+    name +=
+        ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + target_.extension().string();
+    temp_ = dir / name;
 }
 
 AtomicFile::~AtomicFile() {
