@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
@@ -180,6 +181,38 @@ TEST(EnvironmentStats, AnalyticEnvironments) {
     const CubeMap zen =
         cubeOf(64, [](const glm::dvec3& d) { return glm::vec3(d.y > std::cos(0.2) ? 3.0f : 1.0f); });
     EXPECT_NEAR(zenithLuminance(SphereTexels(zen), kZenithCapDegrees), 3.0, 1e-6);
+}
+
+// The statistics (from per-face tables for a cube) equal the per-texel sums, and are the same to the last
+// bit on one thread or many: a calibration factor made from them reaches every product, which must not
+// depend on the machine (batch shards are byte-compared).
+TEST(EnvironmentStats, MatchPerTexelSumsAndSameBitsOnAnyThreadCount) {
+    const CubeMap cube = cubeOf(48, [](const glm::dvec3& d) {
+        return glm::vec3(float(1.0 + 3.0 * std::max(0.0, d.y) + 0.5 * d.x), 0.7f, float(2.0 + d.z));
+    });
+    const glm::dvec3 weights(0.2126, 0.7152, 0.0722);
+    const SphereTexels texels(cube);
+    double energy = 0.0, upward = 0.0;
+    for (std::size_t i = 0; i < texels.size(); ++i) {
+        const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
+        energy += y * texels.solidAngle(i);
+        upward += y * texels.upwardCosine(i);
+    }
+    const EnvironmentStats many = computeEnvironmentStats(cube, weights);
+    EXPECT_NEAR(many.meanLuminance, energy / (4.0 * kPi), 1e-12 * many.meanLuminance);
+    EXPECT_NEAR(many.upwardIlluminance, upward, 1e-12 * upward);
+    EnvironmentStats one;
+    {
+        const tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+        one = computeEnvironmentStats(cube, weights);
+    }
+    for (int repeat = 0; repeat < 4; ++repeat) {
+        const EnvironmentStats again = computeEnvironmentStats(cube, weights);
+        EXPECT_EQ(again.meanLuminance, one.meanLuminance);
+        EXPECT_EQ(again.upwardIlluminance, one.upwardIlluminance);
+        EXPECT_EQ(again.logMeanLuminance, one.logMeanLuminance);
+        EXPECT_EQ(again.lowPercentileLuminance, one.lowPercentileLuminance);
+    }
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -35,6 +35,7 @@ class SphereTexels {
     explicit SphereTexels(const ImageRGBA& latlong);
 
     bool isCube() const { return cube_ != nullptr; }
+    int faceSize() const { return cube_ ? cube_->faceSize : 0; } // 0 for a lat-long
     std::size_t size() const { return size_; }
     // Same geometry (kind and resolution): indices of one are valid in the other.
     bool sameGridAs(const SphereTexels& other) const;

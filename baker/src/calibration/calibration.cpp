@@ -47,8 +47,10 @@ const char* calibrationSourceName(CalibrationSource source) {
 
 std::string CalibrationRecord::summary() const {
     std::string text = std::string("calibration ") + calibrationSourceName(source);
-    if (source != CalibrationSource::None && source != CalibrationSource::Radiometric)
-        text += " " + number(sourceValue);
+    if (source != CalibrationSource::None && source != CalibrationSource::Radiometric) {
+        text += ' '; // appended apart: GCC 12 warns (-Wrestrict) on " " + std::string&&
+        text += number(sourceValue);
+    }
     char buf[256];
     std::snprintf(buf, sizeof buf, ": factor %.6g, %s %.6g -> %.6g", factor, quantity.c_str(), measuredBefore,
                   measuredAfter);
