@@ -121,7 +121,10 @@ Plan planScene(const Scene& scene) {
                    json(m.roughnessMax).dump() + ")";
         // Level 0 (the unconvolved source) keeps the sun's pixels when the format holds them (specular.h
         // keepSunInLevel0): the cube from before the extraction is an input too.
-        if (env.extractSun) s.dependsOn.push_back("environment");
+        if (env.extractSun) {
+            s.dependsOn.push_back("environment");
+            s.reason += "; level 0 keeps the sun's pixels where outputs.ktx2Format holds them";
+        }
         plan.stages.push_back(std::move(s));
     } else {
         plan.skipped.push_back({"specular", "specular-ld", "no material uses specular or clear coat"});
