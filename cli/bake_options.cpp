@@ -16,14 +16,18 @@ BakeOptions BakeRunOptions::bakeOptions() const {
     return options;
 }
 
+void BakeRunOptions::addTo(CLI::App& command, const char* forceHelp, const char* cacheHelp) {
+    command.add_flag("--json", json, "JSON event lines on stdout");
+    command.add_flag("--quiet", quiet, "no progress output (failures still go to stderr)");
+    command.add_flag("--force", force, forceHelp);
+    command.add_option("--cache", cache, cacheHelp);
+    addBackendAndDevice(command, backend, device);
+}
+
 CLI::App* addBakeSubcommand(CLI::App& app, BakeCommandOptions& o) {
     CLI::App* cmd = app.add_subcommand("bake", "bake what a scene needs (cached stages are not recomputed)");
     cmd->add_option("scene", o.scene, "scene file (JSON, README \"Scenes\")")->required();
-    cmd->add_flag("--json", o.json, "JSON event lines on stdout (stage-start, stage-end, done)");
-    cmd->add_flag("--quiet", o.quiet, "no progress output");
-    cmd->add_flag("--force", o.force, "recompute every stage");
-    cmd->add_option("--cache", o.cache, "cache directory (default: <outputs.directory>/.iblbake-cache)");
-    addBackendAndDevice(*cmd, o.backend, o.device);
+    o.addTo(*cmd, "recompute every stage", "cache directory (default: <outputs.directory>/.iblbake-cache)");
     return cmd;
 }
 

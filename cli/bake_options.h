@@ -21,6 +21,8 @@ struct BakeRunOptions {
     std::string device;
 
     BakeOptions bakeOptions() const; // warnings to stderr
+    // --json, --quiet, --force, --cache, --backend, --device on `command`.
+    void addTo(CLI::App& command, const char* forceHelp, const char* cacheHelp);
 };
 
 struct BakeCommandOptions : BakeRunOptions {

@@ -1,7 +1,6 @@
 // The batch run behind `iblbake batch MANIFEST` (batch_run.h), shared by the engine and the front end.
 #include "batch_run.h"
 
-#include "backend_choice.h"
 #include "batch_progress.h"
 
 #include <iblbake/atomic_file.h>
@@ -214,11 +213,8 @@ CLI::App* addBatchSubcommand(CLI::App& app, BatchCommandOptions& o) {
     cmd->add_option("--summary", o.summary,
                     "JSON summary (default: <manifest dir>/batch-summary.json, batch-summary-K-of-N.json "
                     "when sharded)");
-    cmd->add_flag("--json", o.json, "JSON event lines on stdout");
-    cmd->add_flag("--quiet", o.quiet, "no progress output (failures still go to stderr)");
-    cmd->add_flag("--force", o.force, "recompute every stage of every item");
-    cmd->add_option("--cache", o.cache, "cache directory shared by every item (default: each output's own)");
-    addBackendAndDevice(*cmd, o.backend, o.device);
+    o.addTo(*cmd, "recompute every stage of every item",
+            "cache directory shared by every item (default: each output's own)");
     return cmd;
 }
 
