@@ -1,11 +1,12 @@
-// iblbake: the front end. `iblbake bake SCENE` on a scene whose bake directory is up to date, and
-// `iblbake batch MANIFEST` when every item of the shard is, are answered here, from manifest.json and
-// content hashes alone; every other command line goes, unchanged, to the engine (iblbake-engine beside this
-// program, or $IBLBAKE_ENGINE) by exec. Why two programs: the engine links OpenImageIO, whose ~260 shared
-// libraries take the dynamic loader 0.15-0.2 s to map and relocate on our 2-core machine, several times what
-// the whole up-to-date check costs (README "Cache").
+// iblbake: the front end. `iblbake plan SCENE` (pure), `iblbake bake SCENE` on a scene whose bake directory
+// is up to date, and `iblbake batch MANIFEST` when every item of the shard is, are answered here, from the
+// scene, manifest.json and content hashes alone; every other command line goes, unchanged, to the engine
+// (iblbake-engine beside this program, or $IBLBAKE_ENGINE) by exec. Why two programs: the engine links
+// OpenImageIO, whose ~260 shared libraries take the dynamic loader 0.15-0.2 s to map and relocate on our
+// 2-core machine, several times what the whole up-to-date check costs (README "Cache").
 #include "bake_options.h"
 #include "batch_run.h"
+#include "plan_command.h"
 #include "scene_progress.h"
 
 #include <iblbake/bake_scene.h>
@@ -83,6 +84,19 @@ std::optional<int> answerUpToDateBatch(int argc, char** argv) {
     }
 }
 
+// A plan, unless the scene is bad (the engine gives the one-line error) or the command line needs help.
+std::optional<int> answerPlan(int argc, char** argv) {
+    CLI::App app{"iblbake", "iblbake"};
+    ibl::cli::PlanOptions options;
+    ibl::cli::addPlanSubcommand(app, options);
+    try {
+        app.parse(argc, argv);
+        return ibl::cli::runPlan(options); // prints only once the scene has parsed and planned
+    } catch (...) {
+        return std::nullopt;
+    }
+}
+
 fs::path enginePath() {
     if (const char* path = std::getenv("IBLBAKE_ENGINE"); path && *path) return path;
     std::error_code ec;
@@ -93,6 +107,8 @@ fs::path enginePath() {
 } // namespace
 
 int main(int argc, char** argv) {
+    if (argc >= 2 && std::string_view(argv[1]) == "plan")
+        if (const std::optional<int> exitCode = answerPlan(argc, argv)) return *exitCode;
     if (argc >= 2 && std::string_view(argv[1]) == "bake")
         if (const std::optional<int> exitCode = answerUpToDateBake(argc, argv)) return *exitCode;
     if (argc >= 2 && std::string_view(argv[1]) == "batch")

@@ -269,6 +269,14 @@ TEST(SceneBake, UnchangedRerunIsAnsweredWithoutTheEngineAndAsTheEngineWould) {
               std::string::npos)
         << text.out;
 
+    // Plans are answered by the front end too, with the engine's very bytes.
+    for (const std::string& args : {"plan " + scene.string(), "plan " + scene.string() + " --json"}) {
+        const CliRun front = runProgram(withoutEngine, args), byEngine = runProgram(enginePath(), args);
+        EXPECT_EQ(front.exitCode, 0) << front.err;
+        EXPECT_EQ(front.out, byEngine.out) << args;
+        EXPECT_FALSE(front.out.empty());
+    }
+
     // Everything else goes to the engine: --force, a changed input, other commands.
     for (const std::string& args : {"bake " + scene.string() + " --force", std::string("--version")}) {
         const CliRun r = runProgram(withoutEngine, args);
