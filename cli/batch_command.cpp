@@ -1,4 +1,4 @@
-// iblbake batch MANIFEST in the engine: the batch run of batch_run.h, baking with bakeScene.
+// iblbake batch MANIFEST in the engine: the batch run of batch_run.h, baking stale items with bakeStaleScene.
 #include "batch_run.h"
 #include "commands.h"
 
@@ -9,7 +9,7 @@ namespace ibl::cli {
 Action addBatchCommand(CLI::App& app) {
     auto o = std::make_shared<BatchCommandOptions>();
     addBatchSubcommand(app, *o);
-    return [o] { return runBatch(*o, loadBatchManifest(o->manifest), chooseShard(*o), bakeScene); };
+    return [o] { return runBatch(*o, loadBatchManifest(o->manifest), chooseShard(*o), bakeStaleScene); };
 }
 
 } // namespace ibl::cli

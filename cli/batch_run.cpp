@@ -139,7 +139,7 @@ class BatchRun {
                 progress_.line(item.id + ": skipped: up to date");
             } else {
                 ItemProgress sink(progress_, item.id);
-                const BakeSummary bake = bake_(scene, options_, sink);
+                const BakeSummary bake = bake_(scene, options_, sink, upToDate);
                 result["status"] = bake.ok ? "ok" : "failed";
                 result["products"] = pathList(bake.products);
                 result["backend"] = bake.backend;

@@ -34,8 +34,9 @@ Shard chooseShard(const BatchCommandOptions& options);
 // --summary, else <manifest dir>/batch-summary.json (batch-summary-K-of-N.json when sharded).
 std::filesystem::path summaryPathFor(const BatchCommandOptions& options, const Shard& shard);
 
-// How an item that is not up to date is baked: bakeScene in the engine.
-using BakeFunction = std::function<BakeSummary(const Scene&, const BakeOptions&, ProgressSink&)>;
+// How an item found stale (its check given) is baked: bakeStaleScene in the engine.
+using BakeFunction =
+    std::function<BakeSummary(const Scene&, const BakeOptions&, ProgressSink&, const UpToDate& checked)>;
 // Up-to-date checks already made, by item index: taken instead of checking the item again.
 using KnownUpToDate = std::map<std::size_t, UpToDate>;
 

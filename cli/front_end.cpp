@@ -72,8 +72,8 @@ std::optional<int> answerUpToDateBatch(int argc, char** argv) {
     } catch (...) {
         return std::nullopt;
     }
-    const auto needsEngine = [](const ibl::Scene&, const ibl::BakeOptions&,
-                                ibl::ProgressSink&) -> ibl::BakeSummary {
+    const auto needsEngine = [](const ibl::Scene&, const ibl::BakeOptions&, ibl::ProgressSink&,
+                                const ibl::UpToDate&) -> ibl::BakeSummary {
         throw std::logic_error("the front end was asked to bake"); // every item was found up to date
     };
     try {

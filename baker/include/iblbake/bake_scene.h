@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -74,8 +75,16 @@ struct UpToDate {
     std::vector<std::filesystem::path> products; // when up to date: the products in plan order, manifest last
     std::vector<std::string> keys;               // when up to date: the plan's stage keys, in plan order
     std::string backend;                         // when up to date: the backend the manifest records
+    // The content hash of every file the plan reads, by path, when the check got as far as reading them all
+    // (empty otherwise): bakeStaleScene takes them instead of reading the inputs again.
+    std::map<std::string, std::string> inputHashes;
 };
 UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
+
+// bakeScene for a caller that has just made the check itself and found the bake stale (`checked`, e.g.
+// iblbake batch): runs the stages without checking again, with the input hashes the check read.
+BakeSummary bakeStaleScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress,
+                           const UpToDate& checked);
 
 // The summary of a bake found up to date, as bakeScene reports it: every stage of the plan cached, with its
 // key, no time spent in it; `progress` sees each stage start and end, then done. `start` is when the caller

@@ -56,14 +56,10 @@ std::map<std::string, std::string> publishProducts(const Plan& plan,
     return hashes;
 }
 
-} // namespace
-
-BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress) {
-    const auto start = std::chrono::steady_clock::now();
-    if (!options.force) {
-        const UpToDate upToDate = checkBakeUpToDate(scene, options);
-        if (upToDate.upToDate) return reportUpToDateBake(scene, upToDate, progress, start);
-    }
+// The stages of a stale bake; `checkedInputHashes` are the check's (empty when it did not read every input).
+BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressSink& progress,
+                       const std::map<std::string, std::string>& checkedInputHashes,
+                       std::chrono::steady_clock::time_point start) {
     BakeSummary summary;
     const Plan plan = planScene(scene);
     summary.skipped = plan.skipped;
@@ -72,7 +68,8 @@ BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSi
     std::size_t current = 0;
     try {
         // Every input is read (hashed) before anything is written: a missing file fails the bake here.
-        const std::map<std::string, std::string> inputHashes = hashPlanInputs(scene, plan);
+        const std::map<std::string, std::string> inputHashes =
+            checkedInputHashes.empty() ? hashPlanInputs(scene, plan) : checkedInputHashes;
 
         std::optional<Executor> executor;
         summary.backend = "none";
@@ -153,6 +150,20 @@ BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSi
     summary.seconds = secondsSince(start);
     progress.done(summary);
     return summary;
+}
+
+} // namespace
+
+BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress) {
+    const auto start = std::chrono::steady_clock::now();
+    const UpToDate checked = checkBakeUpToDate(scene, options); // "--force" when forced: never up to date
+    if (checked.upToDate) return reportUpToDateBake(scene, checked, progress, start);
+    return bakeStages(scene, options, progress, checked.inputHashes, start);
+}
+
+BakeSummary bakeStaleScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress,
+                           const UpToDate& checked) {
+    return bakeStages(scene, options, progress, checked.inputHashes, std::chrono::steady_clock::now());
 }
 
 } // namespace ibl

@@ -48,7 +48,8 @@ std::string check(const Scene& scene, const BakeOptions& options, UpToDate& out)
         return "baked with the " + backend + " backend";
 
     const Plan plan = planScene(scene);
-    const std::map<std::string, std::string> keys = planStageKeys(plan, hashPlanInputs(scene, plan), backend);
+    out.inputHashes = hashPlanInputs(scene, plan);
+    const std::map<std::string, std::string> keys = planStageKeys(plan, out.inputHashes, backend);
     const json& stages = manifest.at("stages");
     if (stages.size() != plan.stages.size()) return "the plan changed";
     for (std::size_t i = 0; i < stages.size(); ++i) {
@@ -84,7 +85,7 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options) {
         }
     }
     out.upToDate = out.reason.empty();
-    if (!out.upToDate) out = UpToDate{false, out.reason, {}, {}, {}};
+    if (!out.upToDate) out = UpToDate{false, out.reason, {}, {}, {}, std::move(out.inputHashes)};
     return out;
 }
 
