@@ -1,7 +1,6 @@
 #include "scene_manifest.h"
 
 #include "iblbake/irradiance.h"
-#include "iblbake/ktx2.h"
 #include "iblbake/sun.h"
 #include "scene_stages.h"
 
@@ -91,10 +90,8 @@ json buildManifest(const ManifestInputs& in) {
         const PlanStage& stage = *stages["specular"];
         json& specular = products["specular"] =
             ldProduct(stage, "specular.ktx2", in.productHashes.at("specular.ktx2"));
-        // Whether level 0 kept the extracted sun's pixels (keepSunInLevel0) is the product's own key.
-        const Ktx2Image ld = readKtx2(in.entries.at("specular") / entryFileFor(stage, "specular.ktx2"));
-        const auto sunInLevel0 = ld.keyValues.find("iblbake.sunInLevel0");
-        specular["sunInLevel0"] = sunInLevel0 != ld.keyValues.end() && sunInLevel0->second == "true";
+        const fs::path facts = in.entries.at("specular") / kLdFacts;
+        specular["sunInLevel0"] = fs::exists(facts) && readJsonFile(facts).at("sunInLevel0").get<bool>();
     }
     {
         const json diffuse = readJsonFile(in.entries.at("diffuse") / "diffuse.json");

@@ -183,7 +183,8 @@ std::string mappingText(MipMapping mapping) {
 }
 
 // Bakes and writes an LD chain (the distant environment's or a local probe's).
-void writeLdChain(const StageContext& c, const CubeMap& source, const json& calibration,
+// Returns whether level 0 kept the sun's pixels (only with `withSun`).
+bool writeLdChain(const StageContext& c, const CubeMap& source, const json& calibration,
                   const std::string& product, const fs::path& file, const CubeMap* withSun = nullptr) {
     const json& s = c.stage.settings;
     SpecularSettings settings;
@@ -204,8 +205,10 @@ void writeLdChain(const StageContext& c, const CubeMap& source, const json& cali
     for (auto& entry : calibrationKeyValues(calibration))
         kv.push_back(entry);
     const Ktx2Format format = ktx2Format(s.at("ktx2Format").get<std::string>());
-    if (withSun && keepSunInLevel0(chain, *withSun, format)) kv.emplace_back("iblbake.sunInLevel0", "true");
+    const bool sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format);
+    if (sunInLevel0) kv.emplace_back("iblbake.sunInLevel0", "true");
     writeKtx2Cube(file, chain, format, kv);
+    return sunInLevel0;
 }
 
 void runSpecular(const StageContext& c) {
@@ -214,8 +217,9 @@ void runSpecular(const StageContext& c) {
     // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
     std::optional<CubeMap> withSun;
     if (c.stage.dependsOn.size() > 1) withSun = readCube(c.dependencies.at("environment") / kCubeFile);
-    writeLdChain(c, source, readJsonFile(from / kCalibrationFile), "specular-ld",
-                 c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
+    const bool sunInLevel0 = writeLdChain(c, source, readJsonFile(from / kCalibrationFile), "specular-ld",
+                                          c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
+    writeJson(c.outputDirectory / kLdFacts, {{"sunInLevel0", sunInLevel0}});
 }
 
 json rgb(const glm::dvec3& v) {

@@ -35,5 +35,8 @@ nlohmann::json readJsonFile(const std::filesystem::path& file);
 // calibration (JSON: factor, absolute, units, colorSpace, metadata {key: text}, source, sunLight?).
 inline constexpr const char* kCubeFile = "cube.ktx2";
 inline constexpr const char* kCalibrationFile = "calibration.json";
+// Beside the specular stage's chain: {"sunInLevel0": bool} (specular.h keepSunInLevel0), for the manifest.
+// Entries older than this file never kept the sun.
+inline constexpr const char* kLdFacts = "ld.json";
 
 } // namespace ibl
