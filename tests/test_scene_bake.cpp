@@ -102,6 +102,14 @@ std::map<std::string, std::string> statusById(const json& summary) {
     return out;
 }
 
+// A scene file baked through the library on the CPU backend, without progress.
+ibl::BakeSummary bakeOnCpu(const fs::path& sceneFile) {
+    ibl::BakeOptions options;
+    options.backend = ibl::Backend::Cpu;
+    ibl::ProgressSink silent;
+    return ibl::bakeScene(ibl::loadSceneFile(sceneFile), options, silent);
+}
+
 // Every regular file directly in `dir` with its bytes.
 std::map<std::string, std::string> snapshot(const fs::path& dir) {
     std::map<std::string, std::string> files;
@@ -271,10 +279,10 @@ TEST(SceneBake, UnchangedRerunIsAnsweredWithoutTheEngineAndAsTheEngineWould) {
 
     // Plans are answered by the front end too, with the engine's very bytes.
     for (const std::string& args : {"plan " + scene.string(), "plan " + scene.string() + " --json"}) {
-        const CliRun front = runProgram(withoutEngine, args), byEngine = runProgram(enginePath(), args);
-        EXPECT_EQ(front.exitCode, 0) << front.err;
-        EXPECT_EQ(front.out, byEngine.out) << args;
-        EXPECT_FALSE(front.out.empty());
+        const CliRun byFrontEnd = runProgram(withoutEngine, args), byEngine = runProgram(enginePath(), args);
+        EXPECT_EQ(byFrontEnd.exitCode, 0) << byFrontEnd.err;
+        EXPECT_EQ(byFrontEnd.out, byEngine.out) << args;
+        EXPECT_FALSE(byFrontEnd.out.empty());
     }
 
     // Everything else goes to the engine: --force, a changed input, other commands.
@@ -454,11 +462,7 @@ TEST(SceneBake, ManifestLoadsAndShadesLikeTheHandBuiltSet) {
         {"file", kSample}, {"calibration", {{"sunIlluminance", 100000}}}, {"extractSun", true}};
     d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0.5, 1, 0.25})});
     d.scene["materials"] = {{"diffuseModel", "disney"}};
-    const ibl::Scene scene = ibl::loadSceneFile(d.write());
-    ibl::BakeOptions options;
-    options.backend = ibl::Backend::Cpu;
-    ibl::ProgressSink silent;
-    const ibl::BakeSummary summary = ibl::bakeScene(scene, options, silent);
+    const ibl::BakeSummary summary = bakeOnCpu(d.write());
     ASSERT_TRUE(summary.ok) << summary.error;
     EXPECT_EQ(summary.backend, "cpu");
 
@@ -529,11 +533,7 @@ TEST(SceneBake, IrradianceCubeWhenAskedIsPlannedBakedAndLoaded) {
         << bad.err;
     d.scene["outputs"]["irradianceFaceSize"] = 8;
 
-    const ibl::Scene scene = ibl::loadSceneFile(d.write());
-    ibl::BakeOptions options;
-    options.backend = ibl::Backend::Cpu;
-    ibl::ProgressSink silent;
-    const ibl::BakeSummary summary = ibl::bakeScene(scene, options, silent);
+    const ibl::BakeSummary summary = bakeOnCpu(d.write());
     ASSERT_TRUE(summary.ok) << summary.error;
     const json manifest = json::parse(readBytes(d.out() / "manifest.json"));
     ASSERT_TRUE(manifest["products"].contains("irradiance"));
