@@ -1,8 +1,8 @@
 // iblbake accuracy: sweeps every stage's quality knobs on the user's input, times each setting and measures
 // its error against the brute-force reference; writes report.json, report.md and report.html into a
 // directory that appears only when complete.
-#include "accuracy_report.h"
-#include "accuracy_sweep.h"
+#include "report.h"
+#include "sweep.h"
 #include "commands.h"
 #include "common_options.h"
 #include "input_options.h"

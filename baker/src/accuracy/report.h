@@ -2,7 +2,7 @@
 // accuracy costs in time" table) and report.html (one inline SVG plot of error against time per stage).
 #pragma once
 
-#include "accuracy_model.h"
+#include "model.h"
 
 #include <string>
 

@@ -2,7 +2,7 @@
 // of repeats) and compared with the stage's brute-force reference at sizes where that is affordable.
 #pragma once
 
-#include "accuracy_model.h"
+#include "model.h"
 
 #include <iblbake/cubemap.h>
 #include <iblbake/executor.h>

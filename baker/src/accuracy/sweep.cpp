@@ -1,4 +1,4 @@
-#include "accuracy_sweep.h"
+#include "sweep.h"
 
 #include <iblbake/dfg_lut.h>
 #include <iblbake/dfg_reference.h>

@@ -1,6 +1,6 @@
 // The runtime stage of `iblbake accuracy`: material spheres shaded by the runtime module from a probe baked
 // at each specular preset, against the brute-force renderer (Frostbite Appendix A) lit by the same input.
-#include "accuracy_sweep.h"
+#include "sweep.h"
 
 #include <iblbake/dfg_lut.h>
 #include <iblbake/irradiance.h>

@@ -1,4 +1,4 @@
-#include "accuracy_report.h"
+#include "report.h"
 
 #include <nlohmann/json.hpp>
 
