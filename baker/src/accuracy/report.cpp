@@ -1,4 +1,4 @@
-#include "report.h"
+#include "iblbake/accuracy.h"
 
 #include <nlohmann/json.hpp>
 
@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <sstream>
 
-namespace ibl::cli {
+namespace ibl {
 
 namespace {
 
@@ -103,4 +103,4 @@ std::string accuracyMarkdown(const AccuracyRun& run) {
     return md.str();
 }
 
-} // namespace ibl::cli
+} // namespace ibl

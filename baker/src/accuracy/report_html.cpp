@@ -1,14 +1,14 @@
 // report.html of `iblbake accuracy`: per stage, a hand-written SVG plot of error against time (both log
 // scales), the Pareto front drawn as a line, the presets marked and named, and the measurements as a table.
 // No scripts: the page is static.
-#include "report.h"
+#include "iblbake/accuracy.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 
-namespace ibl::cli {
+namespace ibl {
 
 namespace {
 
@@ -158,4 +158,4 @@ std::string accuracyHtml(const AccuracyRun& run) {
     return html.str();
 }
 
-} // namespace ibl::cli
+} // namespace ibl

@@ -13,10 +13,11 @@
 #include <cstdio>
 #include <set>
 
-namespace ibl::cli {
+namespace ibl {
 
 SweepPlan SweepPlan::quick() {
     SweepPlan p;
+    p.isQuick = true;
     p.sourceFaceSize = 16;
     p.dfgReferenceSize = 9;
     p.dfgReferenceSamples = 4096;
@@ -379,4 +380,4 @@ void markParetoFront(AccuracyStage& stage) {
     }
 }
 
-} // namespace ibl::cli
+} // namespace ibl

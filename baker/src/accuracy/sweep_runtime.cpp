@@ -15,7 +15,7 @@
 
 #include <glm/geometric.hpp>
 
-namespace ibl::cli {
+namespace ibl {
 
 namespace {
 
@@ -138,4 +138,4 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     return stage;
 }
 
-} // namespace ibl::cli
+} // namespace ibl
