@@ -1,5 +1,5 @@
-// iblbake batch MANIFEST in the engine: the batch run of batch_run.h, baking stale items with bakeStaleScene.
-#include "batch_run.h"
+// iblbake batch MANIFEST in the engine: the library's batch run, baking stale items with bakeStaleScene.
+#include "batch_options.h"
 #include "commands.h"
 
 #include <memory>
@@ -9,7 +9,8 @@ namespace ibl::cli {
 Action addBatchCommand(CLI::App& app) {
     auto o = std::make_shared<BatchCommandOptions>();
     addBatchSubcommand(app, *o);
-    return [o] { return runBatch(*o, loadBatchManifest(o->manifest), chooseShard(*o), bakeStaleScene); };
+    return
+        [o] { return runBatchCommand(*o, loadBatchManifest(o->manifest), chooseShard(*o), bakeStaleScene); };
 }
 
 } // namespace ibl::cli

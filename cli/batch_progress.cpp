@@ -19,22 +19,51 @@ void BatchProgress::line(const std::string& text, bool isError) {
     std::fprintf(stderr, "%s\n", text.c_str());
 }
 
-void ItemProgress::stageStart(const StageResult& stage, int index, int count) {
-    batch_.event(
-        "stage-start",
-        {{"item", item_}, {"stage", stage.id}, {"kind", stage.kind}, {"index", index}, {"count", count}});
+void BatchProgress::batchStart(const BatchSummary& summary, const std::filesystem::path& summaryFile) {
+    event("batch-start", {{"items", summary.items.size()},
+                          {"inShard", summary.items.size() - summary.count(BatchItemStatus::NotInShard)},
+                          {"shard", batchShardJson(summary.shard)},
+                          {"jobs", summary.jobs},
+                          {"summary", summaryFile.string()}});
 }
 
-void ItemProgress::stageEnd(const StageResult& stage, int index, int count) {
-    batch_.event("stage-end", {{"item", item_},
-                               {"stage", stage.id},
-                               {"status", stageStatusName(stage.status)},
-                               {"cached", stage.status == StageStatus::Cached},
-                               {"seconds", stage.seconds}});
+void BatchProgress::itemStart(const BatchItem& item) {
+    event("item-start", {{"item", item.id}, {"index", item.index}});
+}
+
+void BatchProgress::stageStart(const BatchItem& item, const StageResult& stage, int index, int count) {
+    event("stage-start",
+          {{"item", item.id}, {"stage", stage.id}, {"kind", stage.kind}, {"index", index}, {"count", count}});
+}
+
+void BatchProgress::stageEnd(const BatchItem& item, const StageResult& stage, int index, int count) {
+    event("stage-end", {{"item", item.id},
+                        {"stage", stage.id},
+                        {"status", stageStatusName(stage.status)},
+                        {"cached", stage.status == StageStatus::Cached},
+                        {"seconds", stage.seconds}});
     char text[160];
     std::snprintf(text, sizeof text, "%d/%d %-20s %-7s %.2f s", index + 1, count, stage.id.c_str(),
                   stageStatusName(stage.status), stage.seconds);
-    batch_.line("[" + item_ + "] " + text);
+    line("[" + item.id + "] " + text);
+}
+
+void BatchProgress::itemEnd(const BatchItemResult& result) {
+    if (result.status == BatchItemStatus::UpToDate)
+        line(result.id + ": skipped: up to date");
+    else if (result.status == BatchItemStatus::Ok)
+        line(result.id + ": ok (" + std::to_string(result.stages->ran) + " ran, " +
+             std::to_string(result.stages->cached) + " cached)");
+    else
+        line(result.id + ": failed: " + result.error, true);
+    nlohmann::json end = {
+        {"item", result.id}, {"status", batchItemStatusName(result.status)}, {"seconds", result.seconds}};
+    if (result.status == BatchItemStatus::Failed) end["error"] = result.error;
+    event("item-end", end);
+}
+
+void BatchProgress::done(const BatchSummary& summary) {
+    event("done", {{"summary", batchSummaryJson(summary)}});
 }
 
 } // namespace ibl::cli

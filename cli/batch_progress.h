@@ -1,11 +1,12 @@
-// Progress of `iblbake batch`: the scene bake's ProgressSink per item, each line or JSON event naming its
-// item; lines from parallel items never interleave (one mutex). Lines mode prints one line per stage and per
-// item on stderr, --quiet only errors, --json one JSON object per line on stdout (README "Batch").
+// Progress of `iblbake batch`: the library's batch observer printing each stage and item as a line or a JSON
+// event naming its item; lines from parallel items never interleave (one mutex). Lines mode prints one line
+// per stage and per item on stderr, --quiet only errors, --json one JSON object per line on stdout (README
+// "Batch").
 #pragma once
 
 #include "scene_progress.h"
 
-#include <iblbake/bake_scene.h>
+#include <iblbake/batch_run.h>
 
 #include <nlohmann/json.hpp>
 
@@ -14,32 +15,26 @@
 
 namespace ibl::cli {
 
-class BatchProgress {
+class BatchProgress : public BatchObserver {
   public:
     explicit BatchProgress(ProgressMode mode)
         : mode_(mode == ProgressMode::Bar ? ProgressMode::Lines : mode) {}
 
+    void batchStart(const BatchSummary& summary, const std::filesystem::path& summaryFile) override;
+    void itemStart(const BatchItem& item) override;
+    void stageStart(const BatchItem& item, const StageResult& stage, int index, int count) override;
+    void stageEnd(const BatchItem& item, const StageResult& stage, int index, int count) override;
+    void itemEnd(const BatchItemResult& result) override;
+    void done(const BatchSummary& summary) override;
+
+  private:
     // A JSON event line (--json only); `event` gets {"event": name}.
     void event(const std::string& name, nlohmann::json event);
     // A line on stderr (lines mode; failures also in quiet mode).
     void line(const std::string& text, bool isError = false);
-    ProgressMode mode() const { return mode_; }
 
-  private:
     ProgressMode mode_;
     std::mutex mutex_;
-};
-
-// The sink one item's bake reports to.
-class ItemProgress : public ProgressSink {
-  public:
-    ItemProgress(BatchProgress& batch, std::string item) : batch_(batch), item_(std::move(item)) {}
-    void stageStart(const StageResult& stage, int index, int count) override;
-    void stageEnd(const StageResult& stage, int index, int count) override;
-
-  private:
-    BatchProgress& batch_;
-    std::string item_;
 };
 
 } // namespace ibl::cli

@@ -5,7 +5,7 @@
 // OpenImageIO, whose ~260 shared libraries take the dynamic loader 0.15-0.2 s to map and relocate on our
 // 2-core machine, several times what the whole up-to-date check costs (README "Cache").
 #include "bake_options.h"
-#include "batch_run.h"
+#include "batch_options.h"
 #include "plan_command.h"
 #include "scene_progress.h"
 
@@ -48,15 +48,16 @@ std::optional<int> answerUpToDateBake(int argc, char** argv) {
     }
 }
 
-// The same for a batch: answered when every item of the shard is up to date (then runBatch finds nothing to
-// bake and only writes the summary); a failure after that point is reported here, as the engine would.
+// The same for a batch: answered when every item of the shard is up to date (then the library's runBatch
+// finds nothing to bake and only writes the summary); a failure after that point is reported here, as the
+// engine would.
 std::optional<int> answerUpToDateBatch(int argc, char** argv) {
     CLI::App app{"iblbake", "iblbake"};
     ibl::cli::BatchCommandOptions options;
     ibl::cli::addBatchSubcommand(app, options);
     ibl::BatchManifest manifest;
     ibl::Shard shard;
-    ibl::cli::KnownUpToDate known;
+    ibl::KnownUpToDate known;
     try {
         app.parse(argc, argv);
         if (options.force) return std::nullopt;
@@ -77,7 +78,7 @@ std::optional<int> answerUpToDateBatch(int argc, char** argv) {
         throw std::logic_error("the front end was asked to bake"); // every item was found up to date
     };
     try {
-        return ibl::cli::runBatch(options, manifest, shard, needsEngine, known);
+        return ibl::cli::runBatchCommand(options, manifest, shard, needsEngine, known);
     } catch (const std::exception& e) { // the summary could not be written
         std::fprintf(stderr, "iblbake: error: %s\n", e.what());
         return 1;
