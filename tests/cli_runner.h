@@ -50,6 +50,14 @@ inline int lineCount(const std::string& s) {
     return int(std::count(s.begin(), s.end(), '\n'));
 }
 
+// How many times `what` occurs in `text`, not overlapping.
+inline std::size_t occurrences(const std::string& text, const std::string& what) {
+    std::size_t count = 0;
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size()))
+        ++count;
+    return count;
+}
+
 // A fresh, empty directory under the system temp directory.
 inline std::filesystem::path freshTempDir(const std::string& name) {
     namespace fs = std::filesystem;

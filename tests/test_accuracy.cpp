@@ -22,18 +22,12 @@ namespace {
 
 using ibl::test::freshTempDir;
 using ibl::test::lineCount;
+using ibl::test::occurrences;
 using ibl::test::runCli;
 
 std::string readFile(const fs::path& file) {
     std::ifstream in(file, std::ios::binary);
     return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::size_t occurrences(const std::string& text, const std::string& what) {
-    std::size_t count = 0;
-    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size()))
-        ++count;
-    return count;
 }
 
 // A 64 x 32 lat-long: sky gradient, dark ground and a bright spot (a compact source the samplers must find).

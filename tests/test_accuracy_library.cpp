@@ -3,6 +3,7 @@
 // reports (JSON fields, Markdown table, HTML plots) written from the run; tests/test_accuracy.cpp runs the
 // same through `iblbake accuracy`.
 #include "cli_runner.h"
+#include "scene_test_support.h"
 #include "test_support.h"
 
 #include <iblbake/accuracy.h>
@@ -13,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <iterator>
 #include <map>
 
 namespace fs = std::filesystem;
@@ -29,17 +29,8 @@ glm::dvec3 sky(const glm::dvec3& direction) {
     return radiance;
 }
 
-std::string readFile(const fs::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::size_t occurrences(const std::string& text, const std::string& what) {
-    std::size_t count = 0;
-    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size()))
-        ++count;
-    return count;
-}
+using ibl::test::occurrences;
+using ibl::test::readBytes;
 
 constexpr int kRepeats = 2;
 
@@ -177,13 +168,13 @@ TEST_F(AccuracyLibrary, ReportsAreWrittenCompleteIntoNewAndExistingDirectories) 
             std::ofstream(target / "report.json") << "old";
         }
         ibl::writeAccuracyReports(target, *run_);
-        EXPECT_EQ(readFile(target / "report.json"), ibl::accuracyJson(*run_)) << target;
-        EXPECT_EQ(readFile(target / "report.md"), ibl::accuracyMarkdown(*run_)) << target;
-        EXPECT_EQ(readFile(target / "report.html"), ibl::accuracyHtml(*run_)) << target;
+        EXPECT_EQ(readBytes(target / "report.json"), ibl::accuracyJson(*run_)) << target;
+        EXPECT_EQ(readBytes(target / "report.md"), ibl::accuracyMarkdown(*run_)) << target;
+        EXPECT_EQ(readBytes(target / "report.html"), ibl::accuracyHtml(*run_)) << target;
         for (const auto& entry : fs::directory_iterator(target.parent_path()))
             EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << entry.path();
     }
-    EXPECT_EQ(readFile(dir / "existing" / "notes.txt"), "kept");
+    EXPECT_EQ(readBytes(dir / "existing" / "notes.txt"), "kept");
     fs::remove_all(dir);
 }
 
