@@ -2,6 +2,7 @@
 // is one line on stderr ("iblbake: error: ...") with a non-zero exit code.
 #include "commands.h"
 
+#include <iblbake/code_identity.h>
 #include <iblbake/error.h>
 
 #include <cstdio>
@@ -33,7 +34,9 @@ std::string oneLine(std::string message) {
 int main(int argc, char** argv) {
     CLI::App app{"iblbake: image-based-lighting and light-probe baker", "iblbake"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "iblbake " IBLBAKE_VERSION);
+    // The stage-code digest names the code behind cached stages (README "Cache").
+    app.set_version_flag("--version", std::string("iblbake " IBLBAKE_VERSION " (stage code ") +
+                                          ibl::builtInCodeDigest() + ")");
 
     std::map<const CLI::App*, ibl::cli::Action> actions;
     auto add = [&](ibl::cli::Action action) { actions[app.get_subcommands({}).back()] = std::move(action); };

@@ -1,5 +1,6 @@
 #include "scene_manifest.h"
 
+#include "iblbake/code_identity.h"
 #include "iblbake/irradiance.h"
 #include "iblbake/sun.h"
 #include "scene_stages.h"
@@ -158,6 +159,7 @@ json buildManifest(const ManifestInputs& in) {
         {"schema", "iblbake.manifest"},
         {"schemaVersion", kManifestSchemaVersion},
         {"generator", "iblbake " IBLBAKE_VERSION},
+        {"manifestCode", builtInStageCodeIdentity().at("manifest")}, // read by the up-to-date check
         {"runtimeProfile", scene.outputs.runtimeProfile},
         {"backend", in.backend},
         {"units", calibration.at("units")},

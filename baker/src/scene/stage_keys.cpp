@@ -19,11 +19,14 @@ std::map<std::string, std::string> hashPlanInputs(const Scene& scene, const Plan
 
 std::map<std::string, std::string> planStageKeys(const Plan& plan,
                                                  const std::map<std::string, std::string>& inputHashes,
-                                                 const std::string& backend) {
+                                                 const std::string& backend, const StageCodeIdentity& code) {
     std::map<std::string, std::string> keys;
     for (const PlanStage& stage : plan.stages) {
+        const auto identity = code.find(stage.kind);
+        if (identity == code.end())
+            throw Error("stage kind " + stage.kind + " has no code identity (cmake/StageCode.cmake)");
         ContentHasher h;
-        h.add("iblbake " IBLBAKE_VERSION).add(stage.kind).add(stage.settings.dump());
+        h.add("iblbake " IBLBAKE_VERSION).add(stage.kind).add(identity->second).add(stage.settings.dump());
         for (const PlanInput& in : stage.inputs) // the name too: products record it (iblbake.source)
             h.add(in.file.filename().string()).add(inputHashes.at(in.file.string()));
         for (const std::string& dependency : stage.dependsOn)

@@ -3,6 +3,7 @@
 // no cache entry.
 #include "iblbake/bake_scene.h"
 
+#include "iblbake/code_identity.h"
 #include "iblbake/content_hash.h"
 #include "iblbake/error.h"
 #include "stage_keys.h"
@@ -46,6 +47,9 @@ std::string check(const Scene& scene, const BakeOptions& options, UpToDate& out)
     if ((options.backend == Backend::OpenCL && backend == "cpu") ||
         (options.backend == Backend::Cpu && backend == "opencl"))
         return "baked with the " + backend + " backend";
+
+    if (manifest.value("manifestCode", "") != builtInStageCodeIdentity().at("manifest"))
+        return "manifest.json was written by other code";
 
     const Plan plan = planScene(scene);
     out.inputHashes = hashPlanInputs(scene, plan);

@@ -1,0 +1,144 @@
+# What code decides each stage kind's bytes (README "Cache"): the table behind the stage-code identity
+# that every stage-cache key holds. Included by baker/CMakeLists.txt (configure time: the checks below) and
+# by cmake/StageCodeIdentity.cmake (build time: the hashes).
+#
+# An entry is a path relative to the source root: a file, or a directory standing for every .cpp, .h and
+# .cl directly in it; or the name of a group defined below (no "/"). From every listed file, #include
+# lines are followed ("x.h" and <x.h>, looked up beside the including file, then in each directory of
+# IBLBAKE_CODE_INCLUDE_DIRS; names found nowhere there are system or third-party headers), so a stage
+# holds the kernel headers its kernels and its CPU code include, and the baker headers its code includes,
+# without listing them. What is not reached that way, the .cpp files that implement what a stage calls
+# and the .cl programs it builds, is listed here.
+#
+# Granularity: one identity per stage kind, so that a change reaches only the kinds whose code it touches
+# (kernels/dfg.h: dfg-lut alone; kernels/ld.h: specular-ld, probe-ld and irradiance-cube, whose kernel
+# includes it; kernels/cube.h or ingest/: every kind that ingests, and through the keys' dependency chain
+# every stage downstream). The scene-stage runner (scene_stages.cpp: all kinds in one file) and the KTX2
+# container code are in every kind.
+#
+# Adding a source file: a new file under baker/src/ or kernels/ must be reached by some kind or be listed
+# in IBLBAKE_CODE_NOT_IN_STAGES; configure fails otherwise, and for a listed path that does not exist.
+
+set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include baker/src/opencl)
+
+# Groups shared by several kinds.
+set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files, the entry layout
+    baker/src/scene/scene_stages.cpp baker/src/scene/stage_cache.cpp baker/src/io/ktx2_writer.cpp
+    baker/src/io/ktx2_reader.cpp)
+set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options
+    baker/src/executor.cpp baker/src/opencl)
+set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration
+    baker/src/ingest baker/src/calibration)
+set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, bright texels, level 0
+    kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/cube_pyramid.cpp
+    baker/src/stages/bright_split.cpp baker/src/stages/sun_in_level0.cpp)
+
+# The stage kinds of the planner (baker/src/scene/scene_plan.cpp); a planned kind missing here makes key
+# computation throw. "manifest" is no stage: manifest.json is written by every bake that is not up to date,
+# and records this identity so that the up-to-date check does not keep one written by other code.
+set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract specular-ld diffuse-sh irradiance-cube probe-ld
+    manifest)
+set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp)
+set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
+set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration)
+set(IBLBAKE_STAGE_CODE_specular-ld stage_runner kernel_host ld_chain)
+set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cpp)
+set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradiance.cl
+    baker/src/stages/irradiance.cpp baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp)
+set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
+set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp)
+
+# Sources that decide no stage's bytes: planning and keys (their effect is in the key's settings and
+# dependency chain), the bake's bookkeeping, exporters, batch, accuracy, and the runtime's kernels.
+set(IBLBAKE_CODE_NOT_IN_STAGES
+    baker/src/scene/bake_summary.cpp baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
+    baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
+    baker/src/scene/up_to_date.cpp
+    baker/src/batch baker/src/accuracy
+    baker/src/io/atomic_file.cpp baker/src/io/exr_output.cpp baker/src/io/preview.cpp
+    baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp baker/src/io/filament_sh.cpp
+    baker/src/io/muted_stderr.h
+    baker/src/stages/specular_reference.cpp
+    kernels/runtime.cl kernels/probe.h kernels/parallax.h)
+
+# _iblbake_code_files(<root> <out-var> <entry>...): the files (relative to <root>, sorted) that the
+# entries name, expanded through groups and directories. Fails for a path that does not exist or a
+# directory without sources.
+function(_iblbake_code_files root out)
+  set(files "")
+  foreach(entry IN LISTS ARGN)
+    if(NOT entry MATCHES "/")
+      if(NOT DEFINED IBLBAKE_CODE_${entry})
+        message(FATAL_ERROR "cmake/StageCode.cmake: no group '${entry}'")
+      endif()
+      _iblbake_code_files("${root}" group ${IBLBAKE_CODE_${entry}})
+      list(APPEND files ${group})
+    elseif(IS_DIRECTORY "${root}/${entry}")
+      file(GLOB found RELATIVE "${root}" "${root}/${entry}/*.cpp" "${root}/${entry}/*.h" "${root}/${entry}/*.cl")
+      if(NOT found)
+        message(FATAL_ERROR "cmake/StageCode.cmake: ${entry}/ holds no .cpp, .h or .cl file")
+      endif()
+      list(APPEND files ${found})
+    elseif(EXISTS "${root}/${entry}")
+      list(APPEND files "${entry}")
+    else()
+      message(FATAL_ERROR "cmake/StageCode.cmake: ${entry} does not exist")
+    endif()
+  endforeach()
+  list(REMOVE_DUPLICATES files)
+  list(SORT files)
+  set(${out} ${files} PARENT_SCOPE)
+endfunction()
+
+# _iblbake_stage_code(<root> <out-var> <kind>): the kind's files and every file they include (see above),
+# relative to <root>, sorted.
+function(_iblbake_stage_code root out kind)
+  if(NOT DEFINED IBLBAKE_STAGE_CODE_${kind})
+    message(FATAL_ERROR "cmake/StageCode.cmake: stage kind '${kind}' has no IBLBAKE_STAGE_CODE_${kind}")
+  endif()
+  _iblbake_code_files("${root}" pending ${IBLBAKE_STAGE_CODE_${kind}})
+  set(seen "")
+  while(pending)
+    list(POP_FRONT pending file)
+    if(file IN_LIST seen)
+      continue()
+    endif()
+    list(APPEND seen "${file}")
+    get_filename_component(directory "${file}" DIRECTORY)
+    file(STRINGS "${root}/${file}" lines REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"]")
+    foreach(line IN LISTS lines)
+      if(NOT line MATCHES "^[ \t]*#[ \t]*include[ \t]*[<\"]([^>\"]+)[>\"]")
+        continue()
+      endif()
+      set(name "${CMAKE_MATCH_1}")
+      foreach(base IN ITEMS "${directory}" ${IBLBAKE_CODE_INCLUDE_DIRS})
+        if(EXISTS "${root}/${base}/${name}" AND NOT IS_DIRECTORY "${root}/${base}/${name}")
+          file(RELATIVE_PATH found "${root}" "${root}/${base}/${name}")
+          list(APPEND pending "${found}")
+          break()
+        endif()
+      endforeach()
+    endforeach()
+  endwhile()
+  list(SORT seen)
+  set(${out} ${seen} PARENT_SCOPE)
+endfunction()
+
+# iblbake_check_stage_code(<root>): configure-time check of the table. Every listed path exists, and every
+# source under baker/src/ and kernels/ is reached by some kind or listed in IBLBAKE_CODE_NOT_IN_STAGES.
+function(iblbake_check_stage_code root)
+  set(reached "")
+  foreach(kind IN LISTS IBLBAKE_STAGE_KINDS)
+    _iblbake_stage_code("${root}" files ${kind})
+    list(APPEND reached ${files})
+  endforeach()
+  _iblbake_code_files("${root}" exempt ${IBLBAKE_CODE_NOT_IN_STAGES})
+  file(GLOB_RECURSE unreached CONFIGURE_DEPENDS RELATIVE "${root}" "${root}/baker/src/*.cpp"
+       "${root}/baker/src/*.h" "${root}/kernels/*.h" "${root}/kernels/*.cl")
+  list(REMOVE_ITEM unreached ${reached} ${exempt})
+  if(unreached)
+    list(JOIN unreached ", " names)
+    message(FATAL_ERROR "cmake/StageCode.cmake: no stage kind's code reaches ${names}: add each to the kinds "
+                        "whose bytes it decides, or to IBLBAKE_CODE_NOT_IN_STAGES")
+  endif()
+endfunction()
