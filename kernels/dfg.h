@@ -4,6 +4,7 @@
 
 #include "brdf.h"
 #include "sampling.h"
+#include "work_item.h"
 
 IBL_BEGIN_NAMESPACE
 
@@ -11,14 +12,15 @@ IBL_BEGIN_NAMESPACE
 typedef struct {
     uint32_t size;        // N: the LUT is N x N
     uint32_t firstSample; // this dispatch integrates samples [firstSample, endSample) ...
-    uint32_t endSample;   // ... and adds their sums to the output (which starts at zero)
+    uint32_t endSample;   // ... and stores their sums
 } DfgParams;
 
 #define kDfgChunkSamples 4096u
 
-// One sample-table entry (4 floats): unit-disk points for the specular VNDF sample (xy) and for the
-// cosine-weighted diffuse sample (zw), decorrelated by frac(u + 0.5) as in Listing 18. They depend only
-// on the sample index, so the host computes them once per sample count.
+// One sample-table entry (IBL_DFG_SAMPLE_FLOATS floats): unit-disk points for the specular VNDF sample (xy)
+// and for the cosine-weighted diffuse sample (zw), decorrelated by frac(u + 0.5) as in Listing 18. They
+// depend only on the sample index, so the host computes them once per sample count.
+#define IBL_DFG_SAMPLE_FLOATS 4
 IBL_FN float4 dfgSampleEntry(uint i, uint sampleCount) {
     float2 u = hammersley(i, sampleCount);
     float2 w = make_float2(u.x + 0.5f, u.y + 0.5f);
@@ -33,7 +35,7 @@ IBL_FN float dfgTexelCenter(uint i, uint size) {
 }
 
 // Returns the sums of (DFG1, DFG2, Disney) over samples [firstSample, endSample) for one (NoV,
-// perceptual roughness); `table` holds 4 floats per sample. Callers sum chunks of at most
+// perceptual roughness) from the sample table. Callers sum chunks of at most
 // kDfgChunkSamples in fp32 and divide by the sample count: chunking bounds the fp32 rounding of a
 // mean over millions of samples to about 1e-6 while the loop stays simple enough to vectorize.
 // Specular: visible normals are importance sampled (Heitz 2018); that estimator of the directional
@@ -49,11 +51,11 @@ IBL_FN vec3 integrateDfgChunk(float NoV, float perceptualRoughness, IBL_GLOBAL c
     float invG1V = 1.0f / G1_SmithGGX(NoV, alpha);
 
     float dfg1 = 0.0f, dfg2 = 0.0f, diffuse = 0.0f;
-    const IBL_GLOBAL float* chunk = table + 4 * firstSample;
+    const IBL_GLOBAL float* chunk = table + IBL_DFG_SAMPLE_FLOATS * firstSample;
     uint count = endSample - firstSample;
     for (uint i = 0; i < count; ++i) {
         IBL_UNIFORM_LOOP_HEAD();
-        const IBL_GLOBAL float* e = chunk + 4 * i;
+        const IBL_GLOBAL float* e = chunk + IBL_DFG_SAMPLE_FLOATS * i;
         vec3 h = vndfSample(view, e[0], e[1]);
         float VoH = saturate(v3dot(v, h));
         float NoL = 2.0f * VoH * h.z - NoV; // z of reflect(v, h)
@@ -67,6 +69,20 @@ IBL_FN vec3 integrateDfgChunk(float NoV, float perceptualRoughness, IBL_GLOBAL c
         diffuse += Fr_DisneyDiffuse(NoV, l.z, LoH, perceptualRoughness);
     }
     return v3(dfg1, dfg2, diffuse);
+}
+
+// The work-items of dfg.cl, one LUT texel (iblbake/dispatch.h). dfgChunkItem stores the sums of one chunk
+// of samples: a plain store, as reading the output here (+=) stops PoCL from vectorizing the sample loop;
+// dfgAddChunkItem adds a chunk stored so into the running sums.
+IBL_FN void dfgChunkItem(WorkItem t, IBL_GLOBAL float* out, DfgParams params, IBL_GLOBAL const float* table) {
+    storeTexel(out, t,
+               integrateDfgChunk(dfgTexelCenter(t.x, params.size), dfgTexelCenter(t.y, params.size), table,
+                                 params.firstSample, params.endSample));
+}
+
+IBL_FN void dfgAddChunkItem(WorkItem t, IBL_GLOBAL float* out, DfgParams params,
+                            IBL_GLOBAL const float* chunk) {
+    addToTexel(out, t, loadTexel(chunk, t));
 }
 
 IBL_END_NAMESPACE

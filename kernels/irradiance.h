@@ -12,6 +12,7 @@
 #include "cube_sample.h"
 #include "ld.h" // IBL_BRIGHT_ENTRY_FLOATS: the bright-texel list is shared with the specular stage
 #include "sampling.h"
+#include "work_item.h"
 
 IBL_BEGIN_NAMESPACE
 
@@ -80,6 +81,22 @@ IBL_FN vec3 brightTexelsIrradiance(vec3 n, IBL_GLOBAL const float* bright, uint 
         b += w * e[6];
     }
     return v3(r * IBL_INV_PI, g * IBL_INV_PI, b * IBL_INV_PI);
+}
+
+// The work-items of irradiance.cl, one output texel (iblbake/dispatch.h). Two kernels, as for LD (ld.h):
+// irradianceSampledItem stores the filtered-importance-sampled part in a loop simple and uniform enough
+// for PoCL to vectorize across work-items, irradianceBrightItem adds the bright texels integrated exactly.
+IBL_FN void irradianceSampledItem(WorkItem t, IBL_GLOBAL float* out, IrradianceParams params,
+                                  IBL_GLOBAL const float* pyramid, IBL_GLOBAL const float* table) {
+    storeTexel(out, t,
+               integrateIrradiance(cubeWorkItemDirection(t, params.faceSize), pyramid, params.source, table,
+                                   params.sampleCount, params.invSampleCount));
+}
+
+IBL_FN void irradianceBrightItem(WorkItem t, IBL_GLOBAL float* out, IrradianceParams params,
+                                 IBL_GLOBAL const float* bright) {
+    addToTexel(out, t,
+               brightTexelsIrradiance(cubeWorkItemDirection(t, params.faceSize), bright, params.brightCount));
 }
 
 IBL_END_NAMESPACE

@@ -6,6 +6,7 @@
 #include "brdf.h"
 #include "cube_sample.h"
 #include "sampling.h"
+#include "work_item.h"
 
 IBL_BEGIN_NAMESPACE
 
@@ -22,7 +23,9 @@ typedef struct {
 
 // One sample of a level's table, in the texel's tangent frame: light direction, its weight NoL, and
 // the source LOD whose texel solid angle matches the sample's (Listing 19). Everything here depends
-// on the level only, so the host computes it once per level.
+// on the level only, so the host computes it once per level. IBL_LD_SAMPLE_FLOATS floats in the table,
+// in this order.
+#define IBL_LD_SAMPLE_FLOATS 5
 typedef struct {
     float x, y, z;
     float weight; // NoL
@@ -48,15 +51,15 @@ IBL_FN LdSample ldSampleEntry(uint i, uint n, float alpha, float omegaP, float l
     return s;
 }
 
-// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table (5 floats per
-// sample: x, y, z, weight, lod), with `invWeightSum` = 1 / sum of the weights.
+// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table (x, y, z, weight,
+// lod per sample), with `invWeightSum` = 1 / sum of the weights.
 IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
                         IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
     Frame f = frameFromNormal(n);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint i = 0; i < sampleCount; ++i) {
         IBL_UNIFORM_LOOP_HEAD();
-        const IBL_GLOBAL float* e = table + 5 * i;
+        const IBL_GLOBAL float* e = table + IBL_LD_SAMPLE_FLOATS * i;
         vec3 l = frameToWorld(f, v3(e[0], e[1], e[2]));
         vec3 c = cubeSampleLevel(pyramid, layout, (uint)e[4], cubeCoordFromDirection(l));
         r += c.x * e[3];
@@ -184,6 +187,24 @@ IBL_FN vec3 brightTexelsLd(vec3 n, IBL_GLOBAL const float* clusters, uint cluste
 IBL_FN float brightSkipThreshold(vec3 sampled, uint clusterCount) {
     float value = fmax(sampled.x, fmax(sampled.y, sampled.z));
     return clusterCount > 0u ? 1e-3f * value / (float)clusterCount : 0.0f;
+}
+
+// The work-items of ld.cl, one texel of one level (iblbake/dispatch.h): ldLevelItem stores the sampled
+// part, ldBrightItem then adds the exactly integrated bright texels to it. Two kernels, so that the
+// filtered-importance-sampling loop stays uniform and simple enough for PoCL to vectorize.
+IBL_FN void ldLevelItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* pyramid,
+                        IBL_GLOBAL const float* table) {
+    storeTexel(out, t,
+               integrateLd(cubeWorkItemDirection(t, params.faceSize), pyramid, params.source, table,
+                           params.sampleCount, params.invWeightSum));
+}
+
+IBL_FN void ldBrightItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* clusters,
+                         IBL_GLOBAL const float* bright) {
+    float skipBelow = brightSkipThreshold(loadTexel(out, t), params.brightCount);
+    addToTexel(out, t,
+               brightTexelsLd(cubeWorkItemDirection(t, params.faceSize), clusters, params.brightCount, bright,
+                              params.alpha, params.invLobeIntegral, params.source.baseFaceSize, skipBelow));
 }
 
 IBL_END_NAMESPACE

@@ -1,5 +1,6 @@
 // The OpenCL host layer: device choice, embedded program build with full diagnostics, a per-process
-// program cache, and per-dispatch timing. Every bake kernel goes through this one place.
+// program cache, and per-dispatch timing. Every kernel goes through this one place, launched by the
+// dispatch helper (iblbake/dispatch.h).
 #pragma once
 
 #define CL_HPP_TARGET_OPENCL_VERSION 120
@@ -65,10 +66,6 @@ class Context {
 
     // Buffers, with CL failures turned into ibl::Error.
     cl::Buffer createBuffer(cl_mem_flags flags, std::size_t bytes, const void* hostData = nullptr);
-    template <class T>
-    cl::Buffer upload(const std::vector<T>& data) {
-        return createBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, data.size() * sizeof(T), data.data());
-    }
     void download(const cl::Buffer& buffer, std::size_t bytes, void* destination);
 
     // Enqueues a kernel over an NDRange, waits, and records its device time.

@@ -1,9 +1,8 @@
 #include "iblbake/dfg_lut.h"
+#include "iblbake/dispatch.h"
 #include "iblbake/error.h"
 
 #include <dfg.h>
-
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <string>
@@ -14,55 +13,14 @@ namespace {
 
 static_assert(sizeof(DfgParams) == 12 && offsetof(DfgParams, endSample) == 8, "DfgParams must match dfg.cl");
 
-std::vector<float4> sampleTable(std::uint32_t sampleCount) {
-    std::vector<float4> table(sampleCount);
-    for (std::uint32_t i = 0; i < sampleCount; ++i)
-        table[i] = dfgSampleEntry(i, sampleCount);
-    return table;
-}
-
-// Sums of (DFG1, DFG2, Disney) per texel, in RGB; the caller divides by the sample count.
-ImageRGBA sumsCpu(const DfgSettings& s, const std::vector<float4>& table) {
-    ImageRGBA sums(int(s.size), int(s.size));
-    tbb::parallel_for(std::uint32_t(0), s.size, [&](std::uint32_t y) {
-        for (std::uint32_t x = 0; x < s.size; ++x) {
-            glm::vec3 total(0.0f);
-            for (std::uint32_t first = 0; first < s.sampleCount; first += kDfgChunkSamples)
-                total += integrateDfgChunk(dfgTexelCenter(x, s.size), dfgTexelCenter(y, s.size), &table[0].x,
-                                           first, std::min(s.sampleCount, first + kDfgChunkSamples));
-            sums.at(int(x), int(y)) = float4(total, 0.0f);
-        }
-    });
-    return sums;
-}
-
-ImageRGBA sumsOpenCL(const DfgSettings& s, const std::vector<float4>& table, ocl::Context& cl) {
-    ImageRGBA sums(int(s.size), int(s.size));
-    const std::size_t bytes = sums.pixels.size() * sizeof(float4);
-    cl::Kernel kernel = cl.kernel("dfg.cl", "dfgLutChunk");
-    cl::Kernel add = cl.kernel("dfg.cl", "addChunk");
-    cl::Buffer tableBuffer = cl.upload(table);
-    cl::Buffer chunkBuffer = cl.createBuffer(CL_MEM_READ_WRITE, bytes);
-    cl::Buffer sumsBuffer =
-        cl.createBuffer(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, sums.pixels.data());
-    kernel.setArg(1, tableBuffer);
-    kernel.setArg(2, chunkBuffer);
-    add.setArg(0, chunkBuffer);
-    add.setArg(1, sumsBuffer);
-    const bool singleChunk = s.sampleCount <= kDfgChunkSamples;
-    if (singleChunk) kernel.setArg(2, sumsBuffer);
-    // Rows of 32 texels share a roughness, so the work-items of a group run the same loop; PoCL
-    // vectorizes across them (see kernels/portable.h).
-    const std::uint32_t groupWidth = 32;
-    const std::uint32_t paddedWidth = (s.size + groupWidth - 1) / groupWidth * groupWidth;
-    for (std::uint32_t first = 0; first < s.sampleCount; first += kDfgChunkSamples) {
-        DfgParams params{s.size, first, std::min(s.sampleCount, first + kDfgChunkSamples)};
-        kernel.setArg(0, params);
-        cl.run(kernel, cl::NDRange(paddedWidth, s.size), cl::NDRange(groupWidth, 1));
-        if (!singleChunk) cl.run(add, cl::NDRange(std::size_t(s.size) * s.size));
+std::vector<float> sampleTable(std::uint32_t sampleCount) {
+    std::vector<float> table;
+    table.reserve(std::size_t(sampleCount) * IBL_DFG_SAMPLE_FLOATS);
+    for (std::uint32_t i = 0; i < sampleCount; ++i) {
+        float4 e = dfgSampleEntry(i, sampleCount);
+        table.insert(table.end(), {e.x, e.y, e.z, e.w});
     }
-    cl.download(sumsBuffer, bytes, sums.pixels.data());
-    return sums;
+    return table;
 }
 
 } // namespace
@@ -76,9 +34,27 @@ void validate(const DfgSettings& s) {
 
 ImageRGBA bakeDfgLut(const DfgSettings& settings, const Executor& executor) {
     validate(settings);
-    std::vector<float4> table = sampleTable(settings.sampleCount);
-    ImageRGBA lut =
-        executor.usesOpenCL() ? sumsOpenCL(settings, table, executor.cl()) : sumsCpu(settings, table);
+    const std::vector<float> table = sampleTable(settings.sampleCount);
+    // Sums of (DFG1, DFG2, Disney) per texel, chunk by chunk (dfg.h), then divided by the sample count.
+    const Dispatcher dispatcher(executor);
+    const DispatchGrid grid = DispatchGrid::image(settings.size, settings.size);
+    const DeviceArray<float> samples = dispatcher.upload("DFG sample table", table);
+    const auto chunkKernel = kernel("dfg.cl", "dfgLutChunk", dfgChunkItem);
+    auto chunkParams = [&](std::uint32_t first) {
+        return DfgParams{settings.size, first, std::min(settings.sampleCount, first + kDfgChunkSamples)};
+    };
+    DispatchOutput sums = dispatcher.output(grid);
+    dispatcher.run(chunkKernel, sums, chunkParams(0), samples);
+    if (settings.sampleCount > kDfgChunkSamples) {
+        DispatchOutput chunk = dispatcher.output(grid);
+        for (std::uint32_t first = kDfgChunkSamples; first < settings.sampleCount;
+             first += kDfgChunkSamples) {
+            dispatcher.run(chunkKernel, chunk, chunkParams(first), samples);
+            dispatcher.run(kernel("dfg.cl", "addChunk", dfgAddChunkItem), sums, chunkParams(first),
+                           chunk.asInput());
+        }
+    }
+    ImageRGBA lut = dispatcher.downloadImage(sums);
     const float inv = 1.0f / float(settings.sampleCount);
     for (glm::vec4& p : lut.pixels)
         p = glm::vec4(glm::vec3(p) * inv, 1.0f);

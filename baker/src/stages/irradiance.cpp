@@ -2,6 +2,7 @@
 // from SH, and the brute-force reference.
 #include "iblbake/irradiance.h"
 #include "iblbake/cube_pyramid.h"
+#include "iblbake/dispatch.h"
 #include "iblbake/error.h"
 
 #include "bright_split.h"
@@ -27,7 +28,7 @@ std::vector<float> sampleTable(std::uint32_t n, int sourceFaceSize, float lodBia
     table.reserve(std::size_t(n) * IBL_IRRADIANCE_SAMPLE_FLOATS);
     for (std::uint32_t i = 0; i < n; ++i) {
         IrradianceSample s = irradianceSampleEntry(i, n, omegaP, lodBias, maxLod);
-        table.insert(table.end(), {s.x, s.y, s.z, s.lod});
+        table.insert(table.end(), {s.x, s.y, s.z, s.lod}); // IBL_IRRADIANCE_SAMPLE_FLOATS
     }
     return table;
 }
@@ -35,57 +36,6 @@ std::vector<float> sampleTable(std::uint32_t n, int sourceFaceSize, float lodBia
 vec3 texelDirection(int face, int x, int y, int n) {
     return glm::normalize(
         cubeFaceDirection(face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
-}
-
-CubeMap bakeCpu(const CubePyramid& pyramid, const std::vector<float>& table, const BrightTexels& bright,
-                const IrradianceParams& p) {
-    const int n = int(p.faceSize);
-    CubeMap out(n);
-    tbb::parallel_for(0, 6 * n, [&](int row) {
-        const int face = row / n, y = row % n;
-        for (int x = 0; x < n; ++x) {
-            vec3 d = texelDirection(face, x, y, n);
-            vec3 c = integrateIrradiance(d, pyramid.data.data(), pyramid.layout, table.data(), p.sampleCount,
-                                         p.invSampleCount) +
-                     brightTexelsIrradiance(d, bright.entries.data(), p.brightCount);
-            out.faces[std::size_t(face)].at(x, y) = glm::vec4(c, 1.0f);
-        }
-    });
-    return out;
-}
-
-CubeMap bakeOpenCL(ocl::Context& cl, const CubePyramid& pyramid, const std::vector<float>& table,
-                   const BrightTexels& bright, const IrradianceParams& params) {
-    const int n = int(params.faceSize);
-    CubeMap out(n);
-    cl::Kernel sampled = cl.kernel("irradiance.cl", "irradianceSampled");
-    cl::Buffer pyramidBuffer = cl.upload(pyramid.data);
-    cl::Buffer tableBuffer = cl.upload(table);
-    const std::size_t faceTexels = std::size_t(n) * std::size_t(n);
-    cl::Buffer outBuffer = cl.createBuffer(CL_MEM_READ_WRITE, 6 * faceTexels * sizeof(glm::vec4));
-    sampled.setArg(0, params);
-    sampled.setArg(1, pyramidBuffer);
-    sampled.setArg(2, tableBuffer);
-    sampled.setArg(3, outBuffer);
-    // Groups of up to 16 adjacent texels of one row: same face, nearby fetches, uniform loops.
-    const std::size_t groupWidth = std::min<std::size_t>(16, std::size_t(n));
-    const std::size_t width = (std::size_t(n) + groupWidth - 1) / groupWidth * groupWidth;
-    const cl::NDRange global(width, std::size_t(n), 6), local(groupWidth, 1, 1);
-    cl.run(sampled, global, local);
-    if (params.brightCount > 0) {
-        cl::Kernel brightKernel = cl.kernel("irradiance.cl", "irradianceBright");
-        cl::Buffer brightBuffer = cl.upload(bright.entries);
-        brightKernel.setArg(0, params);
-        brightKernel.setArg(1, brightBuffer);
-        brightKernel.setArg(2, outBuffer);
-        cl.run(brightKernel, global, local);
-    }
-    std::vector<glm::vec4> pixels(6 * faceTexels);
-    cl.download(outBuffer, pixels.size() * sizeof(glm::vec4), pixels.data());
-    for (std::size_t f = 0; f < 6; ++f)
-        std::copy(pixels.begin() + std::ptrdiff_t(f * faceTexels),
-                  pixels.begin() + std::ptrdiff_t((f + 1) * faceTexels), out.faces[f].pixels.begin());
-    return out;
 }
 
 bool isPowerOfTwo(int v) {
@@ -130,8 +80,15 @@ CubeMap bakeIrradianceCube(const CubeMap& source, const IrradianceSettings& sett
         sampleTable(samples, source.faceSize, settings.lodBias, float(pyramid.layout.levelCount - 1));
     IrradianceParams params{pyramid.layout, std::uint32_t(settings.faceSize), samples, 1.0f / float(samples),
                             split.bright.count()};
-    return executor.usesOpenCL() ? bakeOpenCL(executor.cl(), pyramid, table, split.bright, params)
-                                 : bakeCpu(pyramid, table, split.bright, params);
+    const Dispatcher dispatcher(executor);
+    DispatchOutput cube = dispatcher.output(DispatchGrid::cube(params.faceSize));
+    dispatcher.run(kernel("irradiance.cl", "irradianceSampled", irradianceSampledItem), cube, params,
+                   dispatcher.upload("irradiance source pyramid", pyramid.data),
+                   dispatcher.upload("irradiance sample table", table));
+    if (params.brightCount > 0)
+        dispatcher.run(kernel("irradiance.cl", "irradianceBright", irradianceBrightItem), cube, params,
+                       dispatcher.upload("bright texels", split.bright.entries));
+    return dispatcher.downloadCube(cube);
 }
 
 CubeMap irradianceCubeFromSH(const ShRgb& prescaledIrradiance, int faceSize, std::uint64_t* clampedTexels) {

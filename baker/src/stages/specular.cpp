@@ -1,11 +1,10 @@
 #include "iblbake/specular.h"
+#include "iblbake/dispatch.h"
 #include "iblbake/error.h"
 
 #include "bright_split.h"
 
 #include <ld.h>
-
-#include <tbb/parallel_for.h>
 
 #include <chrono>
 #include <cmath>
@@ -19,9 +18,9 @@ static_assert(sizeof(LdParams) == sizeof(CubePyramidLayout) + 24 &&
               "LdParams must match ld.h");
 
 struct LevelTable {
-    std::vector<float> samples; // 5 floats each, all above the horizon
+    std::vector<float> samples; // IBL_LD_SAMPLE_FLOATS each, all above the horizon
     float invWeightSum = 0.0f;
-    std::uint32_t count() const { return std::uint32_t(samples.size() / 5); }
+    std::uint32_t count() const { return std::uint32_t(samples.size() / IBL_LD_SAMPLE_FLOATS); }
 };
 
 LevelTable levelTable(std::uint32_t n, float alpha, int sourceFaceSize, float lodBias, float maxLod) {
@@ -31,7 +30,7 @@ LevelTable levelTable(std::uint32_t n, float alpha, int sourceFaceSize, float lo
     for (std::uint32_t i = 0; i < n; ++i) {
         LdSample s = ldSampleEntry(i, n, alpha, omegaP, lodBias, maxLod);
         if (s.weight <= 0.0f) continue; // below the horizon: contributes nothing (Listing 19's NdotL > 0)
-        t.samples.insert(t.samples.end(), {s.x, s.y, s.z, s.weight, s.lod});
+        t.samples.insert(t.samples.end(), {s.x, s.y, s.z, s.weight, s.lod}); // IBL_LD_SAMPLE_FLOATS
         weightSum += s.weight;
     }
     t.invWeightSum = weightSum > 0.0 ? float(1.0 / weightSum) : 0.0f;
@@ -50,55 +49,6 @@ double lobeIntegral(double alpha) {
         sum += std::max(0.0, 2.0 * cos2 - 1.0);
     }
     return 4.0 * sum / steps;
-}
-
-CubeMap levelCpu(const CubePyramid& pyramid, const LevelTable& table, const BrightTexels& bright,
-                 const LdParams& p, int n) {
-    CubeMap out(n);
-    tbb::parallel_for(0, 6 * n, [&](int row) {
-        int face = row / n, y = row % n;
-        for (int x = 0; x < n; ++x) {
-            vec3 d = cubeTexelDirection(face, uint(x), uint(y), uint(n));
-            vec3 sampled = integrateLd(d, pyramid.data.data(), pyramid.layout, table.samples.data(),
-                                       table.count(), table.invWeightSum);
-            vec3 c = sampled + brightTexelsLd(d, bright.clusters.data(), bright.clusterCount(),
-                                              bright.entries.data(), p.alpha, p.invLobeIntegral,
-                                              pyramid.layout.baseFaceSize,
-                                              brightSkipThreshold(sampled, bright.clusterCount()));
-            out.faces[face].at(x, y) = glm::vec4(c, 1.0f);
-        }
-    });
-    return out;
-}
-
-CubeMap levelOpenCL(ocl::Context& cl, const cl::Buffer& pyramidBuffer, const cl::Buffer& clusterBuffer,
-                    const cl::Buffer& brightBuffer, const LevelTable& table, const LdParams& params, int n) {
-    CubeMap out(n);
-    cl::Kernel kernel = cl.kernel("ld.cl", "ldLevel");
-    cl::Kernel brightKernel = cl.kernel("ld.cl", "ldBright");
-    cl::Buffer tableBuffer = cl.upload(table.samples);
-    const std::size_t faceTexels = std::size_t(n) * std::size_t(n);
-    cl::Buffer outBuffer = cl.createBuffer(CL_MEM_WRITE_ONLY, 6 * faceTexels * sizeof(glm::vec4));
-    kernel.setArg(0, params);
-    kernel.setArg(1, pyramidBuffer);
-    kernel.setArg(2, tableBuffer);
-    kernel.setArg(3, outBuffer);
-    brightKernel.setArg(0, params);
-    brightKernel.setArg(1, clusterBuffer);
-    brightKernel.setArg(2, brightBuffer);
-    brightKernel.setArg(3, outBuffer);
-    // Groups of up to 16 adjacent texels of one row: same face, nearby fetches, uniform loop.
-    const std::size_t groupWidth = std::min<std::size_t>(16, std::size_t(n));
-    const std::size_t width = (std::size_t(n) + groupWidth - 1) / groupWidth * groupWidth;
-    cl.run(kernel, cl::NDRange(width, std::size_t(n), 6), cl::NDRange(groupWidth, 1, 1));
-    if (params.brightCount > 0)
-        cl.run(brightKernel, cl::NDRange(width, std::size_t(n), 6), cl::NDRange(groupWidth, 1, 1));
-    std::vector<glm::vec4> pixels(6 * faceTexels);
-    cl.download(outBuffer, pixels.size() * sizeof(glm::vec4), pixels.data());
-    for (int f = 0; f < 6; ++f)
-        std::copy(pixels.begin() + f * faceTexels, pixels.begin() + (f + 1) * faceTexels,
-                  out.faces[f].pixels.begin());
-    return out;
 }
 
 // A lobe much narrower than a source texel needs few samples: they all land in one bilinear
@@ -190,12 +140,10 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
     BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
     CubePyramid pyramid = buildCubePyramid(split.residual);
     const float maxLod = float(pyramid.layout.levelCount - 1);
-    cl::Buffer pyramidBuffer, clusterBuffer, brightBuffer;
-    if (executor.usesOpenCL()) {
-        pyramidBuffer = executor.cl().upload(pyramid.data);
-        clusterBuffer = executor.cl().upload(split.bright.clusters);
-        brightBuffer = executor.cl().upload(split.bright.entries);
-    }
+    const Dispatcher dispatcher(executor);
+    const DeviceArray<float> pyramidData = dispatcher.upload("specular source pyramid", pyramid.data);
+    const DeviceArray<float> clusters = dispatcher.upload("bright-texel clusters", split.bright.clusters);
+    const DeviceArray<float> bright = dispatcher.upload("bright texels", split.bright.entries);
 
     CubeMapChain chain;
     chain.levels.push_back(source); // level 0: the mirror, unconvolved (Frostbite footnote 43)
@@ -220,10 +168,12 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
                         split.bright.clusterCount(),
                         alpha,
                         float(1.0 / lobeIntegral(alpha))};
-        chain.levels.push_back(
-            executor.usesOpenCL()
-                ? levelOpenCL(executor.cl(), pyramidBuffer, clusterBuffer, brightBuffer, table, params, n)
-                : levelCpu(pyramid, table, split.bright, params, n));
+        DispatchOutput level = dispatcher.output(DispatchGrid::cube(std::uint32_t(n)));
+        dispatcher.run(kernel("ld.cl", "ldLevel", ldLevelItem), level, params, pyramidData,
+                       dispatcher.upload("LD sample table", table.samples));
+        if (params.brightCount > 0)
+            dispatcher.run(kernel("ld.cl", "ldBright", ldBrightItem), level, params, clusters, bright);
+        chain.levels.push_back(dispatcher.downloadCube(level));
         if (timings)
             timings->push_back(
                 {m, r,
