@@ -26,7 +26,7 @@ set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's f
     baker/src/scene/scene_stages.cpp baker/src/scene/stage_cache.cpp baker/src/io/ktx2_writer.cpp
     baker/src/io/ktx2_reader.cpp)
 set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options
-    baker/src/executor.cpp baker/src/opencl)
+    baker/src/executor.cpp baker/src/opencl baker/src/dispatch)
 set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration
     baker/src/ingest baker/src/calibration)
 set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, bright texels, level 0
@@ -59,7 +59,8 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp baker/src/io/filament_sh.cpp
     baker/src/io/muted_stderr.h
     baker/src/stages/specular_reference.cpp
-    kernels/runtime.cl kernels/probe.h kernels/parallax.h)
+    kernels/runtime.cl kernels/probe.h kernels/parallax.h kernels/shade_points.h
+    kernels/dispatch_check.cl kernels/dispatch_check.h) # dispatch_check: the dispatch helper's test kernel
 
 # _iblbake_code_files(<root> <out-var> <entry>...): the files (relative to <root>, sorted) that the
 # entries name, expanded through groups and directories. Fails for a path that does not exist or a
