@@ -6,17 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
 
 namespace fs = std::filesystem;
 
 namespace ibl::cli {
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path.string() + ": cannot read");
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 ShRgb readPrescaledIrradiance(const fs::path& path) {
     try {

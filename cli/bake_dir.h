@@ -1,15 +1,13 @@
 // Reading the files of a bake directory (what the README's first command writes) for the export commands.
 #pragma once
 
+#include <iblbake/products.h>
 #include <iblbake/sh.h>
 
 #include <filesystem>
 #include <string>
 
 namespace ibl::cli {
-
-// The whole file; throws ibl::Error "<file>: cannot read".
-std::string readText(const std::filesystem::path& path);
 
 // diffuse.json's sh.irradiance (A_l k_i L_i): 9 finite RGB triples; throws ibl::Error naming the file and
 // the key path.

@@ -20,6 +20,7 @@
 #include <iblbake/error.h>
 #include <iblbake/exr_output.h>
 #include <iblbake/ingest.h>
+#include <iblbake/products.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -128,7 +129,7 @@ Action addCalibrateCommand(CLI::App& app) {
                           {"iblbake:source", std::filesystem::path(r.file).filename().string()},
                           {"iblbake:version", IBLBAKE_VERSION},
                           {"Software", "iblbake " IBLBAKE_VERSION}};
-        for (auto& kv : outcome.metadata("iblbake:"))
+        for (auto& kv : calibrationKeyValues(outcome.record, outcome.sun, "iblbake:"))
             exr.attributes.push_back(std::move(kv));
 
         std::unique_ptr<AtomicFile> sunJson = stageSunJson(o->calibration, outcome);

@@ -2,33 +2,12 @@
 #include "input_options.h"
 
 #include <iblbake/error.h>
+#include <iblbake/products.h>
 
 #include <cstdio>
 #include <fstream>
 
 namespace ibl::cli {
-
-namespace {
-
-// One-line JSON of a light, for metadata.
-std::string oneLine(const DiskLight& light, bool calibrated) {
-    return diskLightToJson(light, calibrated, -1);
-}
-
-} // namespace
-
-std::vector<std::pair<std::string, std::string>>
-CalibrationOutcome::metadata(const std::string& prefix) const {
-    std::vector<std::pair<std::string, std::string>> kv = calibrationMetadata(record, prefix);
-    if (sun) {
-        kv.emplace_back(prefix + "sun",
-                        "extracted as a disk light (Frostbite 4.6), see " + prefix + "sunLight");
-        kv.emplace_back(prefix + "sunLight", oneLine(*sun, record.absolute()));
-    } else {
-        kv.emplace_back(prefix + "sun", "kept in the environment");
-    }
-    return kv;
-}
 
 void CalibrationOptions::addTo(CLI::App& command) {
     // The callbacks write into this object: it must outlive parsing at a fixed address (commands keep
@@ -132,7 +111,7 @@ std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
     if (options.sunJson.empty() || !outcome.sun) return nullptr;
     auto file = std::make_unique<AtomicFile>(options.sunJson);
     std::ofstream out(file->tempPath());
-    out << diskLightToJson(*outcome.sun, outcome.record.absolute()) << "\n";
+    out << sunJson(*outcome.sun, outcome.record) << "\n";
     out.close();
     if (!out) throw Error(options.sunJson + ": cannot write the sun's JSON");
     return file;

@@ -6,7 +6,7 @@
 //   ...
 //   SourceEnvironment env = ingestEnvironment(files, ingest);
 //   CalibrationOutcome cal = applyCalibration(calibration, env);  // scales env.cube, extracts the sun
-//   for (auto& kv : cal.metadata("iblbake.")) keyValues.push_back(kv); // into the output's metadata
+//   keyValues = ldChainKeyValues(..., cal.record, cal.sun);  // products.h builds the output's metadata
 //   auto sunJson = stageSunJson(calibration, cal);  // before writing the main output ...
 //   ... write the main output ...
 //   if (sunJson) sunJson->commit();                 // ... and committed after it
@@ -31,10 +31,6 @@ struct CalibrationOutcome {
     CalibrationRecord record;
     std::optional<DiskLight> sun;   // the extracted sun (with --extract-sun)
     std::optional<CubeMap> withSun; // the calibrated cube before the extraction (keepCubeWithSun)
-
-    // calibrationMetadata(record, prefix) plus prefix + "sun": "extracted: <one-line JSON>" or "kept in
-    // the environment" (and prefix + "sunLight" = the light's JSON when extracted).
-    std::vector<std::pair<std::string, std::string>> metadata(const std::string& prefix) const;
 };
 
 struct CalibrationOptions {

@@ -1,7 +1,5 @@
 #include "common_options.h"
 
-#include <iblbake/error.h>
-
 #include <cstdio>
 #include <iostream>
 
@@ -22,14 +20,6 @@ void BackendOptions::printTiming(const Executor& executor, const char* stage, do
         for (const ocl::DispatchTiming& t : executor.cl().takeTimings())
             std::printf("timing: kernel %-24s %10.3f ms\n", t.kernel.c_str(), t.milliseconds);
     std::printf("timing: stage  %-24s %10.3f ms (%s)\n", stage, wallMs, executor.description().c_str());
-}
-
-Ktx2Format parseKtx2Format(const std::string& name) {
-    if (name == "rgba16f") return Ktx2Format::RGBA16F;
-    if (name == "rgba32f") return Ktx2Format::RGBA32F;
-    if (name == "b10g11r11") return Ktx2Format::B10G11R11;
-    if (name == "e5b9g9r9") return Ktx2Format::E5B9G9R9;
-    throw Error("--format: '" + name + "' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9");
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {

@@ -24,10 +24,6 @@ struct BackendOptions {
     void printTiming(const Executor& executor, const char* stage, double wallMs) const;
 };
 
-// --format of KTX2 outputs: rgba16f, rgba32f, b10g11r11, e5b9g9r9.
-inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"};
-Ktx2Format parseKtx2Format(const std::string& name);
-
 double millisecondsSince(std::chrono::steady_clock::time_point start);
 
 } // namespace ibl::cli

@@ -4,6 +4,7 @@
 
 #include <iblbake/dfg_lut.h>
 #include <iblbake/exr_output.h>
+#include <iblbake/products.h>
 
 #include <chrono>
 #include <cstdio>
@@ -45,14 +46,9 @@ Action addDfgCommand(CLI::App& app) {
         ExrOutputOptions exr;
         exr.channels = 3;
         exr.pixelType = opts->half ? PixelType::Half : PixelType::Float;
-        exr.attributes = {{"iblbake:product", "dfg-lut"},
-                          {"iblbake:layout",
-                           "x: NoV=(x+0.5)/N; y: perceptualRoughness=(y+0.5)/N from the first scanline; "
-                           "R=DFG1=E[(1-Fc)GVis] G=DFG2=E[Fc GVis] (Frostbite Listing 18, height-correlated "
-                           "Smith GGX); B=renormalized Disney diffuse (Frostbite Listing 1)"},
-                          {"iblbake:samples", std::to_string(opts->settings.sampleCount)},
-                          {"iblbake:version", IBLBAKE_VERSION},
-                          {"Software", "iblbake " IBLBAKE_VERSION}};
+        exr.attributes = dfgLutMetadata("iblbake:", "scanline", opts->settings.sampleCount);
+        exr.attributes.emplace_back("iblbake:version", IBLBAKE_VERSION);
+        exr.attributes.emplace_back("Software", "iblbake " IBLBAKE_VERSION);
         writeExr(opts->output, lut, exr);
         std::printf("wrote %s (%ux%u DFG LUT, %u samples/texel, %s, %.1f ms)\n", opts->output.c_str(),
                     opts->settings.size, opts->settings.size, opts->settings.sampleCount,

@@ -10,6 +10,7 @@
 #include <iblbake/ingest.h>
 #include <iblbake/irradiance.h>
 #include <iblbake/ktx2.h>
+#include <iblbake/products.h>
 #include <iblbake/sh.h>
 
 #include <nlohmann/json.hpp>
@@ -27,18 +28,6 @@ namespace ibl::cli {
 
 namespace {
 
-constexpr int kSchemaVersion = 1;
-
-// The calibration record as a JSON object (the same keys as the KTX2 key/value data, without prefix),
-// with the extracted sun, if any, as a light object under "sunLight".
-nlohmann::json calibrationJson(const CalibrationOutcome& calibration) {
-    nlohmann::json out = nlohmann::json::object();
-    for (const auto& [key, value] : calibration.metadata(""))
-        out[key] = value;
-    if (calibration.sun) out["sunLight"] = nlohmann::json::parse(diskLightToJson(*calibration.sun, true));
-    return out;
-}
-
 struct DiffuseOptions {
     InputOptions input;
     std::string output;
@@ -54,30 +43,6 @@ struct DiffuseOptions {
     BackendOptions backend;
     CalibrationOptions calibration;
 };
-
-nlohmann::json rgb(const glm::dvec3& v) {
-    return nlohmann::json::array({v.x, v.y, v.z});
-}
-
-nlohmann::json coefficients(const ShRgb& sh) {
-    nlohmann::json a = nlohmann::json::array();
-    for (const glm::dvec3& c : sh)
-        a.push_back(rgb(c));
-    return a;
-}
-
-const char* kIrradianceConvention =
-    "pre-convolved with the clamped cosine (A_l = pi, 2pi/3, pi/4) and pre-scaled by the basis constants "
-    "k_i: c_i = A_l k_i L_i. Filament's irradianceSH(n) = c0 + c1*n.y + c2*n.z + c3*n.x + c4*n.y*n.x + "
-    "c5*n.y*n.z + c6*(3*n.z*n.z-1) + c7*n.z*n.x + c8*(n.x*n.x-n.y*n.y) returns the irradiance "
-    "E(n) = integral L(l) max(0, n.l) dl (no 1/pi folded in); multiply by albedo/pi for Lambert radiance";
-const char* kIrradianceOverPiConvention =
-    "irradiance / pi (the Lambert 1/pi folded in, Filament cmgen's convention): irradianceSH(n) returns "
-    "E(n)/pi, the cosine-weighted mean radiance, which is what the irradiance cube stores; multiply by "
-    "albedo for Lambert radiance";
-const char* kRadianceConvention =
-    "L_i = integral L(w) Y_i(w) dw over every source texel (centre direction, exact solid angle, fp64 "
-    "sums), standard orthonormal real SH; evaluate as sum L_i Y_i(w)";
 
 } // namespace
 
@@ -186,27 +151,10 @@ Action addDiffuseCommand(CLI::App& app) {
             else
                 cube = irradianceCubeFromSH(sh.irradiance, o->irradianceSize, &shClamped);
             cubeMs = millisecondsSince(cubeStart);
-            const std::string methodText =
-                method == IrradianceMethod::Sampled
-                    ? "sampled: cosine importance sampling, " +
-                          std::to_string(irradianceSamplesFor(settings)) +
-                          " samples/texel, pre-filtered lookups (Frostbite Listing 20 + Listing 19 LOD), "
-                          "bright "
-                          "texels integrated exactly"
-                    : std::string(
-                          "sh: the windowed L2 irradiance SH evaluated at each texel centre, negatives "
-                          "clamped to 0");
-            const char* normalization =
-                "E/pi: each texel stores (1/pi) integral L(l) max(0,n.l) dl, the cosine-weighted mean "
-                "radiance "
-                "(Frostbite Listing 20's LD of a Lambert lobe); irradiance E = pi x value";
-            Ktx2KeyValues kv = {{"iblbake.product", "irradiance"},
-                                {"iblbake.irradianceNormalization", normalization},
-                                {"iblbake.method", methodText},
-                                {"iblbake.colorSpace", r.workingColorSpace},
-                                {"iblbake.source", std::filesystem::path(r.file).filename().string()}};
-            for (auto& entry : calibration.metadata("iblbake."))
-                kv.push_back(entry);
+            const std::string methodText = irradianceMethodText(method, irradianceSamplesFor(settings));
+            const Ktx2KeyValues kv = irradianceKeyValues(methodText, r.workingColorSpace,
+                                                         std::filesystem::path(r.file).filename().string(),
+                                                         calibration.record, calibration.sun);
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
             Ktx2WriteStats stats = writeKtx2Cube(cubeFile->tempPath(), chain, format, kv);
@@ -218,67 +166,23 @@ Action addDiffuseCommand(CLI::App& app) {
                         {"format", o->format},
                         {"method", irradianceMethodName(method)},
                         {"methodDetail", methodText},
-                        {"normalization", normalization},
+                        {"normalization", kIrradianceNormalization},
                         {"clampedTexels", stats.clampedTexels},
                         {"shNegativeTexels", shClamped}};
             if (method == IrradianceMethod::Sampled) cubeJson["samples"] = irradianceSamplesFor(settings);
             o->backend.printTiming(executor, "irradiance-cube", cubeMs);
         }
 
-        nlohmann::json basis = nlohmann::json::array(
-            {"(0,0) 0.282095", "(1,-1) 0.488603*y", "(1,0) 0.488603*z", "(1,1) 0.488603*x",
-             "(2,-2) 1.092548*x*y", "(2,-1) 1.092548*y*z", "(2,0) 0.315392*(3*z*z-1)", "(2,1) 1.092548*x*z",
-             "(2,2) 0.546274*(x*x-y*y)"});
-        nlohmann::json doc = {
-            {"schema", "iblbake.diffuse"},
-            {"schemaVersion", kSchemaVersion},
-            {"generator", "iblbake " IBLBAKE_VERSION},
-            {"source",
-             {{"file", r.file},
-              {"width", r.width},
-              {"height", r.height},
-              {"layout", layoutName(r.layout)},
-              {"inputColorSpace", r.inputColorSpace},
-              {"faceSize", env.cube.faceSize},
-              {"rotateDegrees", o->input.rotateDegrees}}},
-            {"colorSpace", r.workingColorSpace},
-            {"units", calibration.record.absolute() ? "cd/m2 (luminance); irradiance in lux"
-                                                    : "relative (input values, uncalibrated)"},
-            {"calibration", calibrationJson(calibration)},
-            {"directions", "right-handed, +Y up; (x, y, z) of a unit direction as in DESIGN.md"},
-            {"sh",
-             {{"order", 2},
-              {"coefficientCount", 9},
-              {"basis", "real spherical harmonics, standard (orthonormal) normalization"},
-              {"basisOrder", basis},
-              {"clampedCosineFactors", {3.14159265358979323846, 2.0943951023931955, 0.78539816339744831}},
-              {"window",
-               {{"name", shWindowName(w.window)},
-                {"parameter", w.parameter},
-                {"parameterMeaning", w.window == ShWindow::Sloan ? "lambda: w_l = 1/(1+lambda l^2 (l+1)^2)"
-                                     : w.window == ShWindow::Hanning
-                                         ? "width w in bands: w_l = (1+cos(pi l/w))/2 for l < w, else 0"
-                                     : w.window == ShWindow::Lanczos
-                                         ? "width w in bands: w_l = sin(pi l/w)/(pi l/w) for l < w, else 0"
-                                         : "no window"},
-                {"requested", o->window},
-                {"searched", w.searched},
-                {"bandFactors", {w.factors[0], w.factors[1], w.factors[2]}},
-                {"appliedTo", "radiance, irradiance and irradianceOverPi (not radianceUnwindowed)"}}},
-              {"minIrradiance",
-               {{"before", rgb(w.minBefore)},
-                {"after", rgb(w.minAfter)},
-                {"mean", rgb(w.meanIrradiance)},
-                {"meaning", "minimum over the whole sphere of E(n) reconstructed from the SH, per channel, "
-                            "without and with the window; mean = average of E over the sphere"}}},
-              {"radianceUnwindowed", coefficients(sh.radianceRaw)},
-              {"radiance", coefficients(sh.radiance)},
-              {"radianceConvention", kRadianceConvention},
-              {"irradiance", coefficients(sh.irradiance)},
-              {"irradianceConvention", kIrradianceConvention},
-              {"irradianceOverPi", coefficients(sh.irradianceOverPi)},
-              {"irradianceOverPiConvention", kIrradianceOverPiConvention}}},
-            {"timing", {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}}}};
+        const DiffuseSource source{r.file,
+                                   r.width,
+                                   r.height,
+                                   layoutName(r.layout),
+                                   r.inputColorSpace,
+                                   env.cube.faceSize,
+                                   o->input.rotateDegrees};
+        nlohmann::json doc =
+            diffuseDocument(sh, o->window, r.workingColorSpace, source, calibration.record, calibration.sun);
+        doc["timing"] = {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}};
         if (wantCube) doc["irradianceCube"] = cubeJson;
 
         {

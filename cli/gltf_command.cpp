@@ -8,6 +8,7 @@
 #include <iblbake/error.h>
 #include <iblbake/gltf_ibl.h>
 #include <iblbake/ktx2.h>
+#include <iblbake/runtime.h>
 #include <iblbake/specular.h>
 #include <iblbake/sun.h>
 
@@ -128,7 +129,13 @@ Action addGltfCommand(CLI::App& app) {
         // The extension maps its levels evenly to roughness 0..1; a linear bake already does, any other
         // is re-filtered from its level 0 (the unconvolved source) down to --min-face-size.
         const auto mapping = ktx.keyValues.find("iblbake.roughnessMapping");
-        const bool linear = mapping != ktx.keyValues.end() && mapping->second.rfind("linear", 0) == 0;
+        bool linear = false;
+        try {
+            linear = mapping != ktx.keyValues.end() &&
+                     parseStoredMipMapping(mapping->second) == MipMapping::Linear;
+        } catch (const Error& e) {
+            throw Error(ktxPath.string() + ": " + e.what());
+        }
         std::string levelsNote = "as baked (linear roughness mapping)";
         if (!linear) {
             const int base = chain.levels.front().faceSize;

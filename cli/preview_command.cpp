@@ -11,6 +11,7 @@
 #include <iblbake/ingest.h>
 #include <iblbake/ktx2.h>
 #include <iblbake/preview.h>
+#include <iblbake/products.h>
 #include <iblbake/runtime.h>
 #include <iblbake/runtime_manifest.h>
 #include <iblbake/runtime_reference.h>
@@ -24,7 +25,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 
 namespace fs = std::filesystem;
@@ -43,12 +43,6 @@ struct PreviewOptions {
     int sphereSize = 96;
     BackendOptions backend;
 };
-
-std::string readText(const fs::path& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path.string() + ": cannot read");
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 ImageRGBA readDfgLut(const fs::path& path) {
     auto in = OIIO::ImageInput::open(path.string());

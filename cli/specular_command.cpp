@@ -9,6 +9,7 @@
 #include <iblbake/ingest.h>
 #include <iblbake/ktx2.h>
 #include <iblbake/preview.h>
+#include <iblbake/products.h>
 #include <iblbake/specular.h>
 
 #include <algorithm>
@@ -38,7 +39,7 @@ struct SpecularOptions {
 };
 
 // One EXR per level: the six faces side by side in +X, -X, +Y, -Y, +Z, -Z order (OpenGL orientation).
-void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, const std::string& mapping) {
+void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, MipMapping mapping) {
     std::filesystem::create_directories(dir);
     for (std::size_t m = 0; m < chain.levels.size(); ++m) {
         const CubeMap& level = chain.levels[m];
@@ -51,7 +52,8 @@ void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, 
         exr.channels = 3;
         exr.attributes = {{"iblbake:layout", "horizontal strip +X,-X,+Y,-Y,+Z,-Z, OpenGL face orientation"},
                           {"iblbake:level", std::to_string(m)},
-                          {"iblbake:roughnessMapping", mapping}};
+                          {"iblbake:roughnessMapping", mipMappingName(mapping)},
+                          {"iblbake:roughnessMappingMeaning", mipMappingMeaning(mapping)}};
         writeExr(dir / ("level_" + std::to_string(m) + ".exr"), strip, exr);
     }
 }
@@ -77,7 +79,7 @@ Action addSpecularCommand(CLI::App& app) {
     cmd->add_option("--preview", o->preview, "also write a tone-mapped PNG of every level");
     cmd->add_option("--mip-mapping", o->mipMapping, "roughness per level: frostbite (eq. 63) or linear")
         ->capture_default_str()
-        ->check(CLI::IsMember({"frostbite", "linear"}));
+        ->check(CLI::IsMember(std::vector<std::string>(kMipMappingNames.begin(), kMipMappingNames.end())));
     cmd->add_option("--lod-bias", o->lodBias, "added to the source LOD of each sample")
         ->capture_default_str();
     o->backend.addTo(*cmd);
@@ -111,30 +113,21 @@ Action addSpecularCommand(CLI::App& app) {
                         chain.levels[std::size_t(t.level)].faceSize, t.milliseconds);
 
         const int levelCount = int(chain.levels.size());
-        const std::string mapping = std::string(mipMappingName(settings.mapping)) +
-                                    (settings.mapping == MipMapping::Frostbite
-                                         ? ": level m of L holds perceptualRoughness (m/(L-1))^2"
-                                         : ": level m of L holds perceptualRoughness m/(L-1)");
-        Ktx2KeyValues kv = {{"iblbake.product", "specular-ld"},
-                            {"iblbake.roughnessMapping", mapping},
-                            {"iblbake.levelCount", std::to_string(levelCount)},
-                            {"iblbake.colorSpace", r.workingColorSpace},
-                            {"iblbake.source", std::filesystem::path(r.file).filename().string()},
-                            {"iblbake.settings", "quality=" + o->quality +
-                                                     " samples=" + std::to_string(samplesFor(settings)) +
-                                                     " lodBias=" + std::to_string(settings.lodBias) +
-                                                     " size=" + std::to_string(o->size) +
-                                                     " rotate=" + std::to_string(o->input.rotateDegrees)}};
-        for (auto& entry : calibration.metadata("iblbake."))
-            kv.push_back(entry);
-        if (calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format)) {
-            kv.push_back({"iblbake.sunInLevel0", "true"});
-            kv.push_back({"iblbake.sunMaxSolidAngle", std::to_string(o->calibration.sunMaxSolidAngle)});
-        }
+        LdChainProduct ld;
+        ld.mapping = settings.mapping;
+        ld.levelCount = levelCount;
+        ld.colorSpace = r.workingColorSpace;
+        ld.source = std::filesystem::path(r.file).filename().string();
+        ld.settings = "quality=" + o->quality + " samples=" + std::to_string(samplesFor(settings)) +
+                      " lodBias=" + std::to_string(settings.lodBias) + " size=" + std::to_string(o->size) +
+                      " rotate=" + std::to_string(o->input.rotateDegrees);
+        ld.sunInLevel0 = calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format);
+        ld.sunMaxSolidAngle = o->calibration.sunMaxSolidAngle;
+        const Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
         auto sunJson = stageSunJson(o->calibration, calibration);
         Ktx2WriteStats stats = writeKtx2Cube(o->output, chain, format, kv);
         if (sunJson) sunJson->commit();
-        if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, mapping);
+        if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, settings.mapping);
         if (!o->preview.empty()) writeChainPreview(o->preview, chain);
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,

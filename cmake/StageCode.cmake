@@ -22,9 +22,9 @@
 set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include baker/src/opencl)
 
 # Groups shared by several kinds.
-set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files, the entry layout
+set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files (products), the entry layout
     baker/src/scene/scene_stages.cpp baker/src/scene/stage_cache.cpp baker/src/io/ktx2_writer.cpp
-    baker/src/io/ktx2_reader.cpp)
+    baker/src/io/ktx2_reader.cpp baker/src/io/ktx2_format_names.cpp baker/src/products)
 set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options
     baker/src/executor.cpp baker/src/opencl baker/src/dispatch)
 set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration
@@ -46,7 +46,8 @@ set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cp
 set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradiance.cl
     baker/src/stages/irradiance.cpp baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp)
 set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
-set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp)
+set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp
+    baker/src/products)
 
 # Sources that decide no stage's bytes: planning and keys (their effect is in the key's settings and
 # dependency chain), the bake's bookkeeping, exporters, batch, accuracy, and the runtime's kernels.

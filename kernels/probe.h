@@ -16,6 +16,7 @@
 
 #include "brdf.h"
 #include "cube_sample.h"
+#include "mip_mapping.h"
 #include "parallax.h"
 #include "sampling.h"
 
@@ -27,10 +28,6 @@ IBL_END_NAMESPACE
 #endif
 
 IBL_BEGIN_NAMESPACE
-
-// Mip <-> roughness mappings of the LD chain (DESIGN.md; the baker's MipMapping, in this order).
-#define IBL_MIP_FROSTBITE 0u // level m of L holds r = (m / (L - 1))^2: lod = sqrt(r) (L - 1) (eq. 63)
-#define IBL_MIP_LINEAR 1u    // level m of L holds r = m / (L - 1): lod = r (L - 1)
 
 // Evaluation switches (RuntimeParams.flags).
 #define IBL_RT_SPECULAR (1u << 0)            // specular from the probes
@@ -57,7 +54,7 @@ IBL_BEGIN_NAMESPACE
 typedef struct {
     CubePyramidLayout layout; // bordered pyramid (cube_sample.h); levelCount = the chain's levels
     uint32_t dataOffset;      // first float of this pyramid in its buffer
-    uint32_t mapping;         // IBL_MIP_*
+    uint32_t mapping;         // IBL_MIP_* (mip_mapping.h)
 } LdChain;
 
 // Pre-scaled SH L2 irradiance (DESIGN.md order, 9 RGB coefficients, coefficient i's RGB at 3i..3i+2).
@@ -120,9 +117,7 @@ typedef struct {
 // Lookups
 
 IBL_FN float ldLodForRoughness(LdChain ld, float perceptualRoughness) {
-    float r = saturate(perceptualRoughness);
-    float maxLevel = (float)(ld.layout.levelCount - 1u);
-    return (ld.mapping == IBL_MIP_LINEAR ? r : sqrt(r)) * maxLevel;
+    return mipLevelForRoughness(ld.mapping, perceptualRoughness, ld.layout.levelCount);
 }
 
 // Trilinear LD in direction d (non-zero, need not be unit) for a perceptual roughness.

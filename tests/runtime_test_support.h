@@ -103,7 +103,7 @@ inline const ImageRGBA& dfgLut() {
 // LD chain (production preset, Frostbite mapping) of a cube.
 inline LdPyramid bakeLd(const CubeMap& cube) {
     static Executor executor = openclOrCpu();
-    return ldPyramidFromChain(bakeSpecular(cube, SpecularSettings{}, executor), LdMapping::Frostbite);
+    return ldPyramidFromChain(bakeSpecular(cube, SpecularSettings{}, executor), MipMapping::Frostbite);
 }
 
 // A distant-only probe set for an environment cube (LD + DFG + SH), with the baker's irradiance cube
@@ -123,7 +123,7 @@ inline ProbeSet distantSetWithSun(const CubeMap& full, const CubeMap& residual, 
     static Executor executor = openclOrCpu();
     CubeMapChain chain = bakeSpecular(residual, SpecularSettings{}, executor);
     const bool sunInLevel0 = keepSunInLevel0(chain, full, Ktx2Format::RGBA32F);
-    LdPyramid ld = ldPyramidFromChain(chain, LdMapping::Frostbite);
+    LdPyramid ld = ldPyramidFromChain(chain, MipMapping::Frostbite);
     ld.sunInLevel0 = sunInLevel0;
     ProbeSet set(std::move(ld), dfgTableFromImage(dfgLut()), projectIrradianceSH(residual));
     set.setIrradianceCube(bakeIrradianceCube(residual, IrradianceSettings{}, executor));

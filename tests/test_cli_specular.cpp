@@ -31,7 +31,8 @@ TEST(CliSpecular, BakesTheSampleToKtx2ExrAndPreview) {
     EXPECT_EQ(ktx.faceCount, 6u);
     EXPECT_EQ(ktx.levelCount, 6u);
     EXPECT_EQ(ktx.pixelWidth, 32u);
-    EXPECT_NE(ktx.keyValues.at("iblbake.roughnessMapping").find("(m/(L-1))^2"), std::string::npos);
+    EXPECT_EQ(ktx.keyValues.at("iblbake.roughnessMapping"), "frostbite"); // the name; its meaning beside it
+    EXPECT_NE(ktx.keyValues.at("iblbake.roughnessMappingMeaning").find("(m/(L-1))^2"), std::string::npos);
     EXPECT_EQ(ktx.keyValues.at("iblbake.colorSpace"), "lin_rec709");
     EXPECT_EQ(ktx.keyValues.at("iblbake.levelCount"), "6");
     for (const auto& level : ktx.levels)

@@ -507,18 +507,18 @@ TEST(Loading, Ktx2ChainAndLutRoundTrip) {
                   {{"iblbake.roughnessMapping", "linear: level m of L holds perceptualRoughness m/(L-1)"}});
     writeKtx2Image(dir / "dfg.ktx2", dfgLut(), Ktx2Format::RGBA32F, {});
     LdPyramid loaded = loadLdKtx2(dir / "ld.ktx2");
-    LdPyramid direct = ldPyramidFromChain(chain, LdMapping::Linear);
-    EXPECT_EQ(loaded.mapping, LdMapping::Linear);
+    LdPyramid direct = ldPyramidFromChain(chain, MipMapping::Linear);
+    EXPECT_EQ(loaded.mapping, MipMapping::Linear);
     EXPECT_EQ(loaded.layout.levelCount, direct.layout.levelCount);
     EXPECT_EQ(loaded.data, direct.data);
     DfgTable lut = loadDfgKtx2(dir / "dfg.ktx2");
     EXPECT_EQ(lut.data, dfgTableFromImage(dfgLut()).data);
     // Half floats load too (rounded); a LUT is not a cube and a cube is not a LUT.
     writeKtx2Cube(dir / "ld16.ktx2", chain, Ktx2Format::RGBA16F, {});
-    EXPECT_EQ(loadLdKtx2(dir / "ld16.ktx2").mapping, LdMapping::Frostbite);
+    EXPECT_EQ(loadLdKtx2(dir / "ld16.ktx2").mapping, MipMapping::Frostbite);
     EXPECT_THROW(loadLdKtx2(dir / "dfg.ktx2"), Error);
     EXPECT_THROW(loadDfgKtx2(dir / "ld.ktx2"), Error);
-    EXPECT_THROW(parseLdMapping("cubic"), Error);
+    EXPECT_THROW(parseStoredMipMapping("cubic"), Error);
     // A chain whose levels do not halve is refused.
     CubeMapChain bad = chain;
     bad.levels[1] = CubeMap(16);

@@ -20,6 +20,11 @@ namespace ibl {
 // VK_FORMAT_B10G11R11_UFLOAT_PACK32 (122), VK_FORMAT_E5B9G9R9_UFLOAT_PACK32 (123).
 enum class Ktx2Format { RGBA16F, RGBA32F, B10G11R11, E5B9G9R9 };
 
+// The names of the formats (`--format`, the scene's outputs.ktx2Format), in Ktx2Format order.
+inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"};
+// Throws ibl::Error "'<name>' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9" for any other name.
+Ktx2Format parseKtx2Format(const std::string& name);
+
 // What the writer had to change to make the data storable. Each texel counts at most once per field.
 struct Ktx2WriteStats {
     std::uint64_t clampedTexels = 0;     // a finite channel outside the format's range (|v| > max, or v < 0

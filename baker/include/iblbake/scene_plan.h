@@ -4,6 +4,8 @@
 
 #include "iblbake/scene.h"
 
+#include <mip_mapping.h>
+
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -44,10 +46,9 @@ Plan planScene(const Scene& scene);
 //  "notes": [...]}
 nlohmann::json planToJson(const Plan& plan);
 
-// Levels of a chain whose level 0 has `faceSize` texels (down to 1x1), and the last level the roughest
-// material reads: the first level m whose roughness under `mapping` ("frostbite": (m/(L-1))^2, "linear":
-// m/(L-1)) reaches roughnessMax. Levels past it are not integrated (specular.h maxRoughness).
-int fullLevelCount(int faceSize);
-int lastLevelNeeded(int faceSize, const std::string& mapping, double roughnessMax);
+// The last level the roughest material reads in a full chain (mipLevelCount(faceSize) levels): the first
+// level m whose roughness under `mapping` (mip_mapping.h) reaches roughnessMax. Levels past it are not
+// integrated (specular.h SpecularSettings::integratedLevels).
+int lastLevelNeeded(int faceSize, MipMapping mapping, double roughnessMax);
 
 } // namespace ibl

@@ -7,19 +7,17 @@
 #include "iblbake/executor.h"
 #include "iblbake/ktx2.h"
 
+#include <mip_mapping.h>
+
 #include <cstdint>
 #include <string>
 #include <vector>
 
 namespace ibl {
 
-enum class MipMapping {
-    Frostbite, // m = sqrt(r) (L - 1), r_m = (m / (L - 1))^2 (Frostbite eq. 63; the default)
-    Linear,    // r_m = m / (L - 1)
-};
-MipMapping parseMipMapping(const std::string& name); // "frostbite" | "linear"
-const char* mipMappingName(MipMapping mapping);
-float perceptualRoughnessForLevel(int level, int levelCount, MipMapping mapping);
+// MipMapping, its names and perceptualRoughnessForLevel: kernels/mip_mapping.h.
+// "frostbite" | "linear"; throws ibl::Error "'<name>' is not one of frostbite, linear" otherwise.
+MipMapping parseMipMapping(const std::string& name);
 
 enum class Quality { Draft, Production, Reference };
 Quality parseQuality(const std::string& name);

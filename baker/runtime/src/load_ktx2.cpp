@@ -17,10 +17,10 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
             cube.faces[f] = level.at(std::size_t(f));
         chain.levels.push_back(std::move(cube));
     }
-    LdMapping mapping = LdMapping::Frostbite;
+    MipMapping mapping = MipMapping::Frostbite;
     auto it = image.keyValues.find("iblbake.roughnessMapping");
     try {
-        if (it != image.keyValues.end()) mapping = parseLdMapping(it->second);
+        if (it != image.keyValues.end()) mapping = parseStoredMipMapping(it->second);
         LdPyramid pyramid = ldPyramidFromChain(chain, mapping);
         auto sun = image.keyValues.find("iblbake.sunInLevel0");
         pyramid.sunInLevel0 = sun != image.keyValues.end() && sun->second == "true";

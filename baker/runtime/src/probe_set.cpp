@@ -4,28 +4,21 @@
 #include "iblbake/runtime.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cmath>
+#include <optional>
 
 namespace ibl {
 
-LdMapping parseLdMapping(const std::string& text) {
-    std::string name;
-    for (char ch : text) {
-        if (ch == ':' || std::isspace(static_cast<unsigned char>(ch))) break;
-        name += char(std::tolower(static_cast<unsigned char>(ch)));
-    }
-    if (name == "frostbite") return LdMapping::Frostbite;
-    if (name == "linear") return LdMapping::Linear;
+MipMapping parseStoredMipMapping(const std::string& text) {
+    if (std::optional<MipMapping> mapping = mipMappingFromStoredValue(text)) return *mapping;
     throw Error("LD roughness mapping " + quotedForMessage(text) + " is neither frostbite nor linear");
 }
 
-LdPyramid ldPyramidFromChain(const CubeMapChain& chain, LdMapping mapping) {
+LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping) {
     if (chain.levels.empty()) throw Error("LD chain: no levels");
     const int base = chain.levels[0].faceSize;
     if (base <= 0 || (base & (base - 1)) != 0 || base > 8192)
         throw Error("LD chain: face size " + std::to_string(base) + " is not a power of two up to 8192");
-    const int maxLevels = int(std::log2(double(base))) + 1;
+    const int maxLevels = mipLevelCount(base);
     if (int(chain.levels.size()) > std::min(maxLevels, int(IBL_MAX_CUBE_LEVELS)))
         throw Error("LD chain: " + std::to_string(chain.levels.size()) + " levels for a base face of " +
                     std::to_string(base));

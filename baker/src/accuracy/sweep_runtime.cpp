@@ -105,7 +105,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.knobs = {{"specularQuality", qualityName(quality)}};
         s.preset = qualityName(quality);
         const bool sunInLevel0 = sun && keepSunInLevel0(chain, source, Ktx2Format::RGBA32F);
-        LdPyramid ld = ldPyramidFromChain(chain, LdMapping::Frostbite);
+        LdPyramid ld = ldPyramidFromChain(chain, MipMapping::Frostbite);
         ld.sunInLevel0 = sunInLevel0;
         ProbeSet set(std::move(ld), dfg, sh);
         set.setIrradianceCube(irradiance);

@@ -2,6 +2,8 @@
 
 #include "iblbake/code_identity.h"
 #include "iblbake/irradiance.h"
+#include "iblbake/products.h"
+#include "iblbake/specular.h"
 #include "iblbake/sun.h"
 #include "scene_stages.h"
 
@@ -47,21 +49,19 @@ std::uint32_t irradianceSamples(const std::string& quality) {
     return irradianceSamplesFor(settings);
 }
 
-json ldProduct(const PlanStage& stage, const std::string& file, const std::string& hash) {
+// A local probe's chain: everything from its plan stage.
+LdManifestFacts probeFacts(const PlanStage& stage, const std::string& file) {
     const json& s = stage.settings;
-    const int integrated = s.at("integratedLevels").get<int>();
-    return {{"file", file},
-            {"format", s.at("ktx2Format")},
-            {"faceSize", s.at("faceSize")},
-            {"levels", s.at("levels")},
-            {"integratedLevels", integrated},
-            {"roughnessMapping", s.at("mipMapping")},
-            {"roughnessMappingMeaning", s.at("mipMapping") == "linear"
-                                            ? "level m of L holds r = m/(L-1)"
-                                            : "level m of L holds r = (m/(L-1))^2"},
-            {"validRoughnessMax", s.at("roughnessMax")},
-            {"quality", s.at("quality")},
-            {"contentHash", hash}};
+    LdManifestFacts f;
+    f.file = file;
+    f.format = s.at("ktx2Format").get<std::string>();
+    f.faceSize = s.at("faceSize").get<int>();
+    f.levels = s.at("levels").get<int>();
+    f.integratedLevels = s.at("integratedLevels").get<int>();
+    f.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
+    f.validRoughnessMax = s.at("roughnessMax").get<double>();
+    f.quality = s.at("quality").get<std::string>();
+    return f;
 }
 
 } // namespace
@@ -73,70 +73,36 @@ json buildManifest(const ManifestInputs& in) {
         stages[s.id] = &s;
     const std::string lightStage = stages.count("sun") ? "sun" : "environment";
     const json calibration = readJsonFile(in.entries.at(lightStage) / kCalibrationFile);
+    const CalibrationRecord record = calibrationRecordFromJson(calibration.at("record"));
 
     json products = json::object();
     if (stages.count("dfg")) {
         const PlanStage& s = *stages["dfg"];
-        products["dfg"] = {{"file", "dfg_lut.ktx2"},
-                           {"format", "rgba32f"},
-                           {"size", s.settings.at("size")},
-                           {"samples", s.settings.at("samples")},
-                           {"layout",
-                            "x: NoV = (x+0.5)/N; y: perceptual roughness = (y+0.5)/N, first row first; "
-                            "R = DFG1, G = DFG2, B = renormalized Disney diffuse"},
-                           {"disneyChannelUsed", scene.materials.diffuseModel == SceneDiffuseModel::Disney},
-                           {"contentHash", in.productHashes.at("dfg_lut.ktx2")}};
+        products["dfg"] = dfgManifestEntry(
+            s.settings.at("size").get<std::uint32_t>(), s.settings.at("samples").get<std::uint32_t>(),
+            scene.materials.diffuseModel == SceneDiffuseModel::Disney, in.productHashes.at("dfg_lut.ktx2"));
     }
-    if (stages.count("specular")) {
-        const PlanStage& stage = *stages["specular"];
-        json& specular = products["specular"] =
-            ldProduct(stage, "specular.ktx2", in.productHashes.at("specular.ktx2"));
-        const fs::path facts = in.entries.at("specular") / kLdFacts;
-        specular["sunInLevel0"] = fs::exists(facts) && readJsonFile(facts).at("sunInLevel0").get<bool>();
-    }
-    {
-        const json diffuse = readJsonFile(in.entries.at("diffuse") / "diffuse.json");
-        products["diffuse"] = {
-            {"file", "diffuse.json"},
-            {"sh",
-             {{"irradiance", diffuse.at("sh").at("irradiance")},
-              {"convention", "L2, DESIGN.md order, pre-scaled: Filament's irradianceSH(n) = "
-                             "sum c_i p_i(n) returns the irradiance E(n) (1/pi not folded in)"},
-              {"window", diffuse.at("sh").at("window")}}},
-            {"contentHash", in.productHashes.at("diffuse.json")}};
-    }
+    if (stages.count("specular"))
+        products["specular"] = ldManifestEntry(
+            ldManifestFactsFromJson(readJsonFile(in.entries.at("specular") / kLdManifestFacts)),
+            in.productHashes.at("specular.ktx2"));
+    products["diffuse"] = diffuseManifestEntry(readJsonFile(in.entries.at("diffuse") / "diffuse.json"),
+                                               in.productHashes.at("diffuse.json"));
     if (stages.count("irradiance")) {
         const json& s = stages["irradiance"]->settings;
-        products["irradiance"] = {
-            {"file", "irradiance.ktx2"},
-            {"faceSize", s.at("faceSize")},
-            {"format", s.at("ktx2Format")},
-            {"method", "sampled"},
-            {"samples", irradianceSamples(s.at("quality").get<std::string>())},
-            {"normalization",
-             "E/pi: each texel stores the cosine-weighted mean radiance; irradiance E = pi x "
-             "value"},
-            {"contentHash", in.productHashes.at("irradiance.ktx2")}};
+        products["irradiance"] = irradianceManifestEntry(
+            s.at("faceSize").get<int>(), s.at("ktx2Format").get<std::string>(),
+            irradianceSamples(s.at("quality").get<std::string>()), in.productHashes.at("irradiance.ktx2"));
     }
-    if (stages.count("sun")) {
-        const DiskLight light = diskLightFromJson(calibration.at("sunLight").dump());
-        products["sun"] = {
-            {"file", "sun.json"},
-            {"light",
-             {{"direction", vec3Json(light.direction)},
-              {"angularRadius", light.angularRadius},
-              {"color", vec3Json(light.color)},
-              {"illuminance", light.illuminance},
-              {"meaning", "disk light toward direction, angular radius in radians, illuminance "
-                          "perpendicular to it (lux when calibrated) times color"}}},
-            {"contentHash", in.productHashes.at("sun.json")}};
-    }
+    if (stages.count("sun"))
+        products["sun"] = sunManifestEntry(diskLightFromJson(calibration.at("sunLight").dump()),
+                                           in.productHashes.at("sun.json"));
     json probes = json::array();
     for (const SceneProbe& p : scene.probes) {
         auto it = stages.find("probe:" + p.name);
         if (it == stages.end()) continue;
         const std::string file = it->second->products.at(0);
-        json probe = ldProduct(*it->second, file, in.productHashes.at(file));
+        json probe = ldManifestEntry(probeFacts(*it->second, file), in.productHashes.at(file));
         probe["name"] = p.name;
         probe["position"] = vec3Json(p.position);
         probe["proxy"] = volumeJson(p.proxy);
@@ -155,16 +121,13 @@ json buildManifest(const ManifestInputs& in) {
     for (const PlanStage& s : in.plan.stages)
         stageKeys.push_back({{"id", s.id}, {"kind", s.kind}, {"key", in.keys.at(s.id)}});
     const SceneMaterials& m = scene.materials;
-    return {
+    json manifest = {
         {"schema", "iblbake.manifest"},
         {"schemaVersion", kManifestSchemaVersion},
         {"generator", "iblbake " IBLBAKE_VERSION},
         {"manifestCode", builtInStageCodeIdentity().at("manifest")}, // read by the up-to-date check
         {"runtimeProfile", scene.outputs.runtimeProfile},
         {"backend", in.backend},
-        {"units", calibration.at("units")},
-        {"colorSpace", calibration.at("colorSpace")},
-        {"calibration", {{"factor", calibration.at("factor")}, {"record", calibration.at("metadata")}}},
         {"conventions",
          {{"directions", "right-handed, +Y up"},
           {"cubeFaces", "+X, -X, +Y, -Y, +Z, -Z, OpenGL face orientation"},
@@ -181,6 +144,8 @@ json buildManifest(const ManifestInputs& in) {
           {"clearCoat", m.clearCoat}}},
         {"products", products},
         {"stages", stageKeys}};
+    addCalibrationToManifest(manifest, record, calibration.at("colorSpace").get<std::string>());
+    return manifest;
 }
 
 } // namespace ibl

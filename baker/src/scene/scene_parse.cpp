@@ -4,7 +4,9 @@
 #include "iblbake/scene.h"
 
 #include "iblbake/error.h"
+#include "iblbake/ktx2.h"
 
+#include <mip_mapping.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -292,14 +294,14 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     const std::string directory = r.stringValue(r.required("directory"), r.key("directory"));
     if (directory.empty()) fail(r.key("directory"), "must name a directory");
     o.directory = resolve(directory, base);
-    o.ktx2Format = r.choice("ktx2Format", "rgba16f", {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"});
+    o.ktx2Format = r.choice("ktx2Format", "rgba16f", kKtx2FormatNames);
     o.quality = r.choice("quality", "production", {"draft", "production", "reference"});
     o.faceSize = r.integer("faceSize", 256, 1, 4096);
     if (!isPowerOfTwo(o.faceSize)) fail(r.key("faceSize"), "must be a power of two");
     o.probeFaceSize = r.integer("probeFaceSize", o.faceSize, 1, 4096);
     if (!isPowerOfTwo(o.probeFaceSize)) fail(r.key("probeFaceSize"), "must be a power of two");
     o.dfgSize = r.integer("dfgSize", 128, 1, 1024);
-    o.mipMapping = r.choice("mipMapping", "frostbite", {"frostbite", "linear"});
+    o.mipMapping = r.choice("mipMapping", "frostbite", {kMipMappingNames.begin(), kMipMappingNames.end()});
     o.runtimeProfile = r.string("runtimeProfile", "");
     o.irradianceCube = r.boolean("irradianceCube", false);
     o.irradianceFaceSize = r.integer("irradianceFaceSize", 32, 1, 1024);

@@ -28,10 +28,15 @@ std::vector<PlanInput> inputsOf(const std::vector<std::filesystem::path>& files,
     return out;
 }
 
+// outputs.mipMapping is one of kMipMappingNames (scene_parse.cpp checks it).
+MipMapping sceneMipMapping(const SceneOutputs& o) {
+    return mipMappingFromName(o.mipMapping).value_or(MipMapping::Frostbite);
+}
+
 json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
     return {{"faceSize", faceSize},
-            {"levels", fullLevelCount(faceSize)},
-            {"integratedLevels", lastLevelNeeded(faceSize, o.mipMapping, m.roughnessMax) + 1},
+            {"levels", mipLevelCount(faceSize)},
+            {"integratedLevels", lastLevelNeeded(faceSize, sceneMipMapping(o), m.roughnessMax) + 1},
             {"roughnessMax", m.roughnessMax},
             {"mipMapping", o.mipMapping},
             {"quality", o.quality},
@@ -40,20 +45,10 @@ json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
 
 } // namespace
 
-int fullLevelCount(int faceSize) {
-    int levels = 1;
-    while ((1 << (levels - 1)) < faceSize)
-        ++levels;
-    return levels;
-}
-
-int lastLevelNeeded(int faceSize, const std::string& mapping, double roughnessMax) {
-    const int levels = fullLevelCount(faceSize);
-    for (int m = 0; m < levels - 1; ++m) {
-        double t = double(m) / double(levels - 1);
-        double r = mapping == "linear" ? t : t * t;
-        if (r >= roughnessMax) return m;
-    }
+int lastLevelNeeded(int faceSize, MipMapping mapping, double roughnessMax) {
+    const int levels = mipLevelCount(faceSize);
+    for (int m = 0; m < levels - 1; ++m)
+        if (double(perceptualRoughnessForLevel(m, levels, mapping)) >= roughnessMax) return m;
     return levels - 1;
 }
 

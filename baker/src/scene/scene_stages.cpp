@@ -6,6 +6,7 @@
 #include "iblbake/ingest.h"
 #include "iblbake/irradiance.h"
 #include "iblbake/ktx2.h"
+#include "iblbake/products.h"
 #include "iblbake/sh.h"
 #include "iblbake/specular.h"
 #include "iblbake/sun.h"
@@ -44,13 +45,6 @@ void writeCube(const fs::path& file, const CubeMap& cube, const std::string& pro
     writeKtx2Cube(file, chain, Ktx2Format::RGBA32F, {{"iblbake.product", product}});
 }
 
-Ktx2Format ktx2Format(const std::string& name) {
-    if (name == "rgba32f") return Ktx2Format::RGBA32F;
-    if (name == "b10g11r11") return Ktx2Format::B10G11R11;
-    if (name == "e5b9g9r9") return Ktx2Format::E5B9G9R9;
-    return Ktx2Format::RGBA16F;
-}
-
 CalibrationSettings calibrationSettings(const json& choice, const std::string& workingColorSpace) {
     static const std::map<std::string, CalibrationSource> sources = {
         {"none", CalibrationSource::None},
@@ -68,28 +62,37 @@ CalibrationSettings calibrationSettings(const json& choice, const std::string& w
 }
 
 json calibrationJson(const CalibrationRecord& record, const std::string& colorSpace) {
-    json metadata = json::object();
-    for (const auto& [key, value] : calibrationMetadata(record, ""))
-        metadata[key] = value;
     return {{"factor", record.factor},
             {"absolute", record.absolute()},
-            {"units", record.absolute() ? "cd/m2" : "relative"},
+            {"units", record.units()},
             {"colorSpace", colorSpace},
-            {"metadata", metadata}};
+            {"record", calibrationRecordToJson(record)}};
 }
 
-// The calibration (and sun) key/values every KTX2 product carries, as the CLI's outputs do.
-Ktx2KeyValues calibrationKeyValues(const json& calibration) {
-    Ktx2KeyValues kv;
-    for (const auto& [key, value] : calibration.at("metadata").items())
-        kv.emplace_back("iblbake." + key, value.get<std::string>());
-    if (calibration.contains("sunLight")) {
-        kv.emplace_back("iblbake.sun", "extracted as a disk light (Frostbite 4.6), see iblbake.sunLight");
-        kv.emplace_back("iblbake.sunLight", calibration["sunLight"].dump());
-    } else {
-        kv.emplace_back("iblbake.sun", "kept in the environment");
+// What an environment-like entry's calibration.json says, typed.
+struct CachedCalibration {
+    json document;
+    CalibrationRecord record;
+    std::optional<DiskLight> sun;
+    std::string colorSpace() const { return document.at("colorSpace").get<std::string>(); }
+    std::optional<std::string> sourceFile() const {
+        if (!document.contains("source")) return std::nullopt;
+        return document["source"].at("file").get<std::string>();
     }
-    return kv;
+};
+
+CachedCalibration readCalibration(const fs::path& entry) {
+    const fs::path file = entry / kCalibrationFile;
+    CachedCalibration c{readJsonFile(file), {}, {}};
+    try {
+        if (!c.document.contains("record"))
+            throw Error("no typed calibration record: an entry of an older iblbake; bake with a new --cache");
+        c.record = calibrationRecordFromJson(c.document["record"]);
+        if (c.document.contains("sunLight")) c.sun = diskLightFromJson(c.document["sunLight"].dump());
+    } catch (const Error& e) {
+        throw Error(file.string() + ": " + e.what());
+    }
+    return c;
 }
 
 IngestSettings ingestSettings(const json& s, int faceSize) {
@@ -126,14 +129,8 @@ void runDfg(const StageContext& c) {
     settings.size = c.stage.settings.at("size").get<std::uint32_t>();
     settings.sampleCount = c.stage.settings.at("samples").get<std::uint32_t>();
     ImageRGBA lut = bakeDfgLut(settings, *c.executor);
-    writeKtx2Image(
-        c.outputDirectory / "dfg_lut.ktx2", lut, Ktx2Format::RGBA32F,
-        {{"iblbake.product", "dfg-lut"},
-         {"iblbake.layout",
-          "x: NoV=(x+0.5)/N; y: perceptualRoughness=(y+0.5)/N from the first row; R=DFG1=E[(1-Fc)GVis] "
-          "G=DFG2=E[Fc GVis] (Frostbite Listing 18, height-correlated Smith GGX); B=renormalized "
-          "Disney diffuse (Frostbite Listing 1)"},
-         {"iblbake.samples", std::to_string(settings.sampleCount)}});
+    writeKtx2Image(c.outputDirectory / "dfg_lut.ktx2", lut, Ktx2Format::RGBA32F,
+                   dfgLutMetadata("iblbake.", "row", settings.sampleCount));
 }
 
 void runEnvironment(const StageContext& c) {
@@ -176,39 +173,41 @@ void runSun(const StageContext& c) {
     if (!out) throw Error((c.outputDirectory / "sun.json").string() + ": cannot write");
 }
 
-std::string mappingText(MipMapping mapping) {
-    return std::string(mipMappingName(mapping)) +
-           (mapping == MipMapping::Frostbite ? ": level m of L holds perceptualRoughness (m/(L-1))^2"
-                                             : ": level m of L holds perceptualRoughness m/(L-1)");
-}
-
-// Bakes and writes an LD chain (the distant environment's or a local probe's).
-// Returns whether level 0 kept the sun's pixels (only with `withSun`).
-bool writeLdChain(const StageContext& c, const CubeMap& source, const json& calibration,
-                  const std::string& product, const fs::path& file, const CubeMap* withSun = nullptr) {
+// Bakes and writes an LD chain (the distant environment's or a local probe's). With `withSun`, level 0 may
+// keep the sun's pixels (specular.h keepSunInLevel0); returns the chain's manifest facts.
+LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
+                             const CachedCalibration& calibration, const std::string& product,
+                             const fs::path& file, const CubeMap* withSun = nullptr) {
     const json& s = c.stage.settings;
     SpecularSettings settings;
     settings.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
     settings.quality = parseQuality(s.at("quality").get<std::string>());
     settings.integratedLevels = s.at("integratedLevels").get<int>();
     CubeMapChain chain = bakeSpecular(source, settings, *c.executor);
-    Ktx2KeyValues kv = {{"iblbake.product", product},
-                        {"iblbake.roughnessMapping", mappingText(settings.mapping)},
-                        {"iblbake.levelCount", std::to_string(chain.levels.size())},
-                        {"iblbake.integratedLevels", std::to_string(settings.integratedLevels)},
-                        {"iblbake.colorSpace", calibration.at("colorSpace").get<std::string>()},
-                        {"iblbake.settings", "quality=" + s.at("quality").get<std::string>() +
-                                                 " samples=" + std::to_string(samplesFor(settings)) +
-                                                 " roughnessMax=" + s.at("roughnessMax").dump()}};
-    if (calibration.contains("source"))
-        kv.emplace_back("iblbake.source", calibration["source"].at("file").get<std::string>());
-    for (auto& entry : calibrationKeyValues(calibration))
-        kv.push_back(entry);
-    const Ktx2Format format = ktx2Format(s.at("ktx2Format").get<std::string>());
-    const bool sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format);
-    if (sunInLevel0) kv.emplace_back("iblbake.sunInLevel0", "true");
-    writeKtx2Cube(file, chain, format, kv);
-    return sunInLevel0;
+    const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    LdChainProduct ld;
+    ld.product = product;
+    ld.mapping = settings.mapping;
+    ld.levelCount = int(chain.levels.size());
+    ld.integratedLevels = settings.integratedLevels;
+    ld.colorSpace = calibration.colorSpace();
+    ld.source = calibration.sourceFile();
+    ld.settings = "quality=" + s.at("quality").get<std::string>() +
+                  " samples=" + std::to_string(samplesFor(settings)) +
+                  " roughnessMax=" + s.at("roughnessMax").dump();
+    ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format);
+    writeKtx2Cube(file, chain, format, ldChainKeyValues(ld, calibration.record, calibration.sun));
+    LdManifestFacts facts;
+    facts.file = file.filename().string();
+    facts.format = s.at("ktx2Format").get<std::string>();
+    facts.faceSize = s.at("faceSize").get<int>();
+    facts.levels = s.at("levels").get<int>();
+    facts.integratedLevels = settings.integratedLevels;
+    facts.mapping = settings.mapping;
+    facts.validRoughnessMax = s.at("roughnessMax").get<double>();
+    facts.quality = s.at("quality").get<std::string>();
+    if (withSun) facts.sunInLevel0 = ld.sunInLevel0;
+    return facts;
 }
 
 void runSpecular(const StageContext& c) {
@@ -217,79 +216,49 @@ void runSpecular(const StageContext& c) {
     // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
     std::optional<CubeMap> withSun;
     if (c.stage.dependsOn.size() > 1) withSun = readCube(c.dependencies.at("environment") / kCubeFile);
-    const bool sunInLevel0 = writeLdChain(c, source, readJsonFile(from / kCalibrationFile), "specular-ld",
-                                          c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
-    writeJson(c.outputDirectory / kLdFacts, {{"sunInLevel0", sunInLevel0}});
-}
-
-json rgb(const glm::dvec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
-
-json coefficients(const ShRgb& sh) {
-    json a = json::array();
-    for (const glm::dvec3& v : sh)
-        a.push_back(rgb(v));
-    return a;
+    LdManifestFacts facts = writeLdChain(c, source, readCalibration(from), "specular-ld",
+                                         c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
+    facts.sunInLevel0 = facts.sunInLevel0.value_or(false);
+    writeJson(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
 }
 
 void runDiffuse(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
     const CubeMap cube = readCube(from / kCubeFile);
-    json calibration = readJsonFile(from / kCalibrationFile);
-    const DiffuseSH sh = bakeDiffuseSH(cube, ShWindowSettings{});
-    const ShWindowResult& w = sh.window;
-    json doc = {
-        {"schema", "iblbake.diffuse"},
-        {"schemaVersion", 1},
-        {"generator", "iblbake " IBLBAKE_VERSION},
-        {"colorSpace", calibration.at("colorSpace")},
-        {"units", calibration.at("absolute").get<bool>() ? "cd/m2 (luminance); irradiance in lux"
-                                                         : "relative (input values, uncalibrated)"},
-        {"calibration", calibration.at("metadata")},
-        {"sh",
-         {{"order", 2},
-          {"basis", "real spherical harmonics, standard (orthonormal) normalization, DESIGN.md order"},
-          {"window",
-           {{"name", shWindowName(w.window)},
-            {"parameter", w.parameter},
-            {"searched", w.searched},
-            {"bandFactors", {w.factors[0], w.factors[1], w.factors[2]}}}},
-          {"radiance", coefficients(sh.radiance)},
-          {"irradiance", coefficients(sh.irradiance)},
-          {"irradianceConvention", "c_i = A_l k_i L_i: Filament's irradianceSH(n) returns E(n)"},
-          {"irradianceOverPi", coefficients(sh.irradianceOverPi)}}}};
-    if (calibration.contains("sunLight")) doc["calibration"]["sunLight"] = calibration["sunLight"];
-    writeJson(c.outputDirectory / "diffuse.json", doc);
+    const CachedCalibration calibration = readCalibration(from);
+    const ShWindowSettings window; // auto: the weakest window that keeps E >= 0
+    DiffuseSource source;
+    if (calibration.document.contains("source")) {
+        const json& in = calibration.document["source"];
+        source.file = in.at("file").get<std::string>();
+        source.width = in.value("width", 0);
+        source.height = in.value("height", 0);
+        source.layout = in.value("layout", "");
+        source.inputColorSpace = in.value("inputColorSpace", "");
+        source.rotateDegrees = in.value("rotateDegrees", 0.0);
+    }
+    source.faceSize = cube.faceSize;
+    writeJson(c.outputDirectory / "diffuse.json",
+              diffuseDocument(bakeDiffuseSH(cube, window), "auto", calibration.colorSpace(), source,
+                              calibration.record, calibration.sun));
 }
 
 // The same cube and key/values as `iblbake diffuse --irradiance-cube` (cli/diffuse_command.cpp).
 void runIrradiance(const StageContext& c) {
     const json& s = c.stage.settings;
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    const json calibration = readJsonFile(from / kCalibrationFile);
+    const CachedCalibration calibration = readCalibration(from);
     IrradianceSettings settings;
     settings.faceSize = s.at("faceSize").get<int>();
     settings.quality = parseQuality(s.at("quality").get<std::string>());
     settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
     CubeMapChain chain;
     chain.levels.push_back(bakeIrradianceCube(readCube(from / kCubeFile), settings, *c.executor));
-    Ktx2KeyValues kv = {
-        {"iblbake.product", "irradiance"},
-        {"iblbake.irradianceNormalization",
-         "E/pi: each texel stores (1/pi) integral L(l) max(0,n.l) dl, the cosine-weighted mean radiance "
-         "(Frostbite Listing 20's LD of a Lambert lobe); irradiance E = pi x value"},
-        {"iblbake.method",
-         "sampled: cosine importance sampling, " + std::to_string(settings.samples) +
-             " samples/texel, pre-filtered lookups (Frostbite Listing 20 + Listing 19 LOD), "
-             "bright texels integrated exactly"},
-        {"iblbake.colorSpace", calibration.at("colorSpace").get<std::string>()}};
-    if (calibration.contains("source"))
-        kv.emplace_back("iblbake.source", calibration["source"].at("file").get<std::string>());
-    for (auto& entry : calibrationKeyValues(calibration))
-        kv.push_back(entry);
     writeKtx2Cube(c.outputDirectory / "irradiance.ktx2", chain,
-                  ktx2Format(s.at("ktx2Format").get<std::string>()), kv);
+                  parseKtx2Format(s.at("ktx2Format").get<std::string>()),
+                  irradianceKeyValues(irradianceMethodText(IrradianceMethod::Sampled, settings.samples),
+                                      calibration.colorSpace(), calibration.sourceFile(), calibration.record,
+                                      calibration.sun));
 }
 
 void runProbe(const StageContext& c) {
@@ -308,8 +277,11 @@ void runProbe(const StageContext& c) {
             record = computeCalibration(env.cube, calibrationSettings(choice, env.report.workingColorSpace));
         }
         applyCalibration(env.cube, record.factor);
-        json calibration = calibrationJson(record, env.report.workingColorSpace);
-        calibration["source"] = {{"file", fs::path(env.report.file).filename().string()}};
+        const CachedCalibration calibration{
+            {{"colorSpace", env.report.workingColorSpace},
+             {"source", {{"file", fs::path(env.report.file).filename().string()}}}},
+            record,
+            std::nullopt};
         writeLdChain(c, env.cube, calibration, "local-probe-ld", c.outputDirectory / "ld.ktx2");
     });
 }

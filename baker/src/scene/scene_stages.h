@@ -32,11 +32,12 @@ std::string entryFileFor(const PlanStage& stage, const std::string& product);
 nlohmann::json readJsonFile(const std::filesystem::path& file);
 
 // Files every environment-like entry ("environment", "sun") holds: the working-space cube and its
-// calibration (JSON: factor, absolute, units, colorSpace, metadata {key: text}, source, sunLight?).
+// calibration (JSON: factor, absolute, units, colorSpace, record (products.h calibrationRecordToJson),
+// source, sunLight?).
 inline constexpr const char* kCubeFile = "cube.ktx2";
 inline constexpr const char* kCalibrationFile = "calibration.json";
-// Beside the specular stage's chain: {"sunInLevel0": bool} (specular.h keepSunInLevel0), for the manifest.
-// Entries older than this file never kept the sun.
-inline constexpr const char* kLdFacts = "ld.json";
+// Beside the specular stage's chain: its manifest facts (products.h ldManifestFactsToJson, with
+// sunInLevel0), so that the manifest needs nothing else from the entry.
+inline constexpr const char* kLdManifestFacts = "manifest_facts.json";
 
 } // namespace ibl

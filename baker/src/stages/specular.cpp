@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace ibl {
 namespace {
@@ -69,19 +70,8 @@ bool isPowerOfTwo(int v) {
 } // namespace
 
 MipMapping parseMipMapping(const std::string& name) {
-    if (name == "frostbite") return MipMapping::Frostbite;
-    if (name == "linear") return MipMapping::Linear;
-    throw Error("--mip-mapping: '" + name + "' is not one of frostbite, linear");
-}
-
-const char* mipMappingName(MipMapping mapping) {
-    return mapping == MipMapping::Linear ? "linear" : "frostbite";
-}
-
-float perceptualRoughnessForLevel(int level, int levelCount, MipMapping mapping) {
-    if (levelCount <= 1) return 0.0f;
-    float t = float(level) / float(levelCount - 1);
-    return mapping == MipMapping::Linear ? t : t * t;
+    if (std::optional<MipMapping> mapping = mipMappingFromName(name)) return *mapping;
+    throw Error(quotedForMessage(name) + " is not one of frostbite, linear");
 }
 
 Quality parseQuality(const std::string& name) {
@@ -126,7 +116,7 @@ CubeMap downsampleBox(const CubeMap& level) {
 } // namespace
 
 int levelCountFor(int faceSize, const SpecularSettings& s) {
-    int full = int(std::log2(double(faceSize))) + 1;
+    const int full = mipLevelCount(faceSize);
     return s.levels > 0 ? std::min(s.levels, full) : full;
 }
 

@@ -33,20 +33,16 @@ namespace ocl {
 class Context;
 }
 
-// Mip <-> roughness mapping of an LD chain (DESIGN.md): which perceptual roughness each level holds.
-enum class LdMapping : std::uint32_t {
-    Frostbite = IBL_MIP_FROSTBITE, // level m of L: r = (m / (L - 1))^2 (eq. 63, the default)
-    Linear = IBL_MIP_LINEAR,       // level m of L: r = m / (L - 1)
-};
-// Accepts the value of the KTX2 key "iblbake.roughnessMapping" ("frostbite: level m of L holds ...") or a
-// bare name ("frostbite", "linear"); throws ibl::Error otherwise.
-LdMapping parseLdMapping(const std::string& text);
+// The mapping a file stores (KTX2 key "iblbake.roughnessMapping", the manifest's "roughnessMapping"): the
+// name, or the prose written before the name was stored alone (mip_mapping.h mipMappingFromStoredValue);
+// throws ibl::Error quoting the value otherwise.
+MipMapping parseStoredMipMapping(const std::string& text);
 
 // An LD chain as the kernels read it: the bordered pyramid of kernels/cube_sample.h built from the chain's
 // own levels (not re-filtered), with its mapping.
 struct LdPyramid {
     CubePyramidLayout layout{};
-    LdMapping mapping = LdMapping::Frostbite;
+    MipMapping mapping = MipMapping::Frostbite;
     // Level 0 is the source with the extracted sun still in it (KTX2 key "iblbake.sunInLevel0" = "true";
     // kernels/probe.h IBL_RT_SUN_IN_LEVEL0): the sun's disk light then fades out where level 0 is read.
     bool sunInLevel0 = false;
@@ -55,7 +51,7 @@ struct LdPyramid {
 
 // Level m of the chain must have face size max(1, base >> m) with a power-of-two base (what bakeSpecular
 // writes); the chain may stop before 1x1. Throws ibl::Error otherwise.
-LdPyramid ldPyramidFromChain(const CubeMapChain& chain, LdMapping mapping = LdMapping::Frostbite);
+LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping = MipMapping::Frostbite);
 
 // The DFG LUT, 3 floats per texel (DFG1, DFG2, Disney), DESIGN.md layout.
 struct DfgTable {

@@ -1,0 +1,102 @@
+// The roughness <-> mip-level mapping of an LD chain (DESIGN.md "LD mip <-> roughness"), one source for the
+// baker, the runtime and the kernels. Level 0 is the unconvolved source; level m of L holds
+//   frostbite  r_m = (m / (L - 1))^2, so lod(r) = sqrt(r) (L - 1)   (Frostbite eq. 63, the default)
+//   linear     r_m = m / (L - 1),     so lod(r) = r (L - 1)
+// with r the perceptual roughness. A chain has at most floor(log2(base face size)) + 1 levels (down to 1x1).
+// Files store the mapping as its name (KTX2 key "iblbake.roughnessMapping", the manifest's
+// "roughnessMapping"); files written before held prose after the name ("frostbite: level m of L holds ..."),
+// which mipMappingFromStoredValue still reads.
+#ifndef IBL_MIP_MAPPING_H
+#define IBL_MIP_MAPPING_H
+
+#include "portable.h"
+
+IBL_BEGIN_NAMESPACE
+
+#define IBL_MIP_FROSTBITE 0u
+#define IBL_MIP_LINEAR 1u
+
+// Levels of a full chain whose level 0 has faces of faceSize texels (>= 1): floor(log2(faceSize)) + 1.
+IBL_FN uint mipLevelCountForFaceSize(uint faceSize) {
+    uint levels = 1u;
+    while ((faceSize >> levels) != 0u)
+        ++levels;
+    return levels;
+}
+
+// The perceptual roughness level m of a chain of levelCount levels holds (0 for a one-level chain).
+IBL_FN float mipLevelRoughness(uint mapping, uint level, uint levelCount) {
+    if (levelCount <= 1u) return 0.0f;
+    float t = (float)level / (float)(levelCount - 1u);
+    return mapping == IBL_MIP_LINEAR ? t : t * t;
+}
+
+// The fractional level (LOD) that holds perceptual roughness r, clamped to [0, 1] first.
+IBL_FN float mipLevelForRoughness(uint mapping, float perceptualRoughness, uint levelCount) {
+    float r = saturate(perceptualRoughness);
+    float maxLevel = (float)(levelCount - 1u);
+    return (mapping == IBL_MIP_LINEAR ? r : sqrt(r)) * maxLevel;
+}
+
+IBL_END_NAMESPACE
+
+#ifndef __OPENCL_VERSION__
+
+#include <array>
+#include <cctype>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace ibl {
+
+enum class MipMapping : std::uint32_t {
+    Frostbite = IBL_MIP_FROSTBITE,
+    Linear = IBL_MIP_LINEAR,
+};
+
+// The names files, options and scene files use, in enum order.
+inline constexpr std::array<const char*, 2> kMipMappingNames = {"frostbite", "linear"};
+
+inline const char* mipMappingName(MipMapping mapping) {
+    return kMipMappingNames[std::size_t(mapping)];
+}
+
+// What the name means, for the human-readable key beside the stored name.
+inline const char* mipMappingMeaning(MipMapping mapping) {
+    return mapping == MipMapping::Linear ? "level m of L holds r = m/(L-1)"
+                                         : "level m of L holds r = (m/(L-1))^2";
+}
+
+// Exactly "frostbite" or "linear"; nullopt otherwise.
+inline std::optional<MipMapping> mipMappingFromName(std::string_view name) {
+    for (std::size_t i = 0; i < kMipMappingNames.size(); ++i)
+        if (name == kMipMappingNames[i]) return MipMapping(i);
+    return std::nullopt;
+}
+
+// A value read from a file: the name, or the prose of files written before the name was stored alone
+// ("frostbite: level m of L holds perceptualRoughness (m/(L-1))^2"): the word before the first ':' or
+// white space, in any case. nullopt for anything else.
+inline std::optional<MipMapping> mipMappingFromStoredValue(std::string_view text) {
+    std::string name;
+    for (char ch : text) {
+        if (ch == ':' || std::isspace(static_cast<unsigned char>(ch))) break;
+        name += char(std::tolower(static_cast<unsigned char>(ch)));
+    }
+    return mipMappingFromName(name);
+}
+
+inline float perceptualRoughnessForLevel(int level, int levelCount, MipMapping mapping) {
+    return mipLevelRoughness(std::uint32_t(mapping), std::uint32_t(level), std::uint32_t(levelCount));
+}
+
+inline int mipLevelCount(int faceSize) {
+    return int(mipLevelCountForFaceSize(std::uint32_t(faceSize)));
+}
+
+} // namespace ibl
+
+#endif
+
+#endif
