@@ -1,11 +1,11 @@
 #include "calibration_options.h"
 #include "input_options.h"
+#include "setting_flags.h"
 
 #include <iblbake/error.h>
 
 #include <cstdio>
 #include <fstream>
-#include <map>
 
 namespace ibl::cli {
 
@@ -116,22 +116,10 @@ EnvironmentSettings CalibrationOptions::environmentSettings(const IngestSettings
 }
 
 Error withFlag(const SettingError& error, const CalibrationOptions& calibration) {
-    // The flags of InputOptions, CalibrationOptions and the commands' --size, by library setting.
-    static const std::map<std::string, std::string> flags = {{"layout", "--layout"},
-                                                             {"inputColorSpace", "--input-colorspace"},
-                                                             {"workingColorSpace", "--working-colorspace"},
-                                                             {"rotateDegrees", "--rotate"},
-                                                             {"sourceFaceSize", "--size"},
-                                                             {"extractSun", "--extract-sun"}};
-    std::string flag;
-    if (error.setting() == "calibration") {
-        flag = std::string("--") + calibrationSourceName(calibration.settings().source);
-    } else if (auto it = flags.find(error.setting()); it != flags.end()) {
-        flag = it->second;
-    } else {
-        return error;
-    }
-    return Error(flag + ": " + error.what());
+    if (error.setting() != "calibration") return Error(flaggedMessage(error));
+    // The source's own flag: --scale, --ev100, --illuminance, --sun-illuminance, --sky-luminance.
+    return Error(std::string("--") + calibrationSourceName(calibration.settings().source) + ": " +
+                 error.what());
 }
 
 std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,

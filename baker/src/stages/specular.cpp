@@ -121,7 +121,7 @@ bool isPowerOfTwo(int v) {
 MipMapping parseMipMapping(const std::string& name) {
     if (name == "frostbite") return MipMapping::Frostbite;
     if (name == "linear") return MipMapping::Linear;
-    throw Error("--mip-mapping: '" + name + "' is not one of frostbite, linear");
+    throw SettingError("mipMapping", "'" + name + "' is not one of frostbite, linear");
 }
 
 const char* mipMappingName(MipMapping mapping) {
@@ -138,7 +138,7 @@ Quality parseQuality(const std::string& name) {
     if (name == "draft") return Quality::Draft;
     if (name == "production") return Quality::Production;
     if (name == "reference") return Quality::Reference;
-    throw Error("--quality: '" + name + "' is not one of draft, production, reference");
+    throw SettingError("quality", "'" + name + "' is not one of draft, production, reference");
 }
 
 const char* qualityName(Quality q) {
