@@ -1,22 +1,17 @@
 // iblbake calibrate: HDRI in, the same environment in absolute luminance (cd/m2) out as a float OpenEXR,
 // optionally with the sun taken out as an analytic disk light (JSON).
 //
-// The factor is always computed on the ingested source cube (so `calibrate` and the baking commands given
-// the same option agree). The output keeps the input's layout where that is lossless:
-//   - lat-long input: a lat-long at the input's resolution, the input's own pixels (in lin_rec709) times
-//     the factor -- nothing is resampled. With --extract-sun the sun is detected and removed on those
-//     lat-long pixels, with their exact solid angles (ImfEnvmap LatLongMap grid, environment_stats.h), so
-//     the written light is exactly the energy taken out of the written file. Its E_perp differs from the
-//     cube's (which --sun-illuminance calibrates) by the resampling: 0.1-0.7 % on the shared HDRIs.
-//   - cube inputs (any cube layout): the calibrated source cube as a vertical strip (six faces stacked,
-//     +X, -X, +Y, -Y, +Z, -Z, OpenGL orientation, kernels/cube.h), which ingest reads back exactly; the
-//     sun is extracted on the cube.
-// The pixels are lin_rec709 (the working space, and what ingest assumes for a float EXR without
-// chromaticities), so the output reads back as written.
+// The work is the library's calibrateInInputLayout (iblbake/environment.h): the factor measured on the
+// ingested source cube (so `calibrate` and the baking commands given the same option agree), the output in
+// the input's layout where that is lossless -- a lat-long at the input's resolution, its own pixels times
+// the factor, the sun taken out of those pixels; for cube inputs a vertical strip of the calibrated source
+// cube, which ingest reads back exactly. The pixels are lin_rec709 (the working space, and what ingest
+// assumes for a float EXR without chromaticities), so the output reads back as written.
 #include "calibration_options.h"
 #include "commands.h"
 
 #include <iblbake/calibration.h>
+#include <iblbake/environment.h>
 #include <iblbake/error.h>
 #include <iblbake/exr_output.h>
 #include <iblbake/ingest.h>
@@ -39,16 +34,6 @@ struct CalibrateOptions {
     std::string inputColorSpace;
     CalibrationOptions calibration;
 };
-
-ImageRGBA verticalStrip(const CubeMap& cube) {
-    const int n = cube.faceSize;
-    ImageRGBA strip(n, 6 * n);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x)
-                strip.at(x, f * n + y) = cube.faces[std::size_t(f)].at(x, y);
-    return strip;
-}
 
 } // namespace
 
@@ -73,52 +58,27 @@ Action addCalibrateCommand(CLI::App& app) {
     o->calibration.addTo(*cmd);
 
     return [o] {
-        IngestSettings ingest;
-        ingest.layout = parseLayout(o->layout);
-        ingest.inputColorSpace = o->inputColorSpace;
-        ingest.sourceFaceSize = o->size;
-        SourceEnvironment env = ingestEnvironment({o->input}, ingest);
-        const IngestReport& r = env.report;
-        const glm::dvec3 weights = workingLuminanceWeights(r.workingColorSpace);
-        const CalibrationSettings settings = o->calibration.settings(weights);
         if (!o->calibration.anySource())
             throw Error("give one calibration source: --scale, --ev100, --illuminance, --sun-illuminance, "
                         "--sky-luminance or --radiometric (--scale 1 keeps the values)");
-
-        CalibrationOutcome outcome;
-        ImageRGBA image;
-        std::string layoutText;
+        CalibratedImage calibrated;
         try {
-            outcome.record = computeCalibration(env.cube, settings);
-            const double factor = outcome.record.factor;
-            SunDetectSettings sunSettings = settings.sun;
-            sunSettings.luminanceWeights = weights;
-            if (r.layout == EnvLayout::LatLong) {
-                ingest.layout = EnvLayout::LatLong;
-                image = readWorkingLatLong(o->input, ingest);
-                applyCalibration(image, factor);
-                if (o->calibration.extractSun) {
-                    SphereTexels texels(image);
-                    const SunDetection sun = detectSun(texels, sunSettings);
-                    if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
-                    outcome.sun = extractSun(texels, sun, weights);
-                }
-                layoutText = "latlong (DESIGN.md / OpenEXR LatLongMap: +Y first scanline, +Z at the centre, "
-                             "+X at u = 0.25)";
-            } else {
-                applyCalibration(env.cube, factor);
-                if (o->calibration.extractSun) {
-                    const SunDetection sun = detectSun(env.cube, sunSettings);
-                    if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
-                    outcome.sun = extractSun(env.cube, sun, weights);
-                }
-                image = verticalStrip(env.cube);
-                layoutText =
-                    "vstrip: faces +X, -X, +Y, -Y, +Z, -Z stacked vertically, OpenGL face orientation";
-            }
-        } catch (const Error& e) {
-            throw Error(r.file + ": " + e.what());
+            IngestSettings ingest;
+            ingest.layout = parseLayout(o->layout);
+            ingest.inputColorSpace = o->inputColorSpace;
+            ingest.sourceFaceSize = o->size;
+            calibrated = calibrateInInputLayout(o->input, o->calibration.environmentSettings(ingest, false));
+        } catch (const SettingError& e) {
+            throw withFlag(e, o->calibration);
         }
+        const IngestReport& r = calibrated.report;
+        const ImageRGBA& image = calibrated.image;
+        const CalibrationOutcome outcome{calibrated.record, calibrated.sun, std::nullopt};
+        const std::string layoutText =
+            calibrated.latLong
+                ? "latlong (DESIGN.md / OpenEXR LatLongMap: +Y first scanline, +Z at the centre, +X at u = "
+                  "0.25)"
+                : "vstrip: faces +X, -X, +Y, -Y, +Z, -Z stacked vertically, OpenGL face orientation";
 
         ExrOutputOptions exr;
         exr.channels = 3;

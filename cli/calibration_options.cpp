@@ -1,5 +1,6 @@
 #include "calibration_options.h"
 #include "input_options.h"
+#include "setting_flags.h"
 
 #include <iblbake/error.h>
 #include <iblbake/products.h>
@@ -57,9 +58,8 @@ bool CalibrationOptions::anySource() const {
     return scale || ev100 || illuminance || sunIlluminance || skyLuminance || radiometric;
 }
 
-CalibrationSettings CalibrationOptions::settings(const glm::dvec3& luminanceWeights) const {
+CalibrationSettings CalibrationOptions::settings() const {
     CalibrationSettings s;
-    s.luminanceWeights = luminanceWeights;
     int count = 0;
     auto take = [&](const std::optional<double>& v, CalibrationSource source) {
         if (!v) return;
@@ -83,27 +83,22 @@ CalibrationSettings CalibrationOptions::settings(const glm::dvec3& luminanceWeig
     return s;
 }
 
-CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env,
-                                    bool keepCubeWithSun) {
-    const glm::dvec3 weights = workingLuminanceWeights(env.report.workingColorSpace);
-    const CalibrationSettings settings = options.settings(weights);
-    CalibrationOutcome out;
-    try {
-        out.record = computeCalibration(env.cube, settings);
-        applyCalibration(env.cube, out.record.factor);
-        if (options.extractSun) {
-            SunDetectSettings sunSettings = settings.sun;
-            sunSettings.luminanceWeights = weights;
-            sunSettings.maxSolidAngle = options.sunMaxSolidAngle;
-            const SunDetection sun = detectSun(env.cube, sunSettings);
-            if (!sun.found) throw Error("--extract-sun: no sun detected: " + sun.reason);
-            if (keepCubeWithSun) out.withSun = env.cube;
-            out.sun = extractSun(env.cube, sun, weights);
-        }
-    } catch (const Error& e) {
-        throw Error(env.report.file + ": " + e.what());
-    }
-    return out;
+EnvironmentSettings CalibrationOptions::environmentSettings(const IngestSettings& ingest,
+                                                            bool keepCubeWithSun) const {
+    EnvironmentSettings s;
+    s.ingest = ingest;
+    s.calibration = settings();
+    s.sun = extractSun ? SunExtraction::Required : SunExtraction::Keep;
+    s.sunMaxSolidAngle = sunMaxSolidAngle;
+    s.keepCubeWithSun = keepCubeWithSun;
+    return s;
+}
+
+Error withFlag(const SettingError& error, const CalibrationOptions& calibration) {
+    if (error.setting() != "calibration") return Error(flaggedMessage(error));
+    // The source's own flag: --scale, --ev100, --illuminance, --sun-illuminance, --sky-luminance.
+    return Error(std::string("--") + calibrationSourceName(calibration.settings().source) + ": " +
+                 error.what());
 }
 
 std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
@@ -119,8 +114,15 @@ std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
 
 CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
                                  int sourceFaceSize, bool keepCubeWithSun) {
-    CalibratedInput out{ingestEnvironment(input.files(), input.settings(sourceFaceSize)), {}};
-    out.calibration = applyCalibration(calibration, out.env, keepCubeWithSun);
+    PreparedEnvironment prepared;
+    try {
+        prepared = prepareEnvironment(
+            input.files(), calibration.environmentSettings(input.settings(sourceFaceSize), keepCubeWithSun));
+    } catch (const SettingError& e) {
+        throw withFlag(e, calibration);
+    }
+    CalibratedInput out{std::move(prepared.env),
+                        {std::move(prepared.record), std::move(prepared.sun), std::move(prepared.withSun)}};
     printIngestReport(out.env.report);
     const CalibrationOutcome& c = out.calibration;
     if (c.record.absolute()) std::printf("%s\n", c.record.summary().c_str());

@@ -1,19 +1,21 @@
-// Calibration options shared by the commands that read an HDRI (calibrate; specular and diffuse can add
-// them the same way): one calibration source, and the optional sun extraction.
+// Calibration options shared by the commands that read an HDRI (calibrate, specular, diffuse): one
+// calibration source, and the optional sun extraction. The preparation itself is the library's
+// (iblbake/environment.h); these turn the options into its settings and its errors into flag wording.
 //
 //   CalibrationOptions calibration;          // in the command's option struct
 //   calibration.addTo(*cmd);                 // when building the subcommand
 //   ...
-//   SourceEnvironment env = ingestEnvironment(files, ingest);
-//   CalibrationOutcome cal = applyCalibration(calibration, env);  // scales env.cube, extracts the sun
-//   keyValues = ldChainKeyValues(..., cal.record, cal.sun);  // products.h builds the output's metadata
-//   auto sunJson = stageSunJson(calibration, cal);  // before writing the main output ...
+//   CalibratedInput in = ingestCalibrated(input, calibration, size);  // prepareEnvironment, printed
+//   keyValues = ldChainKeyValues(..., in.calibration.record, in.calibration.sun);  // products.h
+//   auto sunJson = stageSunJson(calibration, in.calibration);  // before writing the main output ...
 //   ... write the main output ...
-//   if (sunJson) sunJson->commit();                 // ... and committed after it
+//   if (sunJson) sunJson->commit();                            // ... and committed after it
 #pragma once
 
 #include <iblbake/atomic_file.h>
 #include <iblbake/calibration.h>
+#include <iblbake/environment.h>
+#include <iblbake/error.h>
 #include <iblbake/ingest.h>
 #include <iblbake/sun.h>
 
@@ -45,15 +47,15 @@ struct CalibrationOptions {
     // --sun-max-solid-angle.
     void addTo(CLI::App& command);
     bool anySource() const;
-    CalibrationSettings settings(const glm::dvec3& luminanceWeights) const; // throws ibl::Error on > 1 source
+    CalibrationSettings settings() const; // throws ibl::Error on > 1 source
+    // The library's settings: `ingest`, these options, and with keepCubeWithSun the calibrated cube from
+    // before the extraction (the specular chain's level 0).
+    EnvironmentSettings environmentSettings(const IngestSettings& ingest, bool keepCubeWithSun) const;
 };
 
-// Computes the factor on env.cube (environment_stats.h / calibration.h), scales every texel by it, and
-// with --extract-sun takes the sun out of the scaled cube. Throws ibl::Error "<input>: --option: ..."
-// when the source cannot be used (e.g. --sun-illuminance on a map without a sun). With keepCubeWithSun,
-// the outcome also holds the calibrated cube before the extraction (the specular chain's level 0).
-CalibrationOutcome applyCalibration(const CalibrationOptions& options, SourceEnvironment& env,
-                                    bool keepCubeWithSun = false);
+// A library error about one setting with the flag that set it in front, e.g. "--sun-illuminance:
+// park.hdr: no sun detected: ..." (`calibration`: the chosen source's flag).
+Error withFlag(const SettingError& error, const CalibrationOptions& calibration);
 
 // With --sun-json: the light written to a temporary file beside the target; commit() it once the main
 // output is written, so that a failed run leaves neither. nullptr without --sun-json.
@@ -69,8 +71,8 @@ struct CalibratedInput {
     CalibrationOutcome calibration;
 };
 
-// Ingests the input at `sourceFaceSize`, applies the calibration, and prints the input report, the
-// calibration and the extracted sun. keepCubeWithSun: as applyCalibration's.
+// prepareEnvironment of the input at `sourceFaceSize` with these options (errors withFlag), and prints the
+// input report, the calibration and the extracted sun. keepCubeWithSun: as environmentSettings'.
 CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
                                  int sourceFaceSize, bool keepCubeWithSun = false);
 

@@ -1,6 +1,7 @@
 // iblbake: the command-line front end. It parses, calls the baker library and prints; every failure
 // is one line on stderr ("iblbake: error: ...") with a non-zero exit code.
 #include "commands.h"
+#include "setting_flags.h"
 
 #include <iblbake/code_identity.h>
 #include <iblbake/error.h>
@@ -66,6 +67,9 @@ int main(int argc, char** argv) {
         for (const auto& [command, action] : actions)
             if (command->parsed()) return action();
         return 2;
+    } catch (const ibl::SettingError& e) { // a library error about a setting: the flag that set it in front
+        std::fprintf(stderr, "iblbake: error: %s\n", oneLine(ibl::cli::flaggedMessage(e)).c_str());
+        return 1;
     } catch (const ibl::Error& e) {
         std::fprintf(stderr, "iblbake: error: %s\n", oneLine(e.what()).c_str());
         return 1;

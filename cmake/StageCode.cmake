@@ -28,7 +28,7 @@ set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's f
 set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options
     baker/src/executor.cpp baker/src/opencl baker/src/dispatch)
 set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration
-    baker/src/ingest baker/src/calibration)
+    baker/src/ingest baker/src/calibration baker/src/environment)
 set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, bright texels, level 0
     kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/cube_pyramid.cpp
     baker/src/stages/bright_split.cpp baker/src/stages/sun_in_level0.cpp)
@@ -40,7 +40,7 @@ set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract specular-ld diffuse-sh i
     manifest)
 set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp)
 set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
-set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration)
+set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration baker/src/environment)
 set(IBLBAKE_STAGE_CODE_specular-ld stage_runner kernel_host ld_chain)
 set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cpp)
 set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradiance.cl

@@ -266,23 +266,29 @@ TEST(Calibration, FactorsOfEachSource) {
 TEST(Calibration, UnusableValuesAreOneLineErrorsNamingTheOption) {
     const CubeMap flat = cubeOf(16, [](const glm::dvec3&) { return glm::vec3(1.0f); });
     const CubeMap black = cubeOf(16, [](const glm::dvec3&) { return glm::vec3(0.0f); });
+    // The library names the setting ("calibration"), not a flag: callers put their own name in front
+    // (CalibrateCli.ErrorsAreOneLineNonZeroAndWriteNothing checks the CLI's).
     auto message = [](const CubeMap& cube, CalibrationSettings s) -> std::string {
         try {
             computeCalibration(cube, s);
-        } catch (const Error& e) {
+        } catch (const SettingError& e) {
+            EXPECT_EQ(e.setting(), "calibration");
+            EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
             return e.what();
         }
         return "";
     };
-    EXPECT_EQ(message(flat, source(CalibrationSource::SunIlluminance, 1e5))
-                  .rfind("--sun-illuminance: no sun detected", 0),
+    EXPECT_EQ(message(flat, source(CalibrationSource::SunIlluminance, 1e5)).rfind("no sun detected: ", 0),
               0u);
-    EXPECT_EQ(message(flat, source(CalibrationSource::Scale, -1.0)).rfind("--scale: ", 0), 0u);
-    EXPECT_EQ(message(flat, source(CalibrationSource::Scale, 0.0)).rfind("--scale: ", 0), 0u);
-    EXPECT_EQ(message(flat, source(CalibrationSource::Illuminance, NAN)).rfind("--illuminance: ", 0), 0u);
-    EXPECT_EQ(message(flat, source(CalibrationSource::Ev100, 1000.0)).rfind("--ev100: ", 0), 0u);
-    EXPECT_EQ(message(black, source(CalibrationSource::Illuminance, 1e4)).rfind("--illuminance: ", 0), 0u);
-    EXPECT_EQ(message(black, source(CalibrationSource::SkyLuminance, 1e4)).rfind("--sky-luminance: ", 0), 0u);
+    EXPECT_EQ(message(flat, source(CalibrationSource::Scale, -1.0)), "the value must be positive, got -1");
+    EXPECT_EQ(message(flat, source(CalibrationSource::Scale, 0.0)), "the value must be positive, got 0");
+    EXPECT_EQ(message(flat, source(CalibrationSource::Illuminance, NAN)),
+              "the value must be a finite number");
+    EXPECT_EQ(message(flat, source(CalibrationSource::Ev100, 1000.0)), "1000 is not an EV100 in -64..64");
+    EXPECT_EQ(message(black, source(CalibrationSource::Illuminance, 1e4)),
+              "the environment sends no light to an upward-facing surface");
+    EXPECT_EQ(message(black, source(CalibrationSource::SkyLuminance, 1e4)),
+              "the zenith of the environment is black");
     for (auto s : {source(CalibrationSource::Scale, -1.0), source(CalibrationSource::SunIlluminance, 1e5)})
         EXPECT_EQ(message(flat, s).find('\n'), std::string::npos);
 }
@@ -503,11 +509,15 @@ TEST(CalibrateCli, ErrorsAreOneLineNonZeroAndWriteNothing) {
          {Case{"calibrate " + overcast + " --scale 2 --ev100 3 -o " + out, "--scale"},
           Case{"calibrate " + overcast + " --illuminance 1000 --radiometric -o " + out, "--"},
           Case{"calibrate " + (dir / "missing.hdr").string() + " --scale 2 -o " + out, "missing.hdr"},
-          Case{"calibrate " + overcast + " --sun-illuminance 100000 -o " + out, "no sun"},
+          // The flag that caused it, then the file, then the library's diagnosis.
+          Case{"calibrate " + overcast + " --sun-illuminance 100000 -o " + out,
+               "--sun-illuminance: " + overcast + ": no sun detected: "},
           Case{"calibrate " + overcast + " --scale 1 --extract-sun --sun-json " + json + " -o " + out,
-               "no sun"},
+               "--extract-sun: " + overcast + ": no sun detected: "},
           Case{"calibrate " + overcast + " --extract-sun -o " + out, "--sun-json"},
-          Case{"calibrate " + overcast + " --scale -3 -o " + out, "--scale"},
+          Case{"calibrate " + overcast + " --scale -3 -o " + out,
+               "--scale: " + overcast + ": the value must be positive, got -3"},
+          Case{"calibrate " + overcast + " --layout spherical --scale 2 -o " + out, "--layout: 'spherical'"},
           Case{"calibrate " + overcast + " -o " + out, "calibration source"},
           Case{"inspect " + (dir / "missing.hdr").string(), "missing.hdr"}}) {
         SCOPED_TRACE(c.args);

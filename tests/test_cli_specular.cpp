@@ -113,7 +113,7 @@ TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
         {"specular " + kSample + " --size 100" + out, "--size"},
         {"specular " + kSample + " --format bc6h" + out, "--format"},
         {"specular " + kSample + " --quality ultra" + out, "--quality"},
-        {"specular " + kSample + " --layout hexagon" + out, "hexagon"},
+        {"specular " + kSample + " --layout hexagon" + out, "--layout: 'hexagon'"},
         {"specular " + kSample + " --size 8 -o /nonexistent-dir/env.ktx2", "/nonexistent-dir/env.ktx2"},
     };
     for (const auto& [args, named] : cases) {

@@ -511,7 +511,13 @@ TEST(IngestFile, UnknownLayoutIsAnErrorNamingTheFile) {
     const std::string msg = errorOf([&] { ingest(odd); });
     EXPECT_NE(msg.find(odd.string()), std::string::npos) << msg;
     EXPECT_NE(msg.find("7x3"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("--layout"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("give the layout"), std::string::npos) << msg; // the way out, without a CLI flag
+    EXPECT_EQ(msg.find("--"), std::string::npos) << msg;
+    try {
+        ingest(odd);
+    } catch (const ibl::SettingError& e) {
+        EXPECT_EQ(e.setting(), "layout");
+    }
     // A layout the size cannot hold is an error too, not a crash or a guess.
     IngestSettings s;
     s.layout = EnvLayout::HorizontalCross;

@@ -10,12 +10,12 @@ namespace ibl {
 
 enum class Backend { Auto, OpenCL, Cpu };
 
-// "auto" | "opencl" | "cpu"; throws ibl::Error otherwise.
+// "auto" | "opencl" | "cpu"; throws ibl::SettingError ("backend") otherwise.
 inline Backend parseBackend(const std::string& name) {
     if (name == "auto") return Backend::Auto;
     if (name == "opencl") return Backend::OpenCL;
     if (name == "cpu") return Backend::Cpu;
-    throw Error("--backend: '" + name + "' is not one of auto, opencl, cpu");
+    throw SettingError("backend", "'" + name + "' is not one of auto, opencl, cpu");
 }
 
 inline const char* backendName(Backend backend) {

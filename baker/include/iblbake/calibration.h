@@ -75,9 +75,10 @@ struct CalibrationRecord {
     std::string summary() const; // one line for the console
 };
 
-// Measures `texels` and computes the factor. Throws ibl::Error (message starting with the option, e.g.
-// "--sun-illuminance: no sun detected: ...") when the value is not usable (not finite, not positive where
-// it must be) or the measured quantity is zero or absent.
+// Measures `texels` and computes the factor. Throws ibl::SettingError with setting() "calibration" (the
+// message says what is wrong, e.g. "no sun detected: ...", the caller names its source: a flag, a scene
+// key) when the value is not usable (not finite, not positive where it must be) or the measured quantity is
+// zero or absent.
 CalibrationRecord computeCalibration(const SphereTexels& texels, const CalibrationSettings& settings);
 CalibrationRecord computeCalibration(const CubeMap& cube, const CalibrationSettings& settings);
 

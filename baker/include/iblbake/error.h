@@ -5,12 +5,27 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace ibl {
 
 class Error : public std::runtime_error {
   public:
     using std::runtime_error::runtime_error;
+};
+
+// An Error caused by the value of one setting. The message says what is wrong in the library's terms;
+// setting() names the setting as its struct field does (e.g. "layout", "sourceFaceSize", "calibration",
+// "extractSun"; each throwing function lists its own), so that a caller can put its own name for it in front:
+// the CLI its flag, a scene bake the scene's key path.
+class SettingError : public Error {
+  public:
+    SettingError(std::string setting, const std::string& message)
+        : Error(message), setting_(std::move(setting)) {}
+    const std::string& setting() const { return setting_; }
+
+  private:
+    std::string setting_;
 };
 
 // Text taken from an input file, made safe to quote in an Error: bytes outside printable ASCII become

@@ -37,7 +37,7 @@ enum class EnvLayout {
 };
 
 // Accepts the layoutName() spellings (auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files)
-// and a few common synonyms; throws ibl::Error naming the accepted values otherwise.
+// and a few common synonyms; throws ibl::SettingError ("layout") naming the accepted values otherwise.
 EnvLayout parseLayout(const std::string& name);
 const char* layoutName(EnvLayout layout);
 
@@ -75,7 +75,8 @@ struct SourceEnvironment {
 };
 
 // files: one file, or six for EnvLayout::SixFiles. Throws ibl::Error with a one-line message naming the
-// file and the problem.
+// file and the problem; an ibl::SettingError when one setting is the cause, setting() naming its field
+// ("layout", "inputColorSpace", "workingColorSpace", "rotateDegrees", "sourceFaceSize").
 SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& files,
                                     const IngestSettings& settings);
 

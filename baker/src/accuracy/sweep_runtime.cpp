@@ -3,6 +3,7 @@
 #include "sweep.h"
 
 #include <iblbake/dfg_lut.h>
+#include <iblbake/environment.h>
 #include <iblbake/irradiance.h>
 #include <iblbake/runtime.h>
 #include <iblbake/runtime_reference.h>
@@ -65,8 +66,8 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     // level 0 keeps the sun's pixels. The reference is lit by the full map.
     CubeMap residual = source;
     std::optional<SunDisk> sun;
-    SunDetection detection = detectSun(residual);
-    if (detection.found) sun = sunDiskFrom(extractSun(residual, detection));
+    if (auto light = takeSunOut(residual, SunExtraction::IfDetected, SunDetectSettings{}))
+        sun = sunDiskFrom(*light);
     const ReferenceLighting lighting = ReferenceLighting::distant(source);
 
     std::vector<ShadingPoint> points;

@@ -20,8 +20,9 @@ std::string number(double v) {
     return buf;
 }
 
-std::string option(CalibrationSource source) {
-    return std::string("--") + calibrationSourceName(source);
+// The source's value cannot be used on this environment (calibration.h).
+SettingError unusable(const std::string& problem) {
+    return SettingError("calibration", problem);
 }
 
 } // namespace
@@ -60,11 +61,10 @@ std::string CalibrationRecord::summary() const {
 CalibrationRecord computeCalibration(const SphereTexels& texels, const CalibrationSettings& settings) {
     const CalibrationSource source = settings.source;
     const double value = settings.value;
-    const std::string opt = option(source);
     const bool needsValue = source != CalibrationSource::None && source != CalibrationSource::Radiometric;
-    if (needsValue && !std::isfinite(value)) throw Error(opt + ": the value must be a finite number");
+    if (needsValue && !std::isfinite(value)) throw unusable("the value must be a finite number");
     if (needsValue && source != CalibrationSource::Ev100 && !(value > 0.0))
-        throw Error(opt + ": the value must be positive, got " + number(value));
+        throw unusable("the value must be positive, got " + number(value));
 
     CalibrationRecord rec;
     rec.source = source;
@@ -93,7 +93,7 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
         rec.factor = value;
         break;
     case CalibrationSource::Ev100:
-        if (std::fabs(value) > 64.0) throw Error(opt + ": " + number(value) + " is not an EV100 in -64..64");
+        if (std::fabs(value) > 64.0) throw unusable(number(value) + " is not an EV100 in -64..64");
         rec.factor = 1.2 * std::exp2(value);
         break;
     case CalibrationSource::Radiometric:
@@ -103,12 +103,12 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
         rec.quantity = "upward illuminance";
         rec.measuredBefore = stats.upwardIlluminance;
         if (!(stats.upwardIlluminance > 0.0))
-            throw Error(opt + ": the environment sends no light to an upward-facing surface");
+            throw unusable("the environment sends no light to an upward-facing surface");
         rec.factor = value / stats.upwardIlluminance;
         break;
     case CalibrationSource::SunIlluminance:
         rec.quantity = "sun illuminance (perpendicular)";
-        if (!sun.found) throw Error(opt + ": no sun detected: " + sun.reason);
+        if (!sun.found) throw unusable("no sun detected: " + sun.reason);
         rec.measuredBefore = sun.light.illuminance;
         rec.factor = value / sun.light.illuminance;
         break;
@@ -117,14 +117,13 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
         // A spot meter is pointed at the sky, not at the sun: the sun's texels are left out.
         rec.measuredBefore =
             zenithLuminance(texels, kZenithCapDegrees, settings.luminanceWeights, sun.region);
-        if (!(rec.measuredBefore > 0.0)) throw Error(opt + ": the zenith of the environment is black");
+        if (!(rec.measuredBefore > 0.0)) throw unusable("the zenith of the environment is black");
         rec.factor = value / rec.measuredBefore;
         break;
     }
     }
     if (!std::isfinite(rec.factor) || !(rec.factor > 0.0))
-        throw Error(opt + ": the calibration factor " + number(rec.factor) +
-                    " is not a positive finite number");
+        throw unusable("the calibration factor " + number(rec.factor) + " is not a positive finite number");
     rec.measuredAfter = rec.factor * rec.measuredBefore;
     rec.upwardIlluminanceAfter = rec.factor * rec.upwardIlluminanceBefore;
     rec.meanLuminanceAfter = rec.factor * rec.meanLuminanceBefore;

@@ -85,8 +85,8 @@ std::string resolveInputColorSpace(const RawImage& image, const std::string& req
     if (!requested.empty()) {
         std::string name = canonical(cfg, requested);
         if (name.empty())
-            throw Error("--input-colorspace: '" + requested + "' is not a colour space of " +
-                        ocioConfigPath());
+            throw SettingError("inputColorSpace",
+                               "'" + requested + "' is not a colour space of " + ocioConfigPath());
         return name;
     }
     // EXR chromaticities are specific; OIIO's oiio:ColorSpace for float files is usually a generic "Linear".
@@ -96,9 +96,9 @@ std::string resolveInputColorSpace(const RawImage& image, const std::string& req
     if (hasChromaticities) {
         std::string fromPrimaries = spaceOfChromaticities(image.chromaticities);
         if (fromPrimaries.empty())
-            throw Error(
-                image.file +
-                ": its chromaticities match none of lin_rec709, acescg, aces2065-1; pass --input-colorspace");
+            throw SettingError("inputColorSpace",
+                               image.file + ": its chromaticities match none of lin_rec709, acescg, "
+                                            "aces2065-1; give the input colour space");
         std::string name = canonical(cfg, fromPrimaries);
         if (!name.empty()) return name;
     }
@@ -106,8 +106,10 @@ std::string resolveInputColorSpace(const RawImage& image, const std::string& req
     // No usable metadata: integer files are display-encoded (sRGB), float files scene-linear Rec.709.
     std::string fallback = canonical(cfg, image.integerPixels ? "srgb" : "lin_rec709");
     if (fallback.empty())
-        throw Error(image.file + ": cannot tell its colour space and " + ocioConfigPath() + " has no '" +
-                    (image.integerPixels ? "srgb" : "lin_rec709") + "'; pass --input-colorspace");
+        throw SettingError("inputColorSpace", image.file + ": cannot tell its colour space and " +
+                                                  ocioConfigPath() + " has no '" +
+                                                  (image.integerPixels ? "srgb" : "lin_rec709") +
+                                                  "'; give the input colour space");
     return fallback;
 }
 
@@ -115,7 +117,9 @@ void convertColor(ImageRGBA& image, const std::string& from, const std::string& 
     OCIO::ConstConfigRcPtr cfg = config();
     const std::string src = canonical(cfg, from), dst = canonical(cfg, to);
     if (src.empty()) throw Error(file + ": colour space '" + from + "' is not in " + ocioConfigPath());
-    if (dst.empty()) throw Error("working colour space '" + to + "' is not in " + ocioConfigPath());
+    if (dst.empty())
+        throw SettingError("workingColorSpace",
+                           "working colour space '" + to + "' is not in " + ocioConfigPath());
     if (src == dst) return;
     OCIO::ConstCPUProcessorRcPtr cpu;
     try {
@@ -137,7 +141,9 @@ glm::dvec3 luminanceWeights(const std::string& linearSpace) {
     const glm::dvec3 rec709Y(0.2126390059, 0.7151686788, 0.0721923154);
     OCIO::ConstConfigRcPtr cfg = config();
     const std::string src = canonical(cfg, linearSpace), ref = canonical(cfg, "lin_rec709");
-    if (src.empty()) throw Error("working colour space '" + linearSpace + "' is not in " + ocioConfigPath());
+    if (src.empty())
+        throw SettingError("workingColorSpace",
+                           "working colour space '" + linearSpace + "' is not in " + ocioConfigPath());
     if (ref.empty())
         throw Error(ocioConfigPath() +
                     ": has no lin_rec709 colour space, which luminance is measured against");
@@ -150,7 +156,8 @@ glm::dvec3 luminanceWeights(const std::string& linearSpace) {
     cpu->applyRGB(probe[1]);
     for (int c = 0; c < 3; ++c)
         if (std::fabs(probe[1][c] - 2.0f * probe[0][c]) > 1e-4f * std::fabs(probe[1][c]) + 1e-6f)
-            throw Error("working colour space '" + linearSpace + "' is not linear; use lin_rec709 or acescg");
+            throw SettingError("workingColorSpace", "working colour space '" + linearSpace +
+                                                        "' is not linear; use lin_rec709 or acescg");
     for (int c = 0; c < 3; ++c) {
         float rgb[3] = {0.0f, 0.0f, 0.0f};
         rgb[c] = 1.0f;

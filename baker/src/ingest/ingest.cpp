@@ -41,11 +41,13 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
                     std::to_string(files.size()));
     if (!six && files.size() != 1)
         throw Error("expected one input file, got " + std::to_string(files.size()) +
-                    (files.size() == 6 ? " (six faces need --layout six-files)" : ""));
-    if (!std::isfinite(settings.rotateDegrees)) throw Error("--rotate: the angle must be a finite number");
+                    (files.size() == 6 ? " (six faces need the layout six-files)" : ""));
+    if (!std::isfinite(settings.rotateDegrees))
+        throw SettingError("rotateDegrees", "the rotation must be a finite number of degrees");
     if (settings.sourceFaceSize < 0 || settings.sourceFaceSize > kMaxFaceSize)
-        throw Error("--face-size: " + std::to_string(settings.sourceFaceSize) + " is not in 0.." +
-                    std::to_string(kMaxFaceSize));
+        throw SettingError("sourceFaceSize", "the source face size " +
+                                                 std::to_string(settings.sourceFaceSize) + " is not in 0.." +
+                                                 std::to_string(kMaxFaceSize));
 
     std::vector<ingest::RawImage> images;
     for (const auto& file : files)

@@ -29,8 +29,10 @@ EnvLayout parseLayout(const std::string& name) {
     if (n == "hstrip" || n == "horizontal-strip") return EnvLayout::HorizontalStrip;
     if (n == "vstrip" || n == "vertical-strip") return EnvLayout::VerticalStrip;
     if (n == "six-files" || n == "faces" || n == "6files") return EnvLayout::SixFiles;
-    throw Error("--layout: '" + name +
-                "' is not one of auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, six-files");
+    throw SettingError("layout",
+                       "'" + name +
+                           "' is not one of auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip, "
+                           "six-files");
 }
 
 const char* layoutName(EnvLayout layout) {
@@ -102,8 +104,10 @@ EnvLayout detect(const RawImage& image) {
         // OIIO's default for lat-long textures is RenderMan's z-up, left-handed convention; only the
         // y-up OpenEXR convention is ours, and guessing a mirror image silently would be worse than asking.
         if (!image.upDirection.empty() && lower(image.upDirection) != "y")
-            throw Error(image.file + ": lat-long with oiio:updirection '" + image.upDirection +
-                        "' (not the OpenEXR y-up convention); pass --layout latlong to read it as y-up");
+            throw SettingError("layout",
+                               image.file + ": lat-long with oiio:updirection '" + image.upDirection +
+                                   "' (not the OpenEXR y-up convention); give the layout latlong to "
+                                   "read it as y-up");
         return EnvLayout::LatLong;
     }
     if (image.textureFormat == "CubeFace Environment" && h == 6 * w) return EnvLayout::ExrCube;
@@ -112,7 +116,8 @@ EnvLayout detect(const RawImage& image) {
     if (w == 6 * h) return EnvLayout::HorizontalStrip;
     if (w % 4 == 0 && 3 * w == 4 * h) return EnvLayout::HorizontalCross;
     if (h % 4 == 0 && 3 * h == 4 * w) return EnvLayout::VerticalCross;
-    throw Error(image.file + ": cannot tell the layout of a " + sizeText(w, h) + " image; pass --layout");
+    throw SettingError("layout", image.file + ": cannot tell the layout of a " + sizeText(w, h) +
+                                     " image; give the layout");
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 
 #include "iblbake/calibration.h"
 #include "iblbake/dfg_lut.h"
+#include "iblbake/environment.h"
 #include "iblbake/error.h"
 #include "iblbake/ingest.h"
 #include "iblbake/irradiance.h"
@@ -45,7 +46,7 @@ void writeCube(const fs::path& file, const CubeMap& cube, const std::string& pro
     writeKtx2Cube(file, chain, Ktx2Format::RGBA32F, {{"iblbake.product", product}});
 }
 
-CalibrationSettings calibrationSettings(const json& choice, const std::string& workingColorSpace) {
+CalibrationSettings calibrationSettings(const json& choice) {
     static const std::map<std::string, CalibrationSource> sources = {
         {"none", CalibrationSource::None},
         {"scale", CalibrationSource::Scale},
@@ -55,7 +56,6 @@ CalibrationSettings calibrationSettings(const json& choice, const std::string& w
         {"skyLuminance", CalibrationSource::SkyLuminance},
         {"radiometric", CalibrationSource::Radiometric}};
     CalibrationSettings s;
-    s.luminanceWeights = workingLuminanceWeights(workingColorSpace);
     s.source = sources.at(choice.at("source").get<std::string>());
     s.value = choice.value("value", 0.0);
     return s;
@@ -95,13 +95,13 @@ CachedCalibration readCalibration(const fs::path& entry) {
     return c;
 }
 
-IngestSettings ingestSettings(const json& s, int faceSize) {
+IngestSettings ingestSettings(const json& s) {
     IngestSettings ingest;
     ingest.layout = parseLayout(s.at("layout").get<std::string>());
     ingest.inputColorSpace = s.at("colorSpace").get<std::string>();
     ingest.workingColorSpace = s.at("workingColorSpace").get<std::string>();
     ingest.rotateDegrees = s.at("rotation").get<float>();
-    ingest.sourceFaceSize = faceSize;
+    ingest.sourceFaceSize = s.at("faceSize").get<int>();
     return ingest;
 }
 
@@ -112,16 +112,44 @@ std::vector<fs::path> inputFiles(const PlanStage& stage) {
     return files;
 }
 
-// Ingest errors already name the file; the scene key path in front says where the scene names it.
+// The scene key that sets a library setting (SettingError::setting()) of an input stage: the environment's
+// or the probe's own key ("environment.rotation", "probes[1].calibration.ev100"), the outputs' face size.
+std::string sceneKeyFor(const std::string& setting, const PlanStage& stage, const std::string& inputKey) {
+    const std::string owner = inputKey.substr(0, inputKey.find('.')); // "environment" or "probes[i]"
+    if (setting == "layout") return owner + ".layout";
+    if (setting == "inputColorSpace") return owner + ".colorSpace";
+    if (setting == "workingColorSpace") return "environment.workingColorSpace";
+    if (setting == "rotateDegrees") return owner + ".rotation";
+    if (setting == "sourceFaceSize")
+        return stage.kind == "probe-ld" ? "outputs.probeFaceSize" : "outputs.faceSize";
+    if (setting == "extractSun") return "environment.extractSun";
+    if (setting == "calibration") {
+        const std::string source = stage.settings.at("calibration").at("source").get<std::string>();
+        return source == "environment" ? "environment.calibration" : owner + ".calibration." + source;
+    }
+    return inputKey;
+}
+
+// Ingest errors already name the file; the scene key path in front says where the scene names it (or the
+// setting that caused it).
 template <class F>
 void forInput(const StageContext& c, F&& work) {
+    const std::string key = c.stage.inputs.empty() ? c.stage.id : c.stage.inputs[0].keyPath;
     try {
         work();
+    } catch (const SettingError& e) {
+        throw Error(c.scene.name + ": " + sceneKeyFor(e.setting(), c.stage, key) + ": " + e.what());
     } catch (const Error& e) {
-        const std::string key = c.stage.inputs.empty() ? c.stage.id : c.stage.inputs[0].keyPath;
-        const std::string prefix = c.scene.name + ": " + key + ": ";
-        throw Error(prefix + e.what());
+        throw Error(c.scene.name + ": " + key + ": " + e.what());
     }
+}
+
+// The environment stage's preparation: ingest and calibration; the sun stage takes the sun out.
+EnvironmentSettings environmentSettings(const json& s) {
+    EnvironmentSettings settings;
+    settings.ingest = ingestSettings(s);
+    settings.calibration = calibrationSettings(s.at("calibration"));
+    return settings;
 }
 
 void runDfg(const StageContext& c) {
@@ -136,12 +164,9 @@ void runDfg(const StageContext& c) {
 void runEnvironment(const StageContext& c) {
     const json& s = c.stage.settings;
     forInput(c, [&] {
-        SourceEnvironment env = ingestEnvironment(inputFiles(c.stage), ingestSettings(s, s.at("faceSize")));
-        const CalibrationSettings settings =
-            calibrationSettings(s.at("calibration"), env.report.workingColorSpace);
-        const CalibrationRecord record = computeCalibration(env.cube, settings);
-        applyCalibration(env.cube, record.factor);
-        json calibration = calibrationJson(record, env.report.workingColorSpace);
+        const PreparedEnvironment prepared = prepareEnvironment(inputFiles(c.stage), environmentSettings(s));
+        const SourceEnvironment& env = prepared.env;
+        json calibration = calibrationJson(prepared.record, env.report.workingColorSpace);
         calibration["source"] = {{"file", fs::path(env.report.file).filename().string()},
                                  {"width", env.report.width},
                                  {"height", env.report.height},
@@ -157,12 +182,14 @@ void runSun(const StageContext& c) {
     const fs::path from = c.dependencies.at("environment");
     CubeMap cube = readCube(from / kCubeFile);
     json calibration = readJsonFile(from / kCalibrationFile);
-    const glm::dvec3 weights = workingLuminanceWeights(calibration.at("colorSpace").get<std::string>());
-    SunDetectSettings settings;
-    settings.luminanceWeights = weights;
-    const SunDetection sun = detectSun(cube, settings);
-    if (!sun.found) throw Error(c.scene.name + ": environment.extractSun: no sun detected: " + sun.reason);
-    const DiskLight light = extractSun(cube, sun, weights);
+    SunDetectSettings detection;
+    detection.luminanceWeights = workingLuminanceWeights(calibration.at("colorSpace").get<std::string>());
+    DiskLight light;
+    try {
+        light = *takeSunOut(cube, SunExtraction::Required, detection);
+    } catch (const SettingError& e) {
+        throw Error(c.scene.name + ": environment.extractSun: " + e.what());
+    }
     const bool absolute = calibration.at("absolute").get<bool>();
     calibration["sunLight"] = json::parse(diskLightToJson(light, absolute));
     writeCube(c.outputDirectory / kCubeFile, cube, "calibrated-environment-without-sun");
@@ -264,23 +291,21 @@ void runIrradiance(const StageContext& c) {
 void runProbe(const StageContext& c) {
     const json& s = c.stage.settings;
     forInput(c, [&] {
-        SourceEnvironment env = ingestEnvironment(inputFiles(c.stage), ingestSettings(s, s.at("faceSize")));
-        const json& choice = s.at("calibration");
-        CalibrationRecord record;
-        if (choice.at("source") == "environment") {
+        EnvironmentSettings settings;
+        settings.ingest = ingestSettings(s);
+        if (s.at("calibration").at("source") == "environment") {
             const json envCalibration = readJsonFile(c.dependencies.at("environment") / kCalibrationFile);
-            CalibrationSettings settings;
-            settings.source = CalibrationSource::Scale;
-            settings.value = envCalibration.at("factor").get<double>();
-            record = computeCalibration(env.cube, settings);
+            settings.calibration.source = CalibrationSource::Scale;
+            settings.calibration.value = envCalibration.at("factor").get<double>();
         } else {
-            record = computeCalibration(env.cube, calibrationSettings(choice, env.report.workingColorSpace));
+            settings.calibration = calibrationSettings(s.at("calibration"));
         }
-        applyCalibration(env.cube, record.factor);
+        const PreparedEnvironment prepared = prepareEnvironment(inputFiles(c.stage), settings);
+        const SourceEnvironment& env = prepared.env;
         const CachedCalibration calibration{
             {{"colorSpace", env.report.workingColorSpace},
              {"source", {{"file", fs::path(env.report.file).filename().string()}}}},
-            record,
+            prepared.record,
             std::nullopt};
         writeLdChain(c, env.cube, calibration, "local-probe-ld", c.outputDirectory / "ld.ktx2");
     });

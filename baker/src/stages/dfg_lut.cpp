@@ -27,9 +27,10 @@ std::vector<float> sampleTable(std::uint32_t sampleCount) {
 
 void validate(const DfgSettings& s) {
     if (s.size == 0 || s.size > 8192)
-        throw Error("--size: " + std::to_string(s.size) + " is outside 1..8192");
+        throw SettingError("dfgSize", "the LUT size " + std::to_string(s.size) + " is outside 1..8192");
     if (s.sampleCount == 0 || s.sampleCount > (1u << 24))
-        throw Error("--samples: " + std::to_string(s.sampleCount) + " is outside 1..16777216");
+        throw SettingError("dfgSamples",
+                           "the sample count " + std::to_string(s.sampleCount) + " is outside 1..16777216");
 }
 
 ImageRGBA bakeDfgLut(const DfgSettings& settings, const Executor& executor) {

@@ -47,7 +47,7 @@ bool isPowerOfTwo(int v) {
 IrradianceMethod parseIrradianceMethod(const std::string& name) {
     if (name == "sampled") return IrradianceMethod::Sampled;
     if (name == "sh") return IrradianceMethod::SH;
-    throw Error("--irradiance-method: '" + name + "' is not one of sampled, sh");
+    throw SettingError("irradianceMethod", "'" + name + "' is not one of sampled, sh");
 }
 
 const char* irradianceMethodName(IrradianceMethod method) {
@@ -72,7 +72,8 @@ CubeMap bakeIrradianceCube(const CubeMap& source, const IrradianceSettings& sett
         throw Error("irradiance: source face size " + std::to_string(source.faceSize) +
                     " is not a power of two up to 8192");
     if (settings.faceSize < 1 || settings.faceSize > 4096)
-        throw Error("--irradiance-size: " + std::to_string(settings.faceSize) + " is not from 1 to 4096");
+        throw SettingError("irradianceFaceSize",
+                           "the face size " + std::to_string(settings.faceSize) + " is not from 1 to 4096");
     BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
     CubePyramid pyramid = buildCubePyramid(split.residual);
     const std::uint32_t samples = irradianceSamplesFor(settings);
@@ -93,7 +94,8 @@ CubeMap bakeIrradianceCube(const CubeMap& source, const IrradianceSettings& sett
 
 CubeMap irradianceCubeFromSH(const ShRgb& prescaledIrradiance, int faceSize, std::uint64_t* clampedTexels) {
     if (faceSize < 1 || faceSize > 4096)
-        throw Error("--irradiance-size: " + std::to_string(faceSize) + " is not from 1 to 4096");
+        throw SettingError("irradianceFaceSize",
+                           "the face size " + std::to_string(faceSize) + " is not from 1 to 4096");
     // The kernel-side evaluation (kernels/sh.h) on the pre-scaled coefficients with the 1/pi folded in.
     std::array<float, 27> sh;
     for (int i = 0; i < 9; ++i)

@@ -315,7 +315,7 @@ ShWindow parseShWindow(const std::string& name) {
     if (name == "sloan") return ShWindow::Sloan;
     if (name == "hanning") return ShWindow::Hanning;
     if (name == "lanczos") return ShWindow::Lanczos;
-    throw Error("--window: '" + name + "' is not one of auto, none, sloan, hanning, lanczos");
+    throw SettingError("window", "'" + name + "' is not one of auto, none, sloan, hanning, lanczos");
 }
 
 const char* shWindowName(ShWindow window) {
@@ -384,9 +384,10 @@ ShWindowResult chooseShWindow(const ShRgb& radiance, const ShWindowSettings& set
         if (settings.parameter) {
             double p = *settings.parameter;
             if (!(p >= 0.0) || (settings.window != ShWindow::Sloan && !(p > 0.0)) || !std::isfinite(p))
-                throw Error("--window-param: " + std::to_string(p) + " is not valid for the " +
-                            shWindowName(settings.window) +
-                            " window (Sloan: lambda >= 0; Hanning, Lanczos: width w > 0)");
+                throw SettingError("windowParameter",
+                                   std::to_string(p) + " is not valid for the " +
+                                       shWindowName(settings.window) +
+                                       " window (Sloan: lambda >= 0; Hanning, Lanczos: width w > 0)");
             return finish(settings.window, p, false);
         }
         std::optional<double> p = weakestParameter(check, settings.window);

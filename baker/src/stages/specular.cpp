@@ -71,14 +71,14 @@ bool isPowerOfTwo(int v) {
 
 MipMapping parseMipMapping(const std::string& name) {
     if (std::optional<MipMapping> mapping = mipMappingFromName(name)) return *mapping;
-    throw Error(quotedForMessage(name) + " is not one of frostbite, linear");
+    throw SettingError("mipMapping", quotedForMessage(name) + " is not one of frostbite, linear");
 }
 
 Quality parseQuality(const std::string& name) {
     if (name == "draft") return Quality::Draft;
     if (name == "production") return Quality::Production;
     if (name == "reference") return Quality::Reference;
-    throw Error("--quality: '" + name + "' is not one of draft, production, reference");
+    throw SettingError("quality", "'" + name + "' is not one of draft, production, reference");
 }
 
 const char* qualityName(Quality q) {
