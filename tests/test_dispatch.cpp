@@ -100,19 +100,35 @@ TEST(Dispatch, CubeOutputIsFaceByFace) {
                 EXPECT_EQ(cube.faces[f].at(x, y), glm::vec4(x, y, f, 4 * ((f * 3 + y) * 3 + x)));
 }
 
-TEST(Dispatch, UnknownEntryPointIsNamed) {
+// An unknown entry point, and an entry point whose arguments are not the item function's (checkListStore
+// takes no increments), are errors that name the entry point instead of a crash or a wrong result.
+TEST(Dispatch, MismatchedEntryPointsAreErrors) {
     if (ibl::ocl::listDevices().empty()) GTEST_SKIP() << "no OpenCL device";
     std::shared_ptr<ibl::ocl::Context> cl = ibl::ocl::Context::create();
     const ibl::Dispatcher dispatcher(cl.get());
-    const ibl::DispatchGrid grid = ibl::DispatchGrid::list(4);
-    ibl::DispatchOutput out = dispatcher.output(grid);
-    try {
-        dispatcher.run(ibl::kernel("dispatch_check.cl", "noSuchEntry", ibl::dispatchCheckStoreItem), out,
-                       ibl::DispatchCheckParams{4, 1});
-        FAIL() << "an unknown entry point ran";
-    } catch (const ibl::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("noSuchEntry"), std::string::npos) << e.what();
-    }
+    ibl::DispatchOutput out = dispatcher.output(ibl::DispatchGrid::list(4));
+    const ibl::DispatchCheckParams params{4, 1};
+    const std::vector<float> added = increments(4);
+    auto expectError = [&](auto&& run, const std::string& entryPoint) {
+        try {
+            run();
+            ADD_FAILURE() << entryPoint << " ran";
+        } catch (const ibl::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(entryPoint), std::string::npos) << e.what();
+        }
+    };
+    expectError(
+        [&] {
+            dispatcher.run(ibl::kernel("dispatch_check.cl", "noSuchEntry", ibl::dispatchCheckStoreItem), out,
+                           params);
+        },
+        "noSuchEntry");
+    expectError(
+        [&] {
+            dispatcher.run(ibl::kernel("dispatch_check.cl", "checkListStore", ibl::dispatchCheckAddItem), out,
+                           params, dispatcher.upload("increments", added));
+        },
+        "checkListStore");
 }
 
 } // namespace

@@ -149,6 +149,7 @@ class Dispatcher {
             return;
         }
         cl::Kernel clKernel = cl_->kernel(k.file, k.entryPoint);
+        checkArgumentCount(clKernel, k.file, k.entryPoint, 2 + sizeof...(Inputs));
         cl_uint index = 0;
         setArg(clKernel, k.entryPoint, index++, out.buffer_);
         setArg(clKernel, k.entryPoint, index++, params);
@@ -172,6 +173,9 @@ class Dispatcher {
             throwSetArgFailure(entryPoint, index, e.err());
         }
     }
+    // The entry point takes as many arguments as the item function (output, parameters, inputs).
+    static void checkArgumentCount(const cl::Kernel& k, const char* file, const char* entryPoint,
+                                   std::size_t count);
     [[noreturn]] static void throwSetArgFailure(const char* entryPoint, cl_uint index, cl_int status);
 
     ocl::Context* cl_;

@@ -129,6 +129,14 @@ ImageRGBA Dispatcher::downloadImage(const DispatchOutput& out) const {
     return image;
 }
 
+void Dispatcher::checkArgumentCount(const cl::Kernel& k, const char* file, const char* entryPoint,
+                                    std::size_t count) {
+    const cl_uint declared = k.getInfo<CL_KERNEL_NUM_ARGS>();
+    if (declared != count)
+        throw Error(std::string("OpenCL kernel ") + entryPoint + " in kernels/" + file + " takes " +
+                    std::to_string(declared) + " arguments, its work-item function " + std::to_string(count));
+}
+
 void Dispatcher::throwSetArgFailure(const char* entryPoint, cl_uint index, cl_int status) {
     throw Error(std::string("OpenCL kernel ") + entryPoint + ": setting argument " + std::to_string(index) +
                 " failed: " + ocl::errorName(status));
