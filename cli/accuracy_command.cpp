@@ -1,12 +1,12 @@
 // iblbake accuracy INPUT -o DIR: reads the input as the other commands do, runs the library's sweep
-// (iblbake/accuracy.h) with one line per stage as it is measured, and writes the reports into DIR.
+// (iblbake/accuracy/accuracy.h) with one line per stage as it is measured, and writes the reports into DIR.
 #include "commands.h"
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/accuracy.h>
-#include <iblbake/error.h>
-#include <iblbake/ingest.h>
+#include <iblbake/accuracy/accuracy.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/core/error.h>
 
 #include <chrono>
 #include <cstdio>

@@ -1,7 +1,7 @@
 // Reading the files of a bake directory (cli/bake_dir.h).
 #include "bake_dir.h"
 
-#include <iblbake/error.h>
+#include <iblbake/core/error.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,8 +1,8 @@
 // Reading the files of a bake directory (what the README's first command writes) for the export commands.
 #pragma once
 
-#include <iblbake/products.h>
-#include <iblbake/sh.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/baker/sh.h>
 
 #include <filesystem>
 #include <string>

@@ -3,7 +3,7 @@
 // BakeRunOptions.
 #pragma once
 
-#include <iblbake/bake_scene.h>
+#include <iblbake/bake_state/bake_state.h>
 
 #include <CLI/CLI.hpp>
 

@@ -2,6 +2,8 @@
 #include "batch_options.h"
 #include "commands.h"
 
+#include <iblbake/baker/bake_scene.h>
+
 #include <memory>
 
 namespace ibl::cli {

@@ -2,7 +2,7 @@
 
 #include "batch_progress.h"
 
-#include <iblbake/error.h>
+#include <iblbake/core/error.h>
 
 #include <cstdio>
 #include <cstdlib>

@@ -6,7 +6,7 @@
 
 #include "scene_progress.h"
 
-#include <iblbake/batch_run.h>
+#include <iblbake/batch_run/batch_run.h>
 
 #include <nlohmann/json.hpp>
 

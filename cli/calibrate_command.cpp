@@ -1,7 +1,7 @@
 // iblbake calibrate: HDRI in, the same environment in absolute luminance (cd/m2) out as a float OpenEXR,
 // optionally with the sun taken out as an analytic disk light (JSON).
 //
-// The work is the library's calibrateInInputLayout (iblbake/environment.h): the factor measured on the
+// The work is the library's calibrateInInputLayout (iblbake/baker/environment.h): the factor measured on the
 // ingested source cube (so `calibrate` and the baking commands given the same option agree), the output in
 // the input's layout where that is lossless -- a lat-long at the input's resolution, its own pixels times
 // the factor, the sun taken out of those pixels; for cube inputs a vertical strip of the calibrated source
@@ -10,12 +10,12 @@
 #include "calibration_options.h"
 #include "commands.h"
 
-#include <iblbake/calibration.h>
-#include <iblbake/environment.h>
-#include <iblbake/error.h>
-#include <iblbake/exr_output.h>
-#include <iblbake/ingest.h>
-#include <iblbake/products.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/environment.h>
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/core/error.h>
 
 #include <cstdio>
 #include <filesystem>

@@ -2,8 +2,8 @@
 #include "input_options.h"
 #include "setting_flags.h"
 
-#include <iblbake/error.h>
-#include <iblbake/products.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/core/error.h>
 
 #include <cstdio>
 #include <fstream>

@@ -1,6 +1,6 @@
 // Calibration options shared by the commands that read an HDRI (calibrate, specular, diffuse): one
 // calibration source, and the optional sun extraction. The preparation itself is the library's
-// (iblbake/environment.h); these turn the options into its settings and its errors into flag wording.
+// (iblbake/baker/environment.h); these turn the options into its settings and its errors into flag wording.
 //
 //   CalibrationOptions calibration;          // in the command's option struct
 //   calibration.addTo(*cmd);                 // when building the subcommand
@@ -12,12 +12,12 @@
 //   if (sunJson) sunJson->commit();                            // ... and committed after it
 #pragma once
 
-#include <iblbake/atomic_file.h>
-#include <iblbake/calibration.h>
-#include <iblbake/environment.h>
-#include <iblbake/error.h>
-#include <iblbake/ingest.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/environment.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/atomic_file.h>
 
 #include <CLI/CLI.hpp>
 

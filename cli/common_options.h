@@ -3,8 +3,8 @@
 
 #include "backend_choice.h"
 
-#include <iblbake/executor.h>
-#include <iblbake/ktx2.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/opencl/executor.h>
 
 #include <CLI/CLI.hpp>
 

@@ -1,7 +1,7 @@
 // iblbake devices: lists the OpenCL devices the host layer can choose from.
 #include "commands.h"
 
-#include <iblbake/opencl_context.h>
+#include <iblbake/opencl/opencl_context.h>
 
 #include <cstdio>
 

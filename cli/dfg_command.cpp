@@ -2,9 +2,9 @@
 #include "commands.h"
 #include "common_options.h"
 
-#include <iblbake/dfg_lut.h>
-#include <iblbake/exr_output.h>
-#include <iblbake/products.h>
+#include <iblbake/baker/dfg_lut.h>
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/baker/products.h>
 
 #include <chrono>
 #include <cstdio>

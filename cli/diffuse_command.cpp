@@ -5,13 +5,13 @@
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/atomic_file.h>
-#include <iblbake/error.h>
-#include <iblbake/ingest.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/products.h>
-#include <iblbake/sh.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,11 +1,11 @@
 // iblbake export-sh BAKE_DIR --profile filament -o sh.txt: the bake's diffuse SH in an engine's own
-// convention (iblbake/filament_sh.h).
+// convention (iblbake/baker/filament_sh.h).
 #include "bake_dir.h"
 #include "commands.h"
 
-#include <iblbake/atomic_file.h>
-#include <iblbake/error.h>
-#include <iblbake/filament_sh.h>
+#include <iblbake/baker/filament_sh.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/atomic_file.h>
 
 #include <cstdio>
 #include <fstream>

@@ -9,8 +9,8 @@
 #include "plan_command.h"
 #include "scene_progress.h"
 
-#include <iblbake/bake_scene.h>
-#include <iblbake/scene.h>
+#include <iblbake/bake_state/bake_state.h>
+#include <iblbake/scene/scene.h>
 
 #include <cerrno>
 #include <chrono>

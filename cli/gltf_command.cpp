@@ -1,16 +1,16 @@
 // iblbake gltf BAKE_DIR -o scene.gltf: a bake directory as glTF 2.0 (EXT_lights_image_based with RGBD PNG
-// faces, the sun as a KHR_lights_punctual directional light); conventions in iblbake/gltf_ibl.h.
+// faces, the sun as a KHR_lights_punctual directional light); conventions in iblbake/baker/gltf_ibl.h.
 #include "bake_dir.h"
 #include "commands.h"
 #include "common_options.h"
 
-#include <iblbake/calibration.h>
-#include <iblbake/error.h>
-#include <iblbake/gltf_ibl.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/runtime.h>
-#include <iblbake/specular.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/gltf_ibl.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime.h>
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 // Options every command that reads an HDRI shares: the input file(s), layout, colour spaces, rotation.
 #pragma once
 
-#include <iblbake/ingest.h>
+#include <iblbake/baker/ingest.h>
 
 #include <CLI/CLI.hpp>
 

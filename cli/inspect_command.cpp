@@ -29,10 +29,10 @@
 // }
 #include "commands.h"
 
-#include <iblbake/calibration.h>
-#include <iblbake/environment_stats.h>
-#include <iblbake/ingest.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/environment_stats.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/sun.h>
 
 #include <nlohmann/json.hpp>
 

@@ -3,8 +3,8 @@
 #include "commands.h"
 #include "setting_flags.h"
 
-#include <iblbake/code_identity.h>
-#include <iblbake/error.h>
+#include <iblbake/bake_state/code_identity.h>
+#include <iblbake/core/error.h>
 
 #include <cstdio>
 #include <map>

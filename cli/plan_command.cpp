@@ -1,7 +1,7 @@
 #include "plan_command.h"
 
-#include <iblbake/scene.h>
-#include <iblbake/scene_plan.h>
+#include <iblbake/scene/scene.h>
+#include <iblbake/scene/scene_plan.h>
 
 #include <cstdio>
 

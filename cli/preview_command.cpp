@@ -5,17 +5,17 @@
 #include "commands.h"
 #include "common_options.h"
 
-#include <iblbake/calibration.h>
-#include <iblbake/error.h>
-#include <iblbake/exr_output.h>
-#include <iblbake/ingest.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/preview.h>
-#include <iblbake/products.h>
-#include <iblbake/runtime.h>
-#include <iblbake/runtime_manifest.h>
-#include <iblbake/runtime_reference.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/preview.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime.h>
+#include <iblbake/runtime/runtime_manifest.h>
+#include <iblbake/runtime/runtime_reference.h>
 
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>

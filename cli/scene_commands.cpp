@@ -4,9 +4,9 @@
 #include "plan_command.h"
 #include "scene_progress.h"
 
-#include <iblbake/bake_scene.h>
-#include <iblbake/error.h>
-#include <iblbake/scene.h>
+#include <iblbake/baker/bake_scene.h>
+#include <iblbake/core/error.h>
+#include <iblbake/scene/scene.h>
 
 #include <memory>
 

@@ -2,7 +2,7 @@
 // stage otherwise, nothing with --quiet, JSON event lines on stdout with --json.
 #pragma once
 
-#include <iblbake/bake_scene.h>
+#include <iblbake/bake_state/bake_state.h>
 
 #include <chrono>
 

@@ -2,7 +2,7 @@
 // what is wrong; the CLI puts the flag that caused it in front.
 #pragma once
 
-#include <iblbake/error.h>
+#include <iblbake/core/error.h>
 
 #include <string>
 

@@ -4,13 +4,13 @@
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/error.h>
-#include <iblbake/exr_output.h>
-#include <iblbake/ingest.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/preview.h>
-#include <iblbake/products.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/preview.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <algorithm>
 #include <chrono>

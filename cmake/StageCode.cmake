@@ -19,7 +19,8 @@
 # Adding a source file: a new file under baker/src/ or kernels/ must be reached by some kind or be listed
 # in IBLBAKE_CODE_NOT_IN_STAGES; configure fails otherwise, and for a listed path that does not exist.
 
-set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include baker/src/opencl)
+set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include/core baker/include/opencl baker/include/ktx2
+    baker/include/scene baker/include/bake_state baker/include/baker baker/src/opencl)
 
 # Groups shared by several kinds.
 set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files (products), the entry layout

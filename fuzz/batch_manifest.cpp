@@ -3,7 +3,7 @@
 // machine of a farm computes from it. Seeds: fuzz/seeds/batch/.
 #include "parser_target.h"
 
-#include <iblbake/batch.h>
+#include <iblbake/batch/batch.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     return ibl::fuzz::parseOrRefuse(data, size, "fuzz.batch.json", [](auto bytes, const std::string& name) {

@@ -1,7 +1,7 @@
 // Writes the KTX2 fuzz target's seed corpus into the directory given as the only argument: one good,
 // small file per format and shape the writer produces (cube chains with several levels, a non-square 2D
 // image, key/value data), so that mutations start from every valid structure.
-#include <iblbake/ktx2.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <cstdio>
 #include <exception>

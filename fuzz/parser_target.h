@@ -5,7 +5,7 @@
 // aborts here.
 #pragma once
 
-#include <iblbake/error.h>
+#include <iblbake/core/error.h>
 
 #include <cstdint>
 #include <cstdio>

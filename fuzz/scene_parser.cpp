@@ -2,8 +2,8 @@
 // system; relative paths are only resolved against the base directory). Seeds: fuzz/seeds/scene/.
 #include "parser_target.h"
 
-#include <iblbake/scene.h>
-#include <iblbake/scene_plan.h>
+#include <iblbake/scene/scene.h>
+#include <iblbake/scene/scene_plan.h>
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     return ibl::fuzz::parseOrRefuse(data, size, "fuzz.scene.json", [](auto bytes, const std::string& name) {

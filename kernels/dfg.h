@@ -71,9 +71,9 @@ IBL_FN vec3 integrateDfgChunk(float NoV, float perceptualRoughness, IBL_GLOBAL c
     return v3(dfg1, dfg2, diffuse);
 }
 
-// The work-items of dfg.cl, one LUT texel (iblbake/dispatch.h). dfgChunkItem stores the sums of one chunk
-// of samples: a plain store, as reading the output here (+=) stops PoCL from vectorizing the sample loop;
-// dfgAddChunkItem adds a chunk stored so into the running sums.
+// The work-items of dfg.cl, one LUT texel (iblbake/opencl/dispatch.h). dfgChunkItem stores the sums of one
+// chunk of samples: a plain store, as reading the output here (+=) stops PoCL from vectorizing the sample
+// loop; dfgAddChunkItem adds a chunk stored so into the running sums.
 IBL_FN void dfgChunkItem(WorkItem t, IBL_GLOBAL float* out, DfgParams params, IBL_GLOBAL const float* table) {
     storeTexel(out, t,
                integrateDfgChunk(dfgTexelCenter(t.x, params.size), dfgTexelCenter(t.y, params.size), table,

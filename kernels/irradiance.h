@@ -83,9 +83,10 @@ IBL_FN vec3 brightTexelsIrradiance(vec3 n, IBL_GLOBAL const float* bright, uint 
     return v3(r * IBL_INV_PI, g * IBL_INV_PI, b * IBL_INV_PI);
 }
 
-// The work-items of irradiance.cl, one output texel (iblbake/dispatch.h). Two kernels, as for LD (ld.h):
-// irradianceSampledItem stores the filtered-importance-sampled part in a loop simple and uniform enough
-// for PoCL to vectorize across work-items, irradianceBrightItem adds the bright texels integrated exactly.
+// The work-items of irradiance.cl, one output texel (iblbake/opencl/dispatch.h). Two kernels, as for LD
+// (ld.h): irradianceSampledItem stores the filtered-importance-sampled part in a loop simple and uniform
+// enough for PoCL to vectorize across work-items, irradianceBrightItem adds the bright texels integrated
+// exactly.
 IBL_FN void irradianceSampledItem(WorkItem t, IBL_GLOBAL float* out, IrradianceParams params,
                                   IBL_GLOBAL const float* pyramid, IBL_GLOBAL const float* table) {
     storeTexel(out, t,

@@ -189,7 +189,7 @@ IBL_FN float brightSkipThreshold(vec3 sampled, uint clusterCount) {
     return clusterCount > 0u ? 1e-3f * value / (float)clusterCount : 0.0f;
 }
 
-// The work-items of ld.cl, one texel of one level (iblbake/dispatch.h): ldLevelItem stores the sampled
+// The work-items of ld.cl, one texel of one level (iblbake/opencl/dispatch.h): ldLevelItem stores the sampled
 // part, ldBrightItem then adds the exactly integrated bright texels to it. Two kernels, so that the
 // filtered-importance-sampling loop stays uniform and simple enough for PoCL to vectorize.
 IBL_FN void ldLevelItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* pyramid,

@@ -1,4 +1,4 @@
-// The work-item of runtime.cl: one shading point (iblbake/dispatch.h), shaded by probe.h's shadePoint.
+// The work-item of runtime.cl: one shading point (iblbake/opencl/dispatch.h), shaded by probe.h's shadePoint.
 // Output: 4 floats per point, RGB radiance (diffuse + specular) and the local probes' composed alpha.
 #ifndef IBL_SHADE_POINTS_H
 #define IBL_SHADE_POINTS_H

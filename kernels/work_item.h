@@ -1,7 +1,7 @@
-// One work-item of a dispatch grid (baker/include/iblbake/dispatch.h): a texel of a cube level, a texel
-// of an image or one element of a list, each owning the 4 floats at `offset` of its output. The OpenCL
-// entry points get theirs from the global id (cubeWorkItem, imageWorkItem, listWorkItem); the CPU backend
-// builds the same item for each element with the *At functions and calls the same item function.
+// One work-item of a dispatch grid (baker/include/opencl/iblbake/opencl/dispatch.h): a texel of a cube level,
+// a texel of an image or one element of a list, each owning the 4 floats at `offset` of its output. The
+// OpenCL entry points get theirs from the global id (cubeWorkItem, imageWorkItem, listWorkItem); the CPU
+// backend builds the same item for each element with the *At functions and calls the same item function.
 //
 // Global ranges are padded to whole work-groups along x and there is no early return: loops stay
 // uniform across the work-group (see portable.h); an item past the grid's width computes a clamped

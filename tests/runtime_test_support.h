@@ -2,11 +2,11 @@
 // set needs, and the comparison of the OpenCL and CPU paths.
 #pragma once
 
-#include <iblbake/dfg_lut.h>
-#include <iblbake/executor.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/runtime.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/dfg_lut.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/opencl/executor.h>
+#include <iblbake/runtime/runtime.h>
 
 #include <cube.h>
 

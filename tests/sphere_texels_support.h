@@ -1,7 +1,7 @@
 // Synthetic environments on SphereTexels grids (environment_stats.h), for the calibration and sun tests.
 #pragma once
 
-#include <iblbake/environment_stats.h>
+#include <iblbake/baker/environment_stats.h>
 
 #include <functional>
 

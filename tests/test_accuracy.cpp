@@ -2,8 +2,8 @@
 // headless Chromium, and refusals of bad input without a partial report directory.
 #include "cli_runner.h"
 
-#include <iblbake/exr_output.h>
-#include <iblbake/image.h>
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/core/image.h>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -118,10 +118,12 @@ struct Curve {
 void expectFalling(const std::string& what, Curve curve) {
     std::sort(curve.points.begin(), curve.points.end());
     ASSERT_GE(curve.points.size(), 3u) << what;
-    if (curve.stepChecked)
-        for (std::size_t i = 1; i < curve.points.size(); ++i)
+    if (curve.stepChecked) {
+        for (std::size_t i = 1; i < curve.points.size(); ++i) {
             EXPECT_LE(curve.points[i].second, 2.0 * curve.points[i - 1].second + 1e-4)
                 << what << " at " << curve.points[i].first << " samples";
+        }
+    }
     EXPECT_LE(curve.points.back().second, curve.points.front().second + 1e-6) << what;
 }
 

@@ -1,12 +1,12 @@
-// The accuracy sweep in-process (iblbake/accuracy.h): the quick plan on a synthetic sky with a compact bright
-// spot, every stage measured in report order with finite errors that fall with more samples, and the
-// reports (JSON fields, Markdown table, HTML plots) written from the run; tests/test_accuracy.cpp runs the
-// same through `iblbake accuracy`.
+// The accuracy sweep in-process (iblbake/accuracy/accuracy.h): the quick plan on a synthetic sky with a
+// compact bright spot, every stage measured in report order with finite errors that fall with more samples,
+// and the reports (JSON fields, Markdown table, HTML plots) written from the run; tests/test_accuracy.cpp
+// runs the same through `iblbake accuracy`.
 #include "cli_runner.h"
 #include "scene_test_support.h"
 #include "test_support.h"
 
-#include <iblbake/accuracy.h>
+#include <iblbake/accuracy/accuracy.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

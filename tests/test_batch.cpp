@@ -6,9 +6,9 @@
 #include "cli_runner.h"
 #include "scene_test_support.h"
 
-#include <iblbake/batch.h>
-#include <iblbake/error.h>
-#include <iblbake/runtime_manifest.h>
+#include <iblbake/batch/batch.h>
+#include <iblbake/core/error.h>
+#include <iblbake/runtime/runtime_manifest.h>
 
 #include <gtest/gtest.h>
 
@@ -375,11 +375,13 @@ TEST(Batch, KilledAndRestartedFinishesTheRestWithoutRedoingFinishedItems) {
     ASSERT_FALSE(finished.empty());
     // The summary written so far shows the finished items (and the rest pending, but for the one the kill
     // may have just missed).
-    for (const auto& [id, s] : statusById(d.summary()))
-        if (finished.count(id))
+    for (const auto& [id, s] : statusById(d.summary())) {
+        if (finished.count(id)) {
             EXPECT_EQ(s, "ok") << id;
-        else if (id != killedDuring)
+        } else if (id != killedDuring) {
             EXPECT_EQ(s, "pending") << id;
+        }
+    }
 
     std::map<std::string, fs::path> outputOf;
     const json killedSummary = d.summary();

@@ -1,12 +1,13 @@
-// Batch runs in-process (iblbake/batch_run.h) on three tiny items (16-texel faces, draft, CPU backend): the
-// summary the run returns, the file it leaves and what the observer sees; a second run skips finished items
-// and bakes only the one that failed; shards, failed bakes as one line, and an unwritable summary.
-// tests/test_batch.cpp runs `iblbake batch` end to end.
+// Batch runs in-process (iblbake/batch_run/batch_run.h) on three tiny items (16-texel faces, draft, CPU
+// backend): the summary the run returns, the file it leaves and what the observer sees; a second run skips
+// finished items and bakes only the one that failed; shards, failed bakes as one line, and an unwritable
+// summary. tests/test_batch.cpp runs `iblbake batch` end to end.
 #include "cli_runner.h"
 #include "scene_test_support.h"
 
-#include <iblbake/batch_run.h>
-#include <iblbake/error.h>
+#include <iblbake/baker/bake_scene.h>
+#include <iblbake/batch_run/batch_run.h>
+#include <iblbake/core/error.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -5,11 +5,11 @@
 // terms); constant environments to 1e-6 (float pixels); factors for --scale/--ev100/--radiometric exact
 // (the output pixel is the input pixel times float(factor), bit for bit); round trips through a file and
 // `inspect` to 0.5 % (the figure; they agree to ~1e-6, float storage being the only loss).
-#include "iblbake/calibration.h"
-#include "iblbake/environment_stats.h"
-#include "iblbake/error.h"
-#include "iblbake/ingest.h"
-#include "iblbake/sun.h"
+#include "iblbake/baker/calibration.h"
+#include "iblbake/baker/environment_stats.h"
+#include "iblbake/baker/ingest.h"
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/error.h"
 
 #include "cli_runner.h"
 

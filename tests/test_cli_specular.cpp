@@ -2,7 +2,7 @@
 // levels and the preview out; bad input refused with one line and nothing written.
 #include "cli_runner.h"
 
-#include <iblbake/ktx2.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <gtest/gtest.h>
 

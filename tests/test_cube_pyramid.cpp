@@ -1,6 +1,6 @@
 // The bordered cube pyramid: closed-form layout, borders that make bilinear filtering continuous.
-#include <iblbake/cube_pyramid.h>
-#include <iblbake/error.h>
+#include <iblbake/core/cube_pyramid.h>
+#include <iblbake/core/error.h>
 
 #include <gtest/gtest.h>
 

@@ -3,9 +3,9 @@
 // CMakeLists.txt) or output without an error. KTX2 goes through every path that reads it.
 #include "cli_runner.h"
 
-#include <iblbake/error.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/runtime.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // DFG / diffuse LUT: against an independent fp64 integration of Frostbite Listing 18, across backends,
 // and the analytic properties the split sum relies on.
-#include <iblbake/dfg_lut.h>
-#include <iblbake/dfg_reference.h>
-#include <iblbake/error.h>
-#include <iblbake/executor.h>
+#include <iblbake/baker/dfg_lut.h>
+#include <iblbake/baker/dfg_reference.h>
+#include <iblbake/core/error.h>
+#include <iblbake/opencl/executor.h>
 
 #include <brdf.h>
 #include <dfg.h>
@@ -36,7 +36,7 @@ Executor openclOrSkip() {
 // reference samples would measure the reference's error rather than ours.
 TEST(DfgLut, MatchesIndependentListing18IntegrationWithin1e3) {
     const unsigned size = 32;
-    // Frostbite Listing 18 in fp64, written out independently of kernels/ (iblbake/dfg_reference.h).
+    // Frostbite Listing 18 in fp64, written out independently of kernels/ (iblbake/baker/dfg_reference.h).
     const std::vector<glm::dvec3> reference = ibl::referenceDfgGrid(size, 1u << 18);
     for (Executor executor : {Executor::cpu(), openclOrSkip()}) {
         ImageRGBA lut = bake(size, 4096, executor);

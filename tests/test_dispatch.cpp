@@ -1,9 +1,9 @@
-// The dispatch helper (iblbake/dispatch.h) on its own: grids whose sizes are not multiples of the
+// The dispatch helper (iblbake/opencl/dispatch.h) on its own: grids whose sizes are not multiples of the
 // work-group (odd cube faces, 1x1 faces, short rows and lists), on both backends. Every element must be
 // stored once with its own coordinates and incremented once, and OpenCL and the CPU must agree exactly.
-#include <iblbake/dispatch.h>
-#include <iblbake/error.h>
-#include <iblbake/opencl_context.h>
+#include <iblbake/core/error.h>
+#include <iblbake/opencl/dispatch.h>
+#include <iblbake/opencl/opencl_context.h>
 
 #include <dispatch_check.h>
 

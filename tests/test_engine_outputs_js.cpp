@@ -3,7 +3,7 @@
 // Khronos' glTF-Validator (tests/js/validate_gltf.mjs). Skipped, with the reason, without Node.js.
 #include "bake_dir_support.h"
 
-#include <iblbake/ktx2.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

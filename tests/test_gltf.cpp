@@ -1,10 +1,11 @@
 // iblbake gltf: the exported EXT_lights_image_based / KHR_lights_punctual glTF against the bake it came
-// from, numerically (conventions in baker/include/iblbake/gltf_ibl.h), and its refusals of bad input.
+// from, numerically (conventions in baker/include/baker/iblbake/baker/gltf_ibl.h), and its refusals of bad
+// input.
 #include "bake_dir_support.h"
 
-#include <iblbake/ktx2.h>
-#include <iblbake/sh.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>

@@ -47,16 +47,16 @@
 //     Energy, and the energy statements of this file.
 #include "test_support.h"
 
-#include <iblbake/calibration.h>
-#include <iblbake/dfg_lut.h>
-#include <iblbake/environment_stats.h>
-#include <iblbake/error.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/runtime.h>
-#include <iblbake/sh.h>
-#include <iblbake/specular.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/dfg_lut.h>
+#include <iblbake/baker/environment_stats.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime.h>
 
 #include <probe.h>
 

@@ -1,6 +1,6 @@
 // Ingest front end: reading, layout detection, colour, repair and area-correct resampling.
-#include "iblbake/error.h"
-#include "iblbake/ingest.h"
+#include "iblbake/baker/ingest.h"
+#include "iblbake/core/error.h"
 
 #include <cube.h>
 

@@ -2,12 +2,12 @@
 // OpenCL/CPU agreement, and the `iblbake diffuse` command end to end.
 #include "cli_runner.h"
 
-#include <iblbake/error.h>
-#include <iblbake/exr_output.h>
-#include <iblbake/ingest.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/sh.h>
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <cube.h>
 

@@ -1,8 +1,8 @@
 // KTX2 writer and reader: round trips of every format with stated tolerances, the exact bytes the KTX 2.0
 // specification requires (header, DFD, key/value data, level index and padding), rounding and sanitizing,
 // failure behaviour of the writer, and a reader that rejects damaged files with ibl::Error.
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
 
 #include <gtest/gtest.h>
 

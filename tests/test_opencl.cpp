@@ -1,7 +1,7 @@
 // The OpenCL host layer: diagnostics that name the program, device, options and carry the build log.
-#include <iblbake/error.h>
-#include <iblbake/executor.h>
-#include <iblbake/opencl_context.h>
+#include <iblbake/core/error.h>
+#include <iblbake/opencl/executor.h>
+#include <iblbake/opencl/opencl_context.h>
 
 #include <gtest/gtest.h>
 

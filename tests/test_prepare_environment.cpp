@@ -1,17 +1,17 @@
-// prepareEnvironment (iblbake/environment.h) in process: it is the separate steps bit for bit, its errors
-// name the setting and no CLI flag, the cube with the sun is kept only when asked, and the CLI and a scene
-// bake prepare the same environment from the same settings.
+// prepareEnvironment (iblbake/baker/environment.h) in process: it is the separate steps bit for bit, its
+// errors name the setting and no CLI flag, the cube with the sun is kept only when asked, and the CLI and a
+// scene bake prepare the same environment from the same settings.
 #include "cli_runner.h"
 #include "scene_test_support.h"
 
-#include <iblbake/bake_scene.h>
-#include <iblbake/calibration.h>
-#include <iblbake/environment.h>
-#include <iblbake/error.h>
-#include <iblbake/ingest.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/scene.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/bake_scene.h>
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/environment.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/scene/scene.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

@@ -1,15 +1,15 @@
-// The product module (iblbake/products.h), the mip-mapping header (kernels/mip_mapping.h) and the KTX2
+// The product module (iblbake/baker/products.h), the mip-mapping header (kernels/mip_mapping.h) and the KTX2
 // format names: one source for each, machine-readable values in files, readers of older files.
 #include "cli_runner.h"
 #include "scene_test_support.h"
 
-#include <iblbake/bake_scene.h>
-#include <iblbake/error.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/products.h>
-#include <iblbake/runtime.h>
-#include <iblbake/scene.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/bake_scene.h>
+#include <iblbake/baker/products.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime.h>
+#include <iblbake/scene/scene.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

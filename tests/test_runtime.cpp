@@ -3,8 +3,8 @@
 // from KTX2, OpenCL vs CPU agreement and throughput.
 #include "runtime_test_support.h"
 
-#include <iblbake/error.h>
-#include <iblbake/ktx2.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <chrono>
 #include <filesystem>

@@ -3,9 +3,9 @@
 // distance-based roughness on a glossy floor near a textured wall; the sun as a disk light.
 #include "runtime_test_support.h"
 
-#include <iblbake/ingest.h>
-#include <iblbake/runtime_reference.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/runtime/runtime_reference.h>
 
 #include <filesystem>
 #include <numeric>

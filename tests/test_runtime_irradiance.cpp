@@ -3,9 +3,9 @@
 // ring, the same on both backends, and loaded from the KTX2 `iblbake diffuse --irradiance-cube` writes.
 #include "runtime_test_support.h"
 
-#include <iblbake/error.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/runtime_reference.h>
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime_reference.h>
 
 #include <filesystem>
 

@@ -1,10 +1,10 @@
 // The runtime module linked on its own (iblbake_runtime only: no baker, no OpenImageIO/OpenColorIO): a probe
 // set built from in-memory data, evaluated on the CPU and through OpenCL, and the reference renderer's own
 // white furnace.
-#include <iblbake/error.h>
-#include <iblbake/executor.h>
-#include <iblbake/runtime.h>
-#include <iblbake/runtime_reference.h>
+#include <iblbake/core/error.h>
+#include <iblbake/opencl/executor.h>
+#include <iblbake/runtime/runtime.h>
+#include <iblbake/runtime/runtime_reference.h>
 
 #include <dfg.h>
 

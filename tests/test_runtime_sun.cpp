@@ -3,7 +3,7 @@
 // the sun is counted once at every roughness.
 #include "runtime_test_support.h"
 
-#include <iblbake/ktx2.h>
+#include <iblbake/ktx2/ktx2.h>
 
 #include <filesystem>
 

@@ -1,8 +1,8 @@
 // Scene files and the planner: values and defaults, one-line errors naming the key path, no crash on any
 // prefix of a valid file, and the stage sets of scenes that differ in one need.
-#include <iblbake/error.h>
-#include <iblbake/scene.h>
-#include <iblbake/scene_plan.h>
+#include <iblbake/core/error.h>
+#include <iblbake/scene/scene.h>
+#include <iblbake/scene/scene_plan.h>
 
 #include <gtest/gtest.h>
 

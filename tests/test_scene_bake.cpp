@@ -5,11 +5,11 @@
 #include "cli_runner.h"
 #include "scene_test_support.h"
 
-#include <iblbake/bake_scene.h>
-#include <iblbake/ktx2.h>
-#include <iblbake/runtime_manifest.h>
-#include <iblbake/scene.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/bake_scene.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/ktx2/ktx2.h>
+#include <iblbake/runtime/runtime_manifest.h>
+#include <iblbake/scene/scene.h>
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
 // L2 SH: basis, projection, clamped-cosine convolution and Filament pre-scaling against closed forms,
 // deringing windows, and the SH irradiance of the real HDRIs against the brute force.
-#include <iblbake/error.h>
-#include <iblbake/ingest.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/sh.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/core/error.h>
 
 #include <cube.h>
 #include <sh.h>

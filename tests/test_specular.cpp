@@ -1,6 +1,6 @@
 // Specular LD chain: analytic cases, the brute-force reference, and backend agreement.
-#include <iblbake/error.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/core/error.h>
 
 #include <cube.h>
 

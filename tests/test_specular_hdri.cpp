@@ -1,7 +1,7 @@
 // The specular chain on the real HDR environments of ../shared/data/hdri (skipped when absent):
 // accuracy against the brute-force reference, bounds, and seams.
-#include <iblbake/ingest.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/specular.h>
 
 #include <cube.h>
 

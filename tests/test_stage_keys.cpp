@@ -6,11 +6,11 @@
 #include "scene_test_support.h"
 #include "stage_keys.h"
 
-#include <iblbake/bake_scene.h>
-#include <iblbake/code_identity.h>
-#include <iblbake/error.h>
-#include <iblbake/scene.h>
-#include <iblbake/scene_plan.h>
+#include <iblbake/bake_state/code_identity.h>
+#include <iblbake/baker/bake_scene.h>
+#include <iblbake/core/error.h>
+#include <iblbake/scene/scene.h>
+#include <iblbake/scene/scene_plan.h>
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Sun detection, measurement and extraction (iblbake/sun.h): synthetic environments with a known sun,
+// Sun detection, measurement and extraction (iblbake/baker/sun.h): synthetic environments with a known sun,
 // environments without one, and the shared HDRIs (SOURCES.md).
 //
 // Tolerances: synthetic one-texel suns on a flat sky are recovered to 1e-5 (the fill of a constant boundary
@@ -6,11 +6,11 @@
 // 0.5 % (the membrane fill of a curved sky is not exact); directions on the shared HDRIs within 1 degree of
 // the brightest pixel (the disk is 0.53 degrees, a 1k pixel 0.35); energy removed == E_perp to 0.5 % (it is
 // equal by construction; the test recomputes it independently from the two images).
-#include "iblbake/calibration.h"
-#include "iblbake/environment_stats.h"
-#include "iblbake/error.h"
-#include "iblbake/ingest.h"
-#include "iblbake/sun.h"
+#include "iblbake/baker/calibration.h"
+#include "iblbake/baker/environment_stats.h"
+#include "iblbake/baker/ingest.h"
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/error.h"
 
 #include <cube.h>
 

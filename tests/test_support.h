@@ -1,10 +1,10 @@
 // Helpers the stage tests share: backends, synthetic cubes, the error metric, the shared HDRIs.
 #pragma once
 
-#include <iblbake/cubemap.h>
-#include <iblbake/error_metrics.h>
-#include <iblbake/executor.h>
-#include <iblbake/ingest.h>
+#include <iblbake/baker/error_metrics.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/core/cubemap.h>
+#include <iblbake/opencl/executor.h>
 
 #include <cube.h>
 

@@ -1,5 +1,5 @@
-#include "iblbake/executor.h"
-#include "iblbake/error.h"
+#include "iblbake/opencl/executor.h"
+#include "iblbake/core/error.h"
 
 #include <ostream>
 

@@ -1,5 +1,5 @@
 // DFG LUT bake time per backend (Google Benchmark; never a pass/fail timer).
-#include <iblbake/dfg_lut.h>
+#include <iblbake/baker/dfg_lut.h>
 
 #include <benchmark/benchmark.h>
 

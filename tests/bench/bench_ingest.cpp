@@ -1,6 +1,6 @@
 // Ingest time (Google Benchmark; never a pass/fail timer): the whole ingest of the sample HDRI (read,
 // repair, colour, exact-area lat-long -> cube resampling) at n-texel faces.
-#include <iblbake/ingest.h>
+#include <iblbake/baker/ingest.h>
 
 #include <benchmark/benchmark.h>
 

@@ -1,6 +1,6 @@
 // Specular LD chain bake time per backend and preset (Google Benchmark; never a pass/fail timer).
-#include <iblbake/ingest.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/ingest.h>
+#include <iblbake/baker/specular.h>
 
 #include <benchmark/benchmark.h>
 

@@ -1,5 +1,5 @@
 // CPU evaluation: kernels/probe.h's shadePoint over the points.
-#include "iblbake/runtime.h"
+#include "iblbake/runtime/runtime.h"
 
 #include "point_dispatch.h"
 

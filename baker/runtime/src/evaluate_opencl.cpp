@@ -1,6 +1,6 @@
 // OpenCL evaluation: kernels/runtime.cl over the points, through the dispatch helper (point_dispatch.h).
-#include "iblbake/opencl_context.h"
-#include "iblbake/runtime.h"
+#include "iblbake/opencl/opencl_context.h"
+#include "iblbake/runtime/runtime.h"
 
 #include "point_dispatch.h"
 

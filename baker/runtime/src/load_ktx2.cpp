@@ -1,7 +1,7 @@
 // Loading the baker's KTX2 products (readKtx2 has no OIIO dependency).
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
-#include "iblbake/runtime.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
+#include "iblbake/runtime/runtime.h"
 
 namespace ibl {
 

@@ -1,5 +1,5 @@
-#include "iblbake/error.h"
-#include "iblbake/runtime_manifest.h"
+#include "iblbake/core/error.h"
+#include "iblbake/runtime/runtime_manifest.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,9 +1,9 @@
-// The shading of points on either backend (iblbake/dispatch.h): kernels/runtime.cl on OpenCL, its
+// The shading of points on either backend (iblbake/opencl/dispatch.h): kernels/runtime.cl on OpenCL, its
 // work-item function kernels/shade_points.h on the CPU.
 #pragma once
 
-#include "iblbake/dispatch.h"
-#include "iblbake/runtime.h"
+#include "iblbake/opencl/dispatch.h"
+#include "iblbake/runtime/runtime.h"
 
 #include <span>
 #include <vector>

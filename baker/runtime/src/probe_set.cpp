@@ -1,7 +1,7 @@
 // Probe data in the layout the kernels read: bordered LD pyramids, the 3-channel DFG table, local probes.
-#include "iblbake/cube_pyramid.h"
-#include "iblbake/error.h"
-#include "iblbake/runtime.h"
+#include "iblbake/core/cube_pyramid.h"
+#include "iblbake/core/error.h"
+#include "iblbake/runtime/runtime.h"
 
 #include <algorithm>
 #include <optional>

@@ -4,8 +4,8 @@
 // (Veach 1997), so that neither a narrow lobe nor a small bright source is left to chance. Everything is
 // in fp64 and independent of the runtime's code except the cube addressing and the bilinear lookup that
 // define the environment as a continuous function.
-#include "iblbake/error.h"
-#include "iblbake/runtime_reference.h"
+#include "iblbake/core/error.h"
+#include "iblbake/runtime/runtime_reference.h"
 
 #include <tbb/parallel_for.h>
 

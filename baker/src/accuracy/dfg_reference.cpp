@@ -1,4 +1,4 @@
-#include "iblbake/dfg_reference.h"
+#include "iblbake/baker/dfg_reference.h"
 
 #include <tbb/parallel_for.h>
 

@@ -1,7 +1,7 @@
-#include "iblbake/error_metrics.h"
+#include "iblbake/baker/error_metrics.h"
 
-#include "iblbake/error.h"
-#include "iblbake/sh.h" // texelSolidAngle
+#include "iblbake/baker/sh.h" // texelSolidAngle
+#include "iblbake/core/error.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "iblbake/accuracy.h"
+#include "iblbake/accuracy/accuracy.h"
 
 #include <nlohmann/json.hpp>
 

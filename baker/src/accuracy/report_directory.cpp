@@ -1,6 +1,6 @@
-// writeAccuracyReports (iblbake/accuracy.h): the three reports appear together or not at all.
-#include "iblbake/accuracy.h"
-#include "iblbake/error.h"
+// writeAccuracyReports (iblbake/accuracy/accuracy.h): the three reports appear together or not at all.
+#include "iblbake/accuracy/accuracy.h"
+#include "iblbake/core/error.h"
 
 #include <fstream>
 #include <unistd.h>

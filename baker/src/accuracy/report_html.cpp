@@ -1,7 +1,7 @@
 // report.html of `iblbake accuracy`: per stage, a hand-written SVG plot of error against time (both log
 // scales), the Pareto front drawn as a line, the presets marked and named, and the measurements as a table.
 // No scripts: the page is static.
-#include "iblbake/accuracy.h"
+#include "iblbake/accuracy/accuracy.h"
 
 #include <algorithm>
 #include <cmath>

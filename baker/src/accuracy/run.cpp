@@ -1,5 +1,5 @@
-// runAccuracySweep (iblbake/accuracy.h): the stages in report order, and what the reports say about the
-// machine the times were measured on.
+// runAccuracySweep (iblbake/accuracy/accuracy.h): the stages in report order, and what the reports say about
+// the machine the times were measured on.
 #include "sweep.h"
 
 #include <cstdio>

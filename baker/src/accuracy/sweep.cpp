@@ -1,11 +1,11 @@
 #include "sweep.h"
 
-#include <iblbake/dfg_lut.h>
-#include <iblbake/dfg_reference.h>
-#include <iblbake/error_metrics.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/sh.h>
-#include <iblbake/specular.h>
+#include <iblbake/baker/dfg_lut.h>
+#include <iblbake/baker/dfg_reference.h>
+#include <iblbake/baker/error_metrics.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/baker/specular.h>
 
 #include <algorithm>
 #include <chrono>
@@ -138,10 +138,11 @@ AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& exe
     stage.name = "dfg";
     stage.title = "DFG / diffuse LUT";
     stage.knobs = {"size", "samples"};
-    stage.reference = format("Frostbite Listing 18 in fp64 (iblbake/dfg_reference.h), %u samples, at the "
-                             "centres of a %ux%u grid over (NoV, roughness); each LUT is read bilinearly "
-                             "there, as a renderer reads it",
-                             plan.dfgReferenceSamples, plan.dfgReferenceSize, plan.dfgReferenceSize);
+    stage.reference =
+        format("Frostbite Listing 18 in fp64 (iblbake/baker/dfg_reference.h), %u samples, at the "
+               "centres of a %ux%u grid over (NoV, roughness); each LUT is read bilinearly "
+               "there, as a renderer reads it",
+               plan.dfgReferenceSamples, plan.dfgReferenceSize, plan.dfgReferenceSize);
     stage.errorMetric = "relative mean absolute error: sum |LUT - reference| / sum |reference| over the grid "
                         "and the three channels (DFG1, DFG2, Disney diffuse)";
     stage.maxErrorMetric = "largest absolute error of any grid point and channel (the LUT's values are 0..1)";

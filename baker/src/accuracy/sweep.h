@@ -1,7 +1,7 @@
-// The stages of the accuracy sweep (iblbake/accuracy.h), one function each, and what they share.
+// The stages of the accuracy sweep (iblbake/accuracy/accuracy.h), one function each, and what they share.
 #pragma once
 
-#include "iblbake/accuracy.h"
+#include "iblbake/accuracy/accuracy.h"
 
 #include <functional>
 #include <vector>

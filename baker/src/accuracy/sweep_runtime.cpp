@@ -2,14 +2,14 @@
 // at each specular preset, against the brute-force renderer (Frostbite Appendix A) lit by the same input.
 #include "sweep.h"
 
-#include <iblbake/dfg_lut.h>
-#include <iblbake/environment.h>
-#include <iblbake/irradiance.h>
-#include <iblbake/runtime.h>
-#include <iblbake/runtime_reference.h>
-#include <iblbake/sh.h>
-#include <iblbake/specular.h>
-#include <iblbake/sun.h>
+#include <iblbake/baker/dfg_lut.h>
+#include <iblbake/baker/environment.h>
+#include <iblbake/baker/irradiance.h>
+#include <iblbake/baker/sh.h>
+#include <iblbake/baker/specular.h>
+#include <iblbake/baker/sun.h>
+#include <iblbake/runtime/runtime.h>
+#include <iblbake/runtime/runtime_reference.h>
 
 #include <cmath>
 #include <cstdio>

@@ -1,8 +1,8 @@
 // Batch manifests (batch.h, README "Batch"): validated like scene files, every error one line naming the
 // manifest and the key path; unknown keys are errors.
-#include "iblbake/batch.h"
+#include "iblbake/batch/batch.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <nlohmann/json.hpp>
 

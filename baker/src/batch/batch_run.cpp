@@ -1,9 +1,9 @@
-// runBatch (iblbake/batch_run.h): the shard's items on `jobs` worker threads, the summary file rewritten
-// after every item.
-#include "iblbake/batch_run.h"
+// runBatch (iblbake/batch_run/batch_run.h): the shard's items on `jobs` worker threads, the summary file
+// rewritten after every item.
+#include "iblbake/batch_run/batch_run.h"
 
-#include "iblbake/atomic_file.h"
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 
 #include <algorithm>
 #include <atomic>

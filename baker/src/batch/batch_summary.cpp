@@ -1,5 +1,5 @@
-// The batch summary's document and file name (iblbake/batch_run.h).
-#include "iblbake/batch_run.h"
+// The batch summary's document and file name (iblbake/batch_run/batch_run.h).
+#include "iblbake/batch_run/batch_run.h"
 
 namespace ibl {
 

@@ -1,7 +1,7 @@
 // Shards of a batch (batch.h): from --shard K/N or a scheduler's job-array variables.
-#include "iblbake/batch.h"
+#include "iblbake/batch/batch.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <charconv>
 

@@ -1,8 +1,8 @@
-// Calibration factor from one known quantity (the sources are described in iblbake/calibration.h).
-#include "iblbake/calibration.h"
+// Calibration factor from one known quantity (the sources are described in iblbake/baker/calibration.h).
+#include "iblbake/baker/calibration.h"
 
 #include "../ingest/ingest_internal.h"
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>

@@ -10,10 +10,10 @@
 // Lat-long cells are rectangles in (longitude phi, z = sin latitude), where d omega = d phi dz, and every
 // integral needed separates: solid angle dphi dz, upward cosine dphi (z1^2 - z0^2) / 2, direction
 // integral from the antiderivative of sqrt(1 - z^2).
-#include "iblbake/environment_stats.h"
+#include "iblbake/baker/environment_stats.h"
 
 #include "../ingest/ingest_internal.h"
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <cube.h>
 

@@ -1,6 +1,6 @@
-// Sun detection and measurement (the algorithm is described in iblbake/sun.h).
-#include "iblbake/error.h"
-#include "iblbake/sun.h"
+// Sun detection and measurement (the algorithm is described in iblbake/baker/sun.h).
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

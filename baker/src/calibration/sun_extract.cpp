@@ -1,6 +1,6 @@
-// Sun extraction (iblbake/sun.h) and the disk light's JSON form.
-#include "iblbake/error.h"
-#include "iblbake/sun.h"
+// Sun extraction (iblbake/baker/sun.h) and the disk light's JSON form.
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/error.h"
 
 #include <nlohmann/json.hpp>
 

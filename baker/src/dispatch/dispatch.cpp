@@ -1,5 +1,5 @@
-#include "iblbake/dispatch.h"
-#include "iblbake/error.h"
+#include "iblbake/opencl/dispatch.h"
+#include "iblbake/core/error.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

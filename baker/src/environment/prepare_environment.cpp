@@ -1,7 +1,7 @@
-// Environment preparation (iblbake/environment.h): ingest, calibration, sun extraction.
-#include "iblbake/environment.h"
+// Environment preparation (iblbake/baker/environment.h): ingest, calibration, sun extraction.
+#include "iblbake/baker/environment.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <utility>
 

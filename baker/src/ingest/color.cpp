@@ -2,7 +2,7 @@
 // working space. The config is data/ocio/config.ocio unless $OCIO names another one.
 #include "ingest_internal.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <OpenColorIO/OpenColorIO.h>
 #include <tbb/blocked_range.h>

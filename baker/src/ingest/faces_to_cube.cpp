@@ -7,7 +7,7 @@
 // are box-filtered without losing or gaining energy.
 #include "ingest_internal.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <OpenEXR/ImfEnvmap.h>
 #include <tbb/blocked_range.h>

@@ -1,10 +1,10 @@
 // The ingest pipeline: read -> repair -> colour-convert -> repair -> resample into the source cube.
 // Non-finite values are repaired before the colour matrix (which would smear an Inf into NaNs across
 // channels); negatives are repaired on both sides of it, since a gamut change can create them.
-#include "iblbake/ingest.h"
+#include "iblbake/baker/ingest.h"
 #include "ingest_internal.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <algorithm>
 #include <cmath>

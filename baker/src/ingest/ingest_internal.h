@@ -1,9 +1,9 @@
 // Pieces of the ingest front end shared between its translation units (not part of the public API).
 #pragma once
 
-#include "iblbake/cubemap.h"
-#include "iblbake/image.h"
-#include "iblbake/ingest.h"
+#include "iblbake/baker/ingest.h"
+#include "iblbake/core/cubemap.h"
+#include "iblbake/core/image.h"
 
 #include <array>
 #include <cstdint>

@@ -16,7 +16,7 @@
 // pixel between texels is exact; elsewhere only the quadrature of a smooth edge curve is approximate).
 #include "ingest_internal.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <cube.h>
 

@@ -2,7 +2,7 @@
 // and "oiio:updirection"), then the aspect ratio.
 #include "ingest_internal.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <algorithm>
 #include <cctype>

@@ -3,7 +3,7 @@
 #include "../io/muted_stderr.h"
 #include "ingest_internal.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <OpenImageIO/imageio.h>
 

@@ -1,5 +1,5 @@
-#include "iblbake/atomic_file.h"
-#include "iblbake/error.h"
+#include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/core/error.h"
 
 #include <atomic>
 #include <cerrno>

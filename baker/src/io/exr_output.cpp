@@ -1,6 +1,6 @@
-#include "iblbake/exr_output.h"
-#include "iblbake/atomic_file.h"
-#include "iblbake/error.h"
+#include "iblbake/baker/exr_output.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 
 #include <OpenImageIO/imageio.h>
 

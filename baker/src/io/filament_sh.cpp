@@ -1,5 +1,5 @@
-// Filament's sh.txt (iblbake/filament_sh.h).
-#include "iblbake/filament_sh.h"
+// Filament's sh.txt (iblbake/baker/filament_sh.h).
+#include "iblbake/baker/filament_sh.h"
 
 #include <cstdio>
 

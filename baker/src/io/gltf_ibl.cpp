@@ -1,8 +1,8 @@
-// glTF 2.0 output of a bake (iblbake/gltf_ibl.h): EXT_lights_image_based + KHR_lights_punctual.
-#include "iblbake/gltf_ibl.h"
-#include "iblbake/atomic_file.h"
-#include "iblbake/error.h"
-#include "iblbake/rgbd.h"
+// glTF 2.0 output of a bake (iblbake/baker/gltf_ibl.h): EXT_lights_image_based + KHR_lights_punctual.
+#include "iblbake/baker/gltf_ibl.h"
+#include "iblbake/baker/rgbd.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 
 #include <nlohmann/json.hpp>
 

@@ -3,7 +3,7 @@
 // Khronos Data Format Specification (KDF).
 #pragma once
 
-#include "iblbake/ktx2.h"
+#include "iblbake/ktx2/ktx2.h"
 
 #include <array>
 #include <cstdint>

@@ -1,6 +1,6 @@
-// Ktx2Format by name (iblbake/ktx2.h).
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
+// Ktx2Format by name (iblbake/ktx2/ktx2.h).
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
 
 namespace ibl {
 

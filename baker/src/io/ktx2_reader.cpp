@@ -2,8 +2,8 @@
 // checked against the file size (with 64-bit arithmetic that cannot overflow) before anything is read or
 // allocated, so the largest allocation is bounded by a small multiple of the file size. The file is read
 // whole and parsed from memory, which is also the entry point of the fuzz target (fuzz/ktx2_reader.cpp).
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
 #include "ktx2_format.h"
 #include "small_float.h"
 

@@ -1,9 +1,9 @@
 // KTX 2.0 writer: header, Index, Level Index, DFD and key/value data (KTX 2.0 "File Structure"), then the
 // mip levels from the smallest to the largest, each aligned to lcm(texel block size, 4). Texels are
 // sanitized (NaN, Inf, out-of-range values) and counted before encoding, so no Inf/NaN is ever stored.
-#include "iblbake/atomic_file.h"
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/ktx2.h"
 #include "ktx2_format.h"
 #include "small_float.h"
 

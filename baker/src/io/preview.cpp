@@ -1,6 +1,6 @@
-#include "iblbake/preview.h"
-#include "iblbake/atomic_file.h"
-#include "iblbake/error.h"
+#include "iblbake/baker/preview.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 
 #include <cube.h>
 

@@ -1,6 +1,6 @@
-// RGBD packing (iblbake/rgbd.h) and its PNG files through OpenImageIO.
-#include "iblbake/error.h"
-#include "iblbake/rgbd.h"
+// RGBD packing (iblbake/baker/rgbd.h) and its PNG files through OpenImageIO.
+#include "iblbake/baker/rgbd.h"
+#include "iblbake/core/error.h"
 
 #include <OpenImageIO/imageio.h>
 

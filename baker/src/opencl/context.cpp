@@ -1,5 +1,5 @@
-#include "iblbake/error.h"
-#include "iblbake/opencl_context.h"
+#include "iblbake/core/error.h"
+#include "iblbake/opencl/opencl_context.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,5 +1,5 @@
 // Symbolic names of OpenCL status codes, so that every message says CL_OUT_OF_RESOURCES, not -5.
-#include "iblbake/opencl_context.h"
+#include "iblbake/opencl/opencl_context.h"
 
 #include <CL/cl_ext.h>
 

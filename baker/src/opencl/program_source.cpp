@@ -2,8 +2,8 @@
 // file's text (each file once, like #pragma once) between #line markers, so a build log names the
 // real file and line (kernels/dfg.h:42) although the device compiler never sees a file system.
 #include "embedded_kernels.h"
-#include "iblbake/error.h"
-#include "iblbake/opencl_context.h"
+#include "iblbake/core/error.h"
+#include "iblbake/opencl/opencl_context.h"
 
 #include <set>
 #include <sstream>

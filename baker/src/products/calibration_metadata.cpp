@@ -1,6 +1,6 @@
-// Calibration and sun metadata of every product (iblbake/products.h).
-#include "iblbake/error.h"
-#include "iblbake/products.h"
+// Calibration and sun metadata of every product (iblbake/baker/products.h).
+#include "iblbake/baker/products.h"
+#include "iblbake/core/error.h"
 
 #include <fstream>
 #include <iterator>

@@ -1,5 +1,5 @@
-// The iblbake.diffuse document (iblbake/products.h).
-#include "iblbake/products.h"
+// The iblbake.diffuse document (iblbake/baker/products.h).
+#include "iblbake/baker/products.h"
 
 namespace ibl {
 

@@ -1,5 +1,5 @@
-// KTX2 key/values of the LD chains, the irradiance cube and the DFG LUT (iblbake/products.h).
-#include "iblbake/products.h"
+// KTX2 key/values of the LD chains, the irradiance cube and the DFG LUT (iblbake/baker/products.h).
+#include "iblbake/baker/products.h"
 
 namespace ibl {
 

@@ -1,6 +1,6 @@
-// The manifest's product entries (iblbake/products.h).
-#include "iblbake/error.h"
-#include "iblbake/products.h"
+// The manifest's product entries (iblbake/baker/products.h).
+#include "iblbake/baker/products.h"
+#include "iblbake/core/error.h"
 
 namespace ibl {
 

@@ -1,10 +1,10 @@
 // bakeScene (bake_scene.h): keys, cache look-ups, stage runs, then the output directory and the manifest.
-#include "iblbake/bake_scene.h"
+#include "iblbake/baker/bake_scene.h"
 
-#include "iblbake/atomic_file.h"
-#include "iblbake/content_hash.h"
-#include "iblbake/error.h"
-#include "iblbake/executor.h"
+#include "iblbake/bake_state/content_hash.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/opencl/executor.h"
 #include "scene_manifest.h"
 #include "scene_stages.h"
 #include "stage_cache.h"

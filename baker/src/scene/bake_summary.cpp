@@ -1,6 +1,6 @@
-// The bake summary (bake_scene.h): stage statuses, counts, its JSON, and the summary of a bake found up to
+// The bake summary (bake_state.h): stage statuses, counts, its JSON, and the summary of a bake found up to
 // date. Free of backends and file formats, so that the front end (cli/front_end.cpp) links it alone.
-#include "iblbake/bake_scene.h"
+#include "iblbake/bake_state/bake_state.h"
 
 namespace ibl {
 

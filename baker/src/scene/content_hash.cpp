@@ -1,6 +1,6 @@
-#include "iblbake/content_hash.h"
+#include "iblbake/bake_state/content_hash.h"
 
-#include "iblbake/error.h"
+#include "iblbake/core/error.h"
 
 #include <xxhash.h>
 

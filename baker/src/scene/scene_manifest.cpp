@@ -1,10 +1,10 @@
 #include "scene_manifest.h"
 
-#include "iblbake/code_identity.h"
-#include "iblbake/irradiance.h"
-#include "iblbake/products.h"
-#include "iblbake/specular.h"
-#include "iblbake/sun.h"
+#include "iblbake/bake_state/code_identity.h"
+#include "iblbake/baker/irradiance.h"
+#include "iblbake/baker/products.h"
+#include "iblbake/baker/specular.h"
+#include "iblbake/baker/sun.h"
 #include "scene_stages.h"
 
 #include <glm/geometric.hpp>

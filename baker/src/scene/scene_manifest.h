@@ -1,8 +1,8 @@
 // manifest.json (README "Manifest"): what the runtime loads (ibl::loadProbeSetFromManifest).
 #pragma once
 
-#include "iblbake/scene.h"
-#include "iblbake/scene_plan.h"
+#include "iblbake/scene/scene.h"
+#include "iblbake/scene/scene_plan.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,10 +1,10 @@
 // Scene file parsing and validation (README "Scenes"). Every accessor knows its key path, so each error
 // names it; keys are consumed as read and whatever is left in an object is an unknown key (a typo must not
 // be silently ignored).
-#include "iblbake/scene.h"
+#include "iblbake/scene/scene.h"
 
-#include "iblbake/error.h"
-#include "iblbake/ktx2.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
 
 #include <mip_mapping.h>
 #include <nlohmann/json.hpp>

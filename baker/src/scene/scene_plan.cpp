@@ -1,5 +1,5 @@
 // The planner (scene_plan.h): what a scene's materials and probes need, and nothing else.
-#include "iblbake/scene_plan.h"
+#include "iblbake/scene/scene_plan.h"
 
 #include <cmath>
 

@@ -1,16 +1,16 @@
 #include "scene_stages.h"
 
-#include "iblbake/calibration.h"
-#include "iblbake/dfg_lut.h"
-#include "iblbake/environment.h"
-#include "iblbake/error.h"
-#include "iblbake/ingest.h"
-#include "iblbake/irradiance.h"
-#include "iblbake/ktx2.h"
-#include "iblbake/products.h"
-#include "iblbake/sh.h"
-#include "iblbake/specular.h"
-#include "iblbake/sun.h"
+#include "iblbake/baker/calibration.h"
+#include "iblbake/baker/dfg_lut.h"
+#include "iblbake/baker/environment.h"
+#include "iblbake/baker/ingest.h"
+#include "iblbake/baker/irradiance.h"
+#include "iblbake/baker/products.h"
+#include "iblbake/baker/sh.h"
+#include "iblbake/baker/specular.h"
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,9 +2,9 @@
 // files, writes its files into a staging directory (scene_plan.h lists the kinds).
 #pragma once
 
-#include "iblbake/executor.h"
-#include "iblbake/scene.h"
-#include "iblbake/scene_plan.h"
+#include "iblbake/opencl/executor.h"
+#include "iblbake/scene/scene.h"
+#include "iblbake/scene/scene_plan.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,7 +1,7 @@
 #include "stage_keys.h"
 
-#include "iblbake/content_hash.h"
-#include "iblbake/error.h"
+#include "iblbake/bake_state/content_hash.h"
+#include "iblbake/core/error.h"
 
 namespace ibl {
 

@@ -2,9 +2,9 @@
 // both agree on what "the same inputs" means.
 #pragma once
 
-#include "iblbake/code_identity.h"
-#include "iblbake/scene.h"
-#include "iblbake/scene_plan.h"
+#include "iblbake/bake_state/code_identity.h"
+#include "iblbake/scene/scene.h"
+#include "iblbake/scene/scene_plan.h"
 
 #include <map>
 #include <string>

@@ -1,11 +1,11 @@
-// checkBakeUpToDate (bake_scene.h): a finished bake is recognised from its manifest and the content hashes
+// checkBakeUpToDate (bake_state.h): a finished bake is recognised from its manifest and the content hashes
 // alone, so a re-run of an unchanged scene (and a batch killed and restarted) starts no backend and reads
 // no cache entry.
-#include "iblbake/bake_scene.h"
+#include "iblbake/bake_state/bake_state.h"
 
-#include "iblbake/code_identity.h"
-#include "iblbake/content_hash.h"
-#include "iblbake/error.h"
+#include "iblbake/bake_state/code_identity.h"
+#include "iblbake/bake_state/content_hash.h"
+#include "iblbake/core/error.h"
 #include "stage_keys.h"
 
 #include <nlohmann/json.hpp>

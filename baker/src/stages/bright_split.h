@@ -2,7 +2,7 @@
 // the sparse excess of those texels (the list kernels/ld.h integrates exactly).
 #pragma once
 
-#include "iblbake/cubemap.h"
+#include "iblbake/core/cubemap.h"
 
 #include <cstdint>
 #include <vector>

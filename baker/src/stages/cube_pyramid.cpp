@@ -1,5 +1,5 @@
-#include "iblbake/cube_pyramid.h"
-#include "iblbake/error.h"
+#include "iblbake/core/cube_pyramid.h"
+#include "iblbake/core/error.h"
 
 #include <cmath>
 

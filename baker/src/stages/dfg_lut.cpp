@@ -1,6 +1,6 @@
-#include "iblbake/dfg_lut.h"
-#include "iblbake/dispatch.h"
-#include "iblbake/error.h"
+#include "iblbake/baker/dfg_lut.h"
+#include "iblbake/core/error.h"
+#include "iblbake/opencl/dispatch.h"
 
 #include <dfg.h>
 

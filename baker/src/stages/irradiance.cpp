@@ -1,9 +1,9 @@
-// The diffuse irradiance cube (iblbake/irradiance.h): sampled (kernels/irradiance.h on OpenCL or TBB),
+// The diffuse irradiance cube (iblbake/baker/irradiance.h): sampled (kernels/irradiance.h on OpenCL or TBB),
 // from SH, and the brute-force reference.
-#include "iblbake/irradiance.h"
-#include "iblbake/cube_pyramid.h"
-#include "iblbake/dispatch.h"
-#include "iblbake/error.h"
+#include "iblbake/baker/irradiance.h"
+#include "iblbake/core/cube_pyramid.h"
+#include "iblbake/core/error.h"
+#include "iblbake/opencl/dispatch.h"
 
 #include "bright_split.h"
 

@@ -1,7 +1,7 @@
 // L2 SH of a source cube, clamped-cosine convolution, Filament pre-scaling and deringing windows
-// (iblbake/sh.h). The basis itself is kernels/sh.h; the fp64 polynomials below are the same p_i.
-#include "iblbake/error.h"
-#include "iblbake/sh.h"
+// (iblbake/baker/sh.h). The basis itself is kernels/sh.h; the fp64 polynomials below are the same p_i.
+#include "iblbake/baker/sh.h"
+#include "iblbake/core/error.h"
 
 #include <cube.h>
 #include <sh.h>

@@ -1,6 +1,6 @@
-#include "iblbake/specular.h"
-#include "iblbake/dispatch.h"
-#include "iblbake/error.h"
+#include "iblbake/baker/specular.h"
+#include "iblbake/core/error.h"
+#include "iblbake/opencl/dispatch.h"
 
 #include "bright_split.h"
 

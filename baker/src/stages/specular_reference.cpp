@@ -1,6 +1,6 @@
 // Brute-force reference of one LD level: every source texel, solid-angle weighted, fp64 accumulation.
 // Used by tests and the accuracy report, never by a production path.
-#include "iblbake/specular.h"
+#include "iblbake/baker/specular.h"
 
 #include <ld.h>
 

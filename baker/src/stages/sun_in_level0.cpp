@@ -1,6 +1,6 @@
 // keepSunInLevel0 (specular.h): shared by `iblbake specular`, the scene bake's specular stage, the accuracy
 // report and the tests, so that they all bake the product the runtime expects.
-#include "iblbake/specular.h"
+#include "iblbake/baker/specular.h"
 
 #include <algorithm>
 

@@ -1,0 +1,90 @@
+// What a scene bake reports and what a bake directory holds, without baking (README "Scenes"): options,
+// stage results, the summary and its JSON, progress, and the up-to-date check. No OpenCL, OpenImageIO or
+// OpenColorIO: the front end (cli/front_end.cpp) answers up-to-date bakes with this alone; the bake itself
+// is baker/bake_scene.h.
+#pragma once
+
+#include "iblbake/core/backend.h"
+#include "iblbake/scene/scene.h"
+#include "iblbake/scene/scene_plan.h"
+
+#include <chrono>
+#include <filesystem>
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+struct BakeOptions {
+    std::filesystem::path cacheDirectory; // "" = <outputs.directory>/.iblbake-cache
+    bool force = false;                   // recompute every stage (and refresh its cache entry)
+    Backend backend = Backend::Auto;
+    std::string device;               // OpenCL device selector (executor.h)
+    std::ostream* warnings = nullptr; // backend warnings (e.g. the CPU fallback); nullptr = dropped
+};
+
+enum class StageStatus { Pending, Ran, Cached, Failed };
+const char* stageStatusName(StageStatus status); // "pending", "ran", "cached", "failed"
+
+struct StageResult {
+    std::string id, kind;
+    StageStatus status = StageStatus::Pending;
+    std::string key; // cache key: hash of inputs' content, settings, dependencies' keys, version, backend
+    double seconds = 0.0;
+    std::vector<std::string> products;
+};
+
+struct BakeSummary {
+    bool ok = false;
+    std::string error; // one line when !ok
+    std::vector<StageResult> stages;
+    std::vector<SkippedStage> skipped;
+    std::vector<std::filesystem::path> products; // in the output directory, manifest.json last
+    std::filesystem::path manifest;
+    std::string backend; // "opencl" / "cpu" / "none" (no stage ran kernels)
+    double seconds = 0.0;
+    bool upToDate = false; // the output directory held this bake already: nothing was read from the cache
+    int ran() const;
+    int cached() const;
+};
+
+// Receives progress; the default does nothing. Called from the thread that runs bakeScene.
+class ProgressSink {
+  public:
+    virtual ~ProgressSink() = default;
+    virtual void stageStart(const StageResult& stage, int index, int count) {}
+    virtual void stageEnd(const StageResult& stage, int index, int count) {}
+    virtual void done(const BakeSummary& summary) {}
+};
+
+// Whether scene.outputs.directory already holds a complete bake of this scene, found without baking: its
+// manifest.json parses, lists exactly the plan's stages with the keys the current inputs and settings give
+// (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
+// every product the plan names holds the bytes of the contentHash the manifest records. Reads the inputs
+// and products, never the cache; starts no backend and never throws.
+struct UpToDate {
+    bool upToDate = false;
+    std::string reason;                          // why not (the first reason found)
+    std::vector<std::filesystem::path> products; // when up to date: the products in plan order, manifest last
+    std::vector<std::string> keys;               // when up to date: the plan's stage keys, in plan order
+    std::string backend;                         // when up to date: the backend the manifest records
+    // The content hash of every file the plan reads, by path, when the check got as far as reading them all
+    // (empty otherwise): bakeStaleScene takes them instead of reading the inputs again.
+    std::map<std::string, std::string> inputHashes;
+};
+UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
+
+// The summary of a bake found up to date, as bakeScene reports it: every stage of the plan cached, with its
+// key, no time spent in it; `progress` sees each stage start and end, then done. `start` is when the caller
+// began (the summary's seconds count from it). bakeScene answers an unchanged scene this way, and so does
+// the front end (cli/front_end.cpp) without loading the engine.
+BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, ProgressSink& progress,
+                               std::chrono::steady_clock::time_point start);
+
+// The summary as JSON: {ok, error, backend, seconds, upToDate, ran, cached, stages: [{id, kind, status, key,
+// seconds, products}], skipped: [...], products: [...], manifest}.
+nlohmann::json bakeSummaryJson(const BakeSummary& summary);
+
+} // namespace ibl

@@ -1,0 +1,24 @@
+// OpenEXR output of float images (through OpenImageIO), written atomically.
+#pragma once
+
+#include "iblbake/core/image.h"
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ibl {
+
+enum class PixelType { Half, Float };
+
+struct ExrOutputOptions {
+    int channels = 4; // 3 writes R, G, B; 4 adds A
+    PixelType pixelType = PixelType::Float;
+    std::vector<std::pair<std::string, std::string>> attributes; // string metadata, e.g. "iblbake:layout"
+};
+
+// Throws ibl::Error naming the file and the problem; leaves no partial file and keeps an existing one.
+void writeExr(const std::filesystem::path& path, const ImageRGBA& image, const ExrOutputOptions& options);
+
+} // namespace ibl

@@ -1,0 +1,58 @@
+// A bake as glTF 2.0: the image-based light through EXT_lights_image_based (Khronos glTF repository,
+// extensions/2.0/Vendor/EXT_lights_image_based) and the extracted sun through KHR_lights_punctual.
+//
+// Conventions written (README "Engine outputs"):
+// - Frame: glTF's (right-handed, +Y up) is DESIGN.md's, so `rotation` is the identity [0, 0, 0, 1].
+// - specularImages[m][f]: level m of N holds perceptual roughness m / (N - 1) ("the various mip levels
+//   evenly map to roughness values from 0 to 1"); faces +X, -X, +Y, -Y, +Z, -Z; each face stored as in
+//   our KTX2 (OpenGL face orientation, first stored row = t = 0, the first row of the PNG), which is
+//   the standard orientation mirrored about its vertical axis, as the extension asks.
+// - Images: 4-channel PNG, RGBD (iblbake/baker/rgbd.h) of value / intensity. `intensity` (the extension's
+//   brightness multiplier, applied by loaders to images and coefficients alike) is chosen so that the
+//   brightest exported channel encodes to RGBD's maximum 255: intensity x decoded = the bake's value.
+// - irradianceCoefficients: 9 x [r, g, b] in DESIGN.md order, E_lm / intensity with E_lm = A_l L_lm, the
+//   SH coefficients of the irradiance E(n) = sum E_lm Y_lm(n) in the basis of Ramamoorthi & Hanrahan
+//   2001 eq. 3 (which the extension cites; our basis, no Condon-Shortley phase). From our pre-scaled
+//   `sh.irradiance` c_i = A_l k_i L_i: E_i = c_i / k_i.
+// - The sun: a KHR_lights_punctual directional light on a node whose rotation turns -Z (the light's
+//   direction of travel) to -direction; color = our colour / its largest component (the schema caps
+//   color at 1), intensity = illuminance x that component, so intensity x color is our RGB illuminance.
+#pragma once
+
+#include "iblbake/baker/sh.h"
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/cubemap.h"
+
+#include <array>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+struct GltfIblScene {
+    // Level m of N holds perceptual roughness m / (N - 1); face sizes halve from level to level.
+    CubeMapChain specular;
+    ShRgb prescaledIrradiance{}; // our sh.irradiance: A_l k_i L_i (irradianceSH(n) = E(n))
+    std::optional<DiskLight> sun;
+    bool sunInLux = true;                      // false: the sun's illuminance is in relative units
+    std::map<std::string, std::string> extras; // provenance, written as the light's "extras"
+};
+
+// E_i = c_i / k_i: the extension's coefficients (before dividing by the intensity).
+ShRgb gltfIrradianceCoefficients(const ShRgb& prescaledIrradiance);
+// E(n) = sum_i E_i Y_i(n), the extension's irradiance from its coefficients (Ramamoorthi & Hanrahan eq. 3).
+glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n);
+// The light's intensity: the brightest channel of every exported level / 255 (1 when that is 0).
+double gltfIblIntensity(const CubeMapChain& specular);
+// glTF quaternion [x, y, z, w] of a node whose -Z axis points along -towardLight.
+std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight);
+
+// Writes `path` (.gltf JSON) and its images beside it, named <stem>_specular_<level>_<face>.png. Every
+// file goes to a temporary name first; images are renamed into place, then the glTF. Throws ibl::Error
+// "<file>: <problem>".
+void writeGltfIbl(const std::filesystem::path& path, const GltfIblScene& scene);
+
+} // namespace ibl

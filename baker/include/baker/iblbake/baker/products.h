@@ -1,0 +1,130 @@
+// The products' documents, built in one place from typed values (a CalibrationRecord, the extracted sun,
+// the settings): the KTX2 key/values of the specular chain, the irradiance cube, the DFG LUT and the local
+// probes; the `iblbake.diffuse` JSON document; the manifest entries; the calibration and sun metadata they
+// all carry. `iblbake specular/diffuse/dfg`, the scene stages and the exporters call these, so that a
+// product says the same thing whichever command wrote it.
+#pragma once
+
+#include "iblbake/baker/calibration.h"
+#include "iblbake/baker/irradiance.h"
+#include "iblbake/baker/sh.h"
+#include "iblbake/baker/sun.h"
+#include "iblbake/ktx2/ktx2.h"
+
+#include <mip_mapping.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace ibl {
+
+// The whole file; throws ibl::Error "<file>: cannot read".
+std::string readText(const std::filesystem::path& path);
+
+// ---------------------------------------------------------------------------------------------------
+// Calibration and sun
+
+// calibrationMetadata(record, prefix) plus prefix + "sun" ("extracted as a disk light ..." or "kept in the
+// environment") and, when extracted, prefix + "sunLight" = the light's one-line sunJson. Prefix "iblbake."
+// for KTX2 key/values, "iblbake:" for OpenEXR attributes.
+Ktx2KeyValues calibrationKeyValues(const CalibrationRecord& record, const std::optional<DiskLight>& sun,
+                                   const std::string& prefix = "iblbake.");
+
+// The light's JSON document (sun.h diskLightToJson), in lux when the record calibrated the map and in
+// relative units otherwise; indent < 0: one line.
+std::string sunJson(const DiskLight& light, const CalibrationRecord& record, int indent = 2);
+
+// The record with typed values, for files the bake reads back (a scene stage's cache entry), and its
+// reader (throws ibl::Error naming the first missing or malformed key).
+nlohmann::json calibrationRecordToJson(const CalibrationRecord& record);
+CalibrationRecord calibrationRecordFromJson(const nlohmann::json& json);
+
+// ---------------------------------------------------------------------------------------------------
+// KTX2 products
+
+// The DFG LUT's metadata (KTX2 key/values, or with prefix "iblbake:" OpenEXR attributes): product, layout,
+// samples. `rowWord` names a row of the image in the layout text ("row" in KTX2, "scanline" in OpenEXR).
+Ktx2KeyValues dfgLutMetadata(const std::string& prefix, const std::string& rowWord, std::uint32_t samples);
+
+// An LD chain: the distant specular ("specular-ld") or a local probe's ("local-probe-ld").
+struct LdChainProduct {
+    std::string product = "specular-ld";
+    MipMapping mapping = MipMapping::Frostbite;
+    int levelCount = 0;
+    std::optional<int> integratedLevels; // recorded when the bake stopped integrating early (scene bakes)
+    std::string colorSpace;
+    std::optional<std::string> source; // the input's file name
+    std::string settings;              // "quality=... samples=..." as the writer ran it
+    bool sunInLevel0 = false;          // specular.h keepSunInLevel0
+    // With sunInLevel0: the detection limit the sun was extracted with (`iblbake gltf` finds it again).
+    std::optional<double> sunMaxSolidAngle;
+};
+// "iblbake.product", "iblbake.roughnessMapping" (mipMappingName: frostbite | linear),
+// "iblbake.roughnessMappingMeaning" (mipMappingMeaning), "iblbake.levelCount", "iblbake.integratedLevels",
+// "iblbake.colorSpace", "iblbake.source", "iblbake.settings", calibrationKeyValues, "iblbake.sunInLevel0" =
+// "true" and "iblbake.sunMaxSolidAngle" when level 0 kept the sun.
+Ktx2KeyValues ldChainKeyValues(const LdChainProduct& chain, const CalibrationRecord& record,
+                               const std::optional<DiskLight>& sun);
+
+// The irradiance cube's normalization (E / pi), as its KTX2 key and the diffuse document state it.
+extern const char* const kIrradianceNormalization;
+// "sampled: ..." with the sample count, or "sh: ..." (the windowed SH evaluated per texel).
+std::string irradianceMethodText(IrradianceMethod method, std::uint32_t samples);
+Ktx2KeyValues irradianceKeyValues(const std::string& methodText, const std::string& colorSpace,
+                                  const std::optional<std::string>& source, const CalibrationRecord& record,
+                                  const std::optional<DiskLight>& sun);
+
+// ---------------------------------------------------------------------------------------------------
+// The iblbake.diffuse document (schemaVersion 1; README "Diffuse probes")
+
+struct DiffuseSource {
+    std::string file; // as the writer names it (the command's argument, or the scene's file name)
+    int width = 0, height = 0;
+    std::string layout, inputColorSpace;
+    int faceSize = 0; // of the cube the SH were projected from
+    double rotateDegrees = 0.0;
+};
+// schema, schemaVersion, generator, source, colorSpace, units, calibration (the record's keys without
+// prefix, "sun", and "sunLight" as a light object when extracted), directions, sh {order, coefficientCount,
+// basis, basisOrder, clampedCosineFactors, window {..., requested}, minIrradiance, radianceUnwindowed,
+// radiance, irradiance, irradianceOverPi and their conventions}. `iblbake diffuse` adds "irradianceCube"
+// and "timing" (what it ran); a scene bake writes the document as it is (its bytes are a cache entry).
+nlohmann::json diffuseDocument(const DiffuseSH& sh, const std::string& requestedWindow,
+                               const std::string& colorSpace, const DiffuseSource& source,
+                               const CalibrationRecord& record, const std::optional<DiskLight>& sun);
+
+// ---------------------------------------------------------------------------------------------------
+// Manifest entries (README "Manifest"); contentHash is the product file's.
+
+nlohmann::json dfgManifestEntry(std::uint32_t size, std::uint32_t samples, bool disneyChannelUsed,
+                                const std::string& contentHash);
+
+struct LdManifestFacts {
+    std::string file, format;
+    int faceSize = 0, levels = 0, integratedLevels = 0;
+    MipMapping mapping = MipMapping::Frostbite;
+    double validRoughnessMax = 1.0;
+    std::string quality;
+    std::optional<bool> sunInLevel0; // the distant chain's (absent for local probes)
+};
+nlohmann::json ldManifestEntry(const LdManifestFacts& facts, const std::string& contentHash);
+// The stage-side form of ldManifestEntry (no contentHash): what the specular stage records in its cache
+// entry so that the manifest needs nothing else from it; and its reader.
+nlohmann::json ldManifestFactsToJson(const LdManifestFacts& facts);
+LdManifestFacts ldManifestFactsFromJson(const nlohmann::json& json);
+
+// From the diffuse document: sh.irradiance, its convention, sh.window {name, parameter, searched,
+// bandFactors}.
+nlohmann::json diffuseManifestEntry(const nlohmann::json& diffuseDocument, const std::string& contentHash);
+nlohmann::json irradianceManifestEntry(int faceSize, const std::string& format, std::uint32_t samples,
+                                       const std::string& contentHash);
+nlohmann::json sunManifestEntry(const DiskLight& light, const std::string& contentHash);
+// The manifest's "units", "colorSpace" and "calibration" {factor, record} of a bake.
+void addCalibrationToManifest(nlohmann::json& manifest, const CalibrationRecord& record,
+                              const std::string& colorSpace);
+
+} // namespace ibl

@@ -1,0 +1,65 @@
+// The specular LD chain (DESIGN.md "LD mip <-> roughness"): level 0 is the unconvolved source, level m
+// holds the GGX pre-integration (N = V = R) for the perceptual roughness the mip mapping gives it.
+#pragma once
+
+#include "iblbake/core/cube_pyramid.h"
+#include "iblbake/core/cubemap.h"
+#include "iblbake/ktx2/ktx2.h"
+#include "iblbake/opencl/executor.h"
+
+#include <mip_mapping.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+// MipMapping, its names and perceptualRoughnessForLevel: kernels/mip_mapping.h.
+// "frostbite" | "linear"; throws ibl::Error "'<name>' is not one of frostbite, linear" otherwise.
+MipMapping parseMipMapping(const std::string& name);
+
+enum class Quality { Draft, Production, Reference };
+Quality parseQuality(const std::string& name);
+const char* qualityName(Quality quality);
+
+struct SpecularSettings {
+    int levels = 0; // 0: down to 1x1 (log2(face size) + 1)
+    MipMapping mapping = MipMapping::Frostbite;
+    std::uint32_t samples = 0; // per texel and level; 0: from the quality preset
+    Quality quality = Quality::Production;
+    // Texels brighter than brightThreshold x the solid-angle-weighted mean luminance (at most
+    // maxBrightTexels of them, the brightest) are integrated exactly instead of by sampling (ld.h).
+    float brightThreshold = 32.0f;
+    std::uint32_t maxBrightTexels = 256;
+    float lodBias = -0.5f; // added to Listing 19's 0.5 log2(omegaS / omegaP); measured best (README)
+    // Levels from this one on are not integrated but box-downsampled from the level before (0: integrate
+    // every level). A scene whose roughest material reads level m needs only m + 1 integrated levels; the
+    // chain keeps its full length so that its roughness mapping stays the same (scene_plan.h).
+    int integratedLevels = 0;
+};
+
+std::uint32_t samplesFor(const SpecularSettings& settings);
+int levelCountFor(int faceSize, const SpecularSettings& settings);
+
+struct SpecularLevelTiming {
+    int level;
+    float perceptualRoughness;
+    double milliseconds;
+};
+
+// Bakes the chain from a source cube whose face size is the output's (a power of two).
+CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
+                          std::vector<SpecularLevelTiming>* timings = nullptr);
+
+// Level 0 is the unconvolved source. A chain baked from the residual of a sun extraction gets the cube from
+// before the extraction back as level 0, when `format` stores every texel of it unclamped (16-bit and packed
+// floats end near 65,000; a calibrated sun reaches ~1e9): a mirror then reflects the sun's own pixels, and
+// the runtime fades the disk light out where it reads level 0 (LdPyramid::sunInLevel0, KTX2 key
+// "iblbake.sunInLevel0"), so every roughness counts the sun once. Returns whether level 0 now holds the sun.
+bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format);
+
+// Brute-force reference for one level: every source texel, solid-angle weighted, fp64 accumulation.
+CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness);
+
+} // namespace ibl

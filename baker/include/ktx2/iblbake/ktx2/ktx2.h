@@ -1,0 +1,69 @@
+// KTX 2.0 container output and input for cube-map chains and 2D LUTs (uncompressed float formats only,
+// no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data Format Descriptor
+// follows the Khronos Data Format Specification's basic descriptor block for each vkFormat.
+#pragma once
+
+#include "iblbake/core/cubemap.h"
+#include "iblbake/core/image.h"
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace ibl {
+
+// VK_FORMAT_R16G16B16A16_SFLOAT (97), VK_FORMAT_R32G32B32A32_SFLOAT (109),
+// VK_FORMAT_B10G11R11_UFLOAT_PACK32 (122), VK_FORMAT_E5B9G9R9_UFLOAT_PACK32 (123).
+enum class Ktx2Format { RGBA16F, RGBA32F, B10G11R11, E5B9G9R9 };
+
+// The names of the formats (`--format`, the scene's outputs.ktx2Format), in Ktx2Format order.
+inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"};
+// Throws ibl::Error "'<name>' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9" for any other name.
+Ktx2Format parseKtx2Format(const std::string& name);
+
+// What the writer had to change to make the data storable. Each texel counts at most once per field.
+struct Ktx2WriteStats {
+    std::uint64_t clampedTexels = 0;     // a finite channel outside the format's range (|v| > max, or v < 0
+                                         // for the unsigned packed formats) was clamped to it
+    std::uint64_t repairedNonFinite = 0; // a channel was NaN (-> 0) or +-Inf (-> the range limit)
+};
+
+using Ktx2KeyValues = std::vector<std::pair<std::string, std::string>>;
+
+// Writes a cube map with every level of `chain` (levels[0] largest, level m of face size max(1, base >> m)).
+// Key/value pairs are written sorted by key, each value NUL-terminated, together with
+// "KTXwriter" = "iblbake <version>" (the caller may not pass that key, nor an empty or duplicate key).
+// The file is written to a temporary name and renamed when complete (ibl::AtomicFile). Throws ibl::Error
+// "<file>: <problem>" on invalid input or any I/O failure; an existing file at `path` is then untouched.
+Ktx2WriteStats writeKtx2Cube(const std::filesystem::path& path, const CubeMapChain& chain, Ktx2Format format,
+                             const Ktx2KeyValues& keyValues);
+
+// Writes one 2D image (faceCount 1, levelCount 1), e.g. a LUT. Same conventions as writeKtx2Cube.
+Ktx2WriteStats writeKtx2Image(const std::filesystem::path& path, const ImageRGBA& image, Ktx2Format format,
+                              const Ktx2KeyValues& keyValues);
+
+struct Ktx2Image {
+    std::uint32_t vkFormat = 0;
+    std::uint32_t pixelWidth = 0;
+    std::uint32_t pixelHeight = 0;
+    std::uint32_t faceCount = 0;
+    std::uint32_t levelCount = 0;                 // as stored in the header; 0 means "base level only"
+    std::map<std::string, std::string> keyValues; // one trailing NUL of each value removed
+    // levels[m][face], max(1, levelCount) levels, decoded to float RGBA (alpha 1 for formats without
+    // alpha). Values are decoded as stored: a foreign file may contain Inf/NaN texels.
+    std::vector<std::vector<ImageRGBA>> levels;
+};
+
+// Reads a file written by writeKtx2Cube/writeKtx2Image or any conforming writer using one of the four
+// formats above. Every structural field is validated against the specification and the file size before
+// use; damage of any kind gives ibl::Error "<file>: <problem>".
+Ktx2Image readKtx2(const std::filesystem::path& path);
+
+// The same for a file's bytes already in memory; `name` stands for the file in error messages.
+Ktx2Image parseKtx2(std::span<const std::uint8_t> bytes, const std::string& name);
+
+} // namespace ibl

@@ -1,0 +1,184 @@
+// One way to run a kernel over a grid on either backend, in the spirit of pbrt-v4's ParallelFor: a stage
+// says once what to run (a Kernel), over which elements (a DispatchGrid), with which arguments, and the
+// Dispatcher decides how. On OpenCL it uploads the inputs, pads the grid to whole work-groups, launches the
+// entry point of kernels/<file> and downloads the output; on the CPU backend it runs TBB over the grid's
+// rows and calls, for each element, the very same portable item function the entry point calls
+// (kernels/work_item.h), on the host arrays in place. So both backends run one piece of code per element.
+//
+// Kernel contract: the entry point's arguments are (output, parameter struct, inputs...), it gets its
+// WorkItem from the global id and calls the item function with them, nothing else:
+//   __kernel void ldLevel(__global float* out, LdParams p, __global const float* pyramid, ...) {
+//       ldLevelItem(cubeWorkItem(p.faceSize), out, p, pyramid, ...);
+//   }
+// An item writes only the 4 output floats it owns (WorkItem::offset), and reads its own output only as
+// left by an earlier dispatch: reading it in the sample loop of the same kernel stops PoCL from
+// vectorizing (kernels/portable.h), so accumulation goes through a second output and an add kernel.
+#pragma once
+
+#include "iblbake/core/cubemap.h"
+#include "iblbake/core/image.h"
+#include "iblbake/opencl/executor.h"
+#include "iblbake/opencl/opencl_context.h"
+
+#include <work_item.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+// The elements a dispatch runs over, one work-item each, and how OpenCL groups them.
+class DispatchGrid {
+  public:
+    // The texels of a cube level: 6 faces of faceSize x faceSize, face by face, row by row. A work-group
+    // is up to 16 adjacent texels of one row: one face, nearby fetches, uniform loops.
+    static DispatchGrid cube(std::uint32_t faceSize);
+    // A width x height image, row by row. A work-group is 32 texels of one row (a DFG LUT row shares its
+    // roughness, so the items of a group run the same loop and PoCL vectorizes across them).
+    static DispatchGrid image(std::uint32_t width, std::uint32_t height);
+    // `count` elements in groups of 64.
+    static DispatchGrid list(std::size_t count);
+
+    std::size_t elementCount() const { return std::size_t(width_) * height_ * layers_; }
+    std::uint32_t width() const { return width_; }
+    std::uint32_t height() const { return height_; }
+    // The work-item of an element (index in the output's order), as the entry point computes it.
+    WorkItem itemAt(std::size_t element) const;
+    // Calls `range(first, end)` on TBB threads for element ranges that cover the grid once: a row of a
+    // cube face or an image each, or 256 elements of a list.
+    void forEachRange(const std::function<void(std::size_t first, std::size_t end)>& range) const;
+    cl::NDRange globalRange() const; // padded to whole groups along x
+    cl::NDRange localRange() const;
+
+  private:
+    enum class Shape { Cube, Image, List };
+    DispatchGrid(Shape shape, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
+                 std::uint32_t groupWidth)
+        : shape_(shape), width_(width), height_(height), layers_(layers), groupWidth_(groupWidth) {}
+    Shape shape_;
+    std::uint32_t width_, height_, layers_, groupWidth_;
+};
+
+// An input of a dispatch: the caller's host array, read in place on the CPU (it must outlive the
+// dispatches that use it) or copied once into an OpenCL buffer that every later dispatch shares.
+template <class T>
+class DeviceArray {
+  public:
+    DeviceArray() = default;
+    const T* host() const { return host_; }
+    const cl::Buffer& buffer() const { return buffer_; }
+
+  private:
+    friend class Dispatcher;
+    friend class DispatchOutput;
+    const T* host_ = nullptr;
+    cl::Buffer buffer_;
+};
+
+// The output of dispatches over one grid: IBL_OUTPUT_FLOATS floats per element, in device memory on
+// OpenCL. Its contents are undefined until a kernel stores every element.
+class DispatchOutput {
+  public:
+    const DispatchGrid& grid() const { return grid_; }
+    // The output as an input of a later dispatch (e.g. a chunk added into a sum).
+    DeviceArray<float> asInput() const;
+
+  private:
+    friend class Dispatcher;
+    explicit DispatchOutput(const DispatchGrid& grid) : grid_(grid) {}
+    DispatchGrid grid_;
+    std::vector<float> host_;
+    cl::Buffer buffer_;
+};
+
+// A kernel of kernels/<file>: its OpenCL entry point and the portable item function it calls.
+template <class Params, class... Inputs>
+struct Kernel {
+    const char* file;
+    const char* entryPoint;
+    void (*item)(WorkItem, float*, Params, const Inputs*...);
+};
+
+template <class Params, class... Inputs>
+Kernel<Params, Inputs...> kernel(const char* file, const char* entryPoint,
+                                 void (*item)(WorkItem, float*, Params, const Inputs*...)) {
+    return {file, entryPoint, item};
+}
+
+class Dispatcher {
+  public:
+    explicit Dispatcher(const Executor& executor) : cl_(executor.usesOpenCL() ? &executor.cl() : nullptr) {}
+    // nullptr: the CPU backend.
+    explicit Dispatcher(ocl::Context* cl) : cl_(cl) {}
+
+    bool usesOpenCL() const { return cl_ != nullptr; }
+
+    // `name` says which input failed in an error message.
+    template <class T>
+    DeviceArray<T> upload(const std::string& name, std::span<const T> data) const {
+        DeviceArray<T> array;
+        if (cl_)
+            array.buffer_ = uploadBytes(name, data.data(), data.size_bytes());
+        else
+            array.host_ = data.data();
+        return array;
+    }
+    template <class T>
+    DeviceArray<T> upload(const std::string& name, const std::vector<T>& data) const {
+        return upload(name, std::span<const T>(data));
+    }
+
+    DispatchOutput output(const DispatchGrid& grid) const;
+
+    // Runs `k` over the output's grid with these arguments.
+    template <class Params, class... Inputs>
+    void run(const Kernel<Params, Inputs...>& k, DispatchOutput& out, const Params& params,
+             const DeviceArray<Inputs>&... inputs) const {
+        if (out.grid().elementCount() == 0) return;
+        if (!cl_) {
+            float* target = out.host_.data();
+            const DispatchGrid& grid = out.grid();
+            grid.forEachRange([&](std::size_t first, std::size_t end) {
+                for (std::size_t element = first; element < end; ++element)
+                    k.item(grid.itemAt(element), target, params, inputs.host()...);
+            });
+            return;
+        }
+        cl::Kernel clKernel = cl_->kernel(k.file, k.entryPoint);
+        checkArgumentCount(clKernel, k.file, k.entryPoint, 2 + sizeof...(Inputs));
+        cl_uint index = 0;
+        setArg(clKernel, k.entryPoint, index++, out.buffer_);
+        setArg(clKernel, k.entryPoint, index++, params);
+        (setArg(clKernel, k.entryPoint, index++, inputs.buffer()), ...);
+        cl_->run(clKernel, out.grid().globalRange(), out.grid().localRange());
+    }
+
+    // The output, element by element.
+    std::vector<glm::vec4> download(const DispatchOutput& out) const;
+    // The output of a cube grid as a cube map; of an image grid as an image.
+    CubeMap downloadCube(const DispatchOutput& out) const;
+    ImageRGBA downloadImage(const DispatchOutput& out) const;
+
+  private:
+    cl::Buffer uploadBytes(const std::string& name, const void* data, std::size_t bytes) const;
+    template <class T>
+    static void setArg(cl::Kernel& k, const char* entryPoint, cl_uint index, const T& value) {
+        try {
+            k.setArg(index, value);
+        } catch (const cl::Error& e) {
+            throwSetArgFailure(entryPoint, index, e.err());
+        }
+    }
+    // The entry point takes as many arguments as the item function (output, parameters, inputs).
+    static void checkArgumentCount(const cl::Kernel& k, const char* file, const char* entryPoint,
+                                   std::size_t count);
+    [[noreturn]] static void throwSetArgFailure(const char* entryPoint, cl_uint index, cl_int status);
+
+    ocl::Context* cl_;
+};
+
+} // namespace ibl

@@ -1,0 +1,89 @@
+// The OpenCL host layer: device choice, embedded program build with full diagnostics, a per-process
+// program cache, and per-dispatch timing. Every kernel goes through this one place, launched by the
+// dispatch helper (iblbake/opencl/dispatch.h).
+#pragma once
+
+#define CL_HPP_TARGET_OPENCL_VERSION 120
+#define CL_HPP_MINIMUM_OPENCL_VERSION 120
+#define CL_HPP_ENABLE_EXCEPTIONS
+#include <CL/opencl.hpp>
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace ibl::ocl {
+
+// Symbolic name of an OpenCL status code ("CL_OUT_OF_RESOURCES"), or "CL_UNKNOWN_ERROR".
+const char* errorName(cl_int status);
+
+struct DeviceInfo {
+    std::size_t platformIndex = 0;
+    std::size_t deviceIndex = 0;
+    std::string platformName;
+    std::string deviceName;
+    std::string deviceType; // "CPU", "GPU", "ACCELERATOR", ...
+    std::string deviceVersion;
+    cl_uint computeUnits = 0;
+    cl_ulong globalMemBytes = 0;
+
+    std::string id() const { return std::to_string(platformIndex) + ":" + std::to_string(deviceIndex); }
+};
+
+// All devices of all platforms; empty when there is no ICD or no device.
+std::vector<DeviceInfo> listDevices();
+
+struct DispatchTiming {
+    std::string kernel;
+    double milliseconds = 0.0; // device execution time from profiling events
+};
+
+// Inserts the embedded headers a source includes (each once), with #line markers so that build logs
+// point at kernels/<file>:<line>. Throws ibl::Error naming a missing include.
+std::string assembleProgramSource(const std::string& mainFile);
+
+class Context {
+  public:
+    // selector: "" (use $IBLBAKE_CL_DEVICE, else the first GPU, else the first device), "P:D" indices,
+    // or a case-insensitive substring of the device or platform name. Throws ibl::Error when nothing fits.
+    static std::shared_ptr<Context> create(const std::string& selector = "");
+
+    const DeviceInfo& device() const { return info_; }
+    cl::Context& context() { return context_; }
+    cl::CommandQueue& queue() { return queue_; }
+
+    // Options every embedded program is built with: OpenCL C 1.2, plus IBL_UNIFORM_LOOP_BARRIER on CPU
+    // devices (see kernels/portable.h).
+    const std::string& baseOptions() const { return baseOptions_; }
+    // Program from the embedded kernels/<file>, built once per process and options string.
+    cl::Program& program(const std::string& file, const std::string& options = "");
+    cl::Kernel kernel(const std::string& file, const std::string& kernelName,
+                      const std::string& options = "");
+    // Builds arbitrary source; on failure throws ibl::Error with program name, device, options and log.
+    cl::Program buildProgram(const std::string& name, const std::string& source, const std::string& options);
+
+    // Buffers, with CL failures turned into ibl::Error.
+    cl::Buffer createBuffer(cl_mem_flags flags, std::size_t bytes, const void* hostData = nullptr);
+    void download(const cl::Buffer& buffer, std::size_t bytes, void* destination);
+
+    // Enqueues a kernel over an NDRange, waits, and records its device time.
+    void run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
+
+    std::vector<DispatchTiming> takeTimings();
+
+  private:
+    Context(cl::Device device, DeviceInfo info);
+
+    cl::Device device_;
+    DeviceInfo info_;
+    std::string baseOptions_;
+    cl::Context context_;
+    cl::CommandQueue queue_;
+    std::mutex mutex_;
+    std::map<std::string, cl::Program> programs_;
+    std::vector<DispatchTiming> timings_;
+};
+
+} // namespace ibl::ocl
