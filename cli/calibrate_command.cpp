@@ -73,7 +73,6 @@ Action addCalibrateCommand(CLI::App& app) {
         }
         const IngestReport& r = calibrated.report;
         const ImageRGBA& image = calibrated.image;
-        const CalibrationOutcome outcome{calibrated.record, calibrated.sun, std::nullopt};
         const std::string layoutText =
             calibrated.latLong
                 ? "latlong (DESIGN.md / OpenEXR LatLongMap: +Y first scanline, +Z at the centre, +X at u = "
@@ -89,26 +88,26 @@ Action addCalibrateCommand(CLI::App& app) {
                           {"iblbake:source", std::filesystem::path(r.file).filename().string()},
                           {"iblbake:version", IBLBAKE_VERSION},
                           {"Software", "iblbake " IBLBAKE_VERSION}};
-        for (auto& kv : calibrationKeyValues(outcome.record, outcome.sun, "iblbake:"))
+        for (auto& kv : calibrationKeyValues(calibrated.record, calibrated.sun, "iblbake:"))
             exr.attributes.push_back(std::move(kv));
 
-        std::unique_ptr<AtomicFile> sunJson = stageSunJson(o->calibration, outcome);
+        std::unique_ptr<AtomicFile> sunJson = stageSunJson(o->calibration, calibrated.record, calibrated.sun);
         writeExr(o->output, image, exr);
         if (sunJson) sunJson->commit();
 
         std::printf("input   %s: %dx%d %s, %s -> %s, source cube %d\n", r.file.c_str(), r.width, r.height,
                     layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(), r.faceSize);
-        std::printf("%s\n", outcome.record.summary().c_str());
-        if (outcome.sun) {
-            const DiskLight& l = *outcome.sun;
+        std::printf("%s\n", calibrated.record.summary().c_str());
+        if (calibrated.sun) {
+            const DiskLight& l = *calibrated.sun;
             std::printf("sun     extracted: elevation %.2f deg, azimuth %.2f deg, angular radius %.3f deg, "
                         "E_perp %.6g %s, solid angle %.4g sr -> %s\n",
                         l.elevationDegrees(), l.azimuthDegrees(), l.angularRadius * 180.0 / std::numbers::pi,
-                        l.illuminance, outcome.record.absolute() ? "lux" : "(relative)", l.solidAngle,
+                        l.illuminance, calibrated.record.absolute() ? "lux" : "(relative)", l.solidAngle,
                         o->calibration.sunJson.c_str());
         }
         std::printf("wrote   %s: %dx%d float, %s\n", o->output.c_str(), image.width, image.height,
-                    outcome.record.units().c_str());
+                    calibrated.record.units().c_str());
         return 0;
     };
 }

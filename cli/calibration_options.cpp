@@ -101,19 +101,19 @@ Error withFlag(const SettingError& error, const CalibrationOptions& calibration)
                  error.what());
 }
 
-std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
-                                         const CalibrationOutcome& outcome) {
-    if (options.sunJson.empty() || !outcome.sun) return nullptr;
+std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options, const CalibrationRecord& record,
+                                         const std::optional<DiskLight>& sun) {
+    if (options.sunJson.empty() || !sun) return nullptr;
     auto file = std::make_unique<AtomicFile>(options.sunJson);
     std::ofstream out(file->tempPath());
-    out << sunJson(*outcome.sun, outcome.record) << "\n";
+    out << sunJson(*sun, record) << "\n";
     out.close();
     if (!out) throw Error(options.sunJson + ": cannot write the sun's JSON");
     return file;
 }
 
-CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
-                                 int sourceFaceSize, bool keepCubeWithSun) {
+PreparedEnvironment ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
+                                     int sourceFaceSize, bool keepCubeWithSun) {
     PreparedEnvironment prepared;
     try {
         prepared = prepareEnvironment(
@@ -121,15 +121,13 @@ CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOpt
     } catch (const SettingError& e) {
         throw withFlag(e, calibration);
     }
-    CalibratedInput out{std::move(prepared.env),
-                        {std::move(prepared.record), std::move(prepared.sun), std::move(prepared.withSun)}};
-    printIngestReport(out.env.report);
-    const CalibrationOutcome& c = out.calibration;
+    printIngestReport(prepared.env.report);
+    const PreparedEnvironment& c = prepared;
     if (c.record.absolute()) std::printf("%s\n", c.record.summary().c_str());
     if (c.sun)
         std::printf("sun     extracted: %.6g lux at elevation %.2f deg, azimuth %.2f deg\n",
                     c.sun->illuminance, c.sun->elevationDegrees(), c.sun->azimuthDegrees());
-    return out;
+    return prepared;
 }
 
 } // namespace ibl::cli

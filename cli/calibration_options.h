@@ -5,9 +5,9 @@
 //   CalibrationOptions calibration;          // in the command's option struct
 //   calibration.addTo(*cmd);                 // when building the subcommand
 //   ...
-//   CalibratedInput in = ingestCalibrated(input, calibration, size);  // prepareEnvironment, printed
-//   keyValues = ldChainKeyValues(..., in.calibration.record, in.calibration.sun);  // products.h
-//   auto sunJson = stageSunJson(calibration, in.calibration);  // before writing the main output ...
+//   PreparedEnvironment in = ingestCalibrated(input, calibration, size);  // prepareEnvironment, printed
+//   keyValues = ldChainKeyValues(..., in.record, in.sun);  // products.h
+//   auto sunJson = stageSunJson(calibration, in.record, in.sun);  // before writing the main output ...
 //   ... write the main output ...
 //   if (sunJson) sunJson->commit();                            // ... and committed after it
 #pragma once
@@ -28,12 +28,6 @@
 #include <vector>
 
 namespace ibl::cli {
-
-struct CalibrationOutcome {
-    CalibrationRecord record;
-    std::optional<DiskLight> sun;   // the extracted sun (with --extract-sun)
-    std::optional<CubeMap> withSun; // the calibrated cube before the extraction (keepCubeWithSun)
-};
 
 struct CalibrationOptions {
     std::optional<double> scale, ev100, illuminance, sunIlluminance, skyLuminance;
@@ -59,21 +53,14 @@ Error withFlag(const SettingError& error, const CalibrationOptions& calibration)
 
 // With --sun-json: the light written to a temporary file beside the target; commit() it once the main
 // output is written, so that a failed run leaves neither. nullptr without --sun-json.
-std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options,
-                                         const CalibrationOutcome& outcome);
+std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options, const CalibrationRecord& record,
+                                         const std::optional<DiskLight>& sun);
 
 struct InputOptions;
 
-// What a baking command starts from: the ingested environment, calibrated (and with the sun taken out
-// when asked).
-struct CalibratedInput {
-    SourceEnvironment env;
-    CalibrationOutcome calibration;
-};
-
 // prepareEnvironment of the input at `sourceFaceSize` with these options (errors withFlag), and prints the
 // input report, the calibration and the extracted sun. keepCubeWithSun: as environmentSettings'.
-CalibratedInput ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
-                                 int sourceFaceSize, bool keepCubeWithSun = false);
+PreparedEnvironment ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
+                                     int sourceFaceSize, bool keepCubeWithSun = false);
 
 } // namespace ibl::cli

@@ -109,9 +109,9 @@ Action addDiffuseCommand(CLI::App& app) {
         if (wantCube) cubeFile.emplace(o->irradianceCube);
 
         Executor executor = o->backend.makeExecutor();
-        CalibratedInput input = ingestCalibrated(o->input, o->calibration, o->size);
+        const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size);
         const SourceEnvironment& env = input.env;
-        const CalibrationOutcome& calibration = input.calibration;
+        const PreparedEnvironment& calibration = input;
         const double ingestMs = millisecondsSince(start);
         const IngestReport& r = env.report;
 
@@ -191,7 +191,7 @@ Action addDiffuseCommand(CLI::App& app) {
             out.close();
             if (!out) throw Error(o->output + ": cannot write the JSON file");
         }
-        auto sunJson = stageSunJson(o->calibration, calibration);
+        auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
         if (cubeFile) cubeFile->commit();
         jsonFile.commit();
         if (sunJson) sunJson->commit();

@@ -98,9 +98,9 @@ Action addSpecularCommand(CLI::App& app) {
         settings.lodBias = o->lodBias;
         Executor executor = o->backend.makeExecutor();
         // The cube with the sun is kept for level 0 (below).
-        CalibratedInput input = ingestCalibrated(o->input, o->calibration, o->size, true);
+        const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
         const SourceEnvironment& env = input.env;
-        const CalibrationOutcome& calibration = input.calibration;
+        const PreparedEnvironment& calibration = input;
         const double ingestMs = millisecondsSince(start);
         const IngestReport& r = env.report;
 
@@ -124,7 +124,7 @@ Action addSpecularCommand(CLI::App& app) {
         ld.sunInLevel0 = calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format);
         ld.sunMaxSolidAngle = o->calibration.sunMaxSolidAngle;
         const Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
-        auto sunJson = stageSunJson(o->calibration, calibration);
+        auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
         Ktx2WriteStats stats = writeKtx2Cube(o->output, chain, format, kv);
         if (sunJson) sunJson->commit();
         if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, settings.mapping);

@@ -13,6 +13,9 @@
 
 namespace ibl::test {
 
+// The sample HDRI the README's commands bake (data/README.md).
+inline const std::string kSampleHdri = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
+
 struct CliRun {
     int exitCode = -1;
     std::string out;

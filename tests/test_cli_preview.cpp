@@ -14,20 +14,19 @@ namespace {
 
 using namespace ibl::test;
 
-const std::string kSample = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
-
 TEST(CliPreview, RendersTheBakeBesideTheReference) {
     fs::path dir = freshTempDir("preview");
     const std::string d = dir.string();
     const std::string calibration = " --sun-illuminance 100000 --extract-sun --sun-json " + d + "/sun.json";
     ASSERT_EQ(runCli("dfg --size 32 --samples 256 -o " + d + "/dfg_lut.exr").exitCode, 0);
+    ASSERT_EQ(runCli("specular " + kSampleHdri + " --size 64" + calibration + " -o " + d + "/specular.ktx2")
+                  .exitCode,
+              0);
     ASSERT_EQ(
-        runCli("specular " + kSample + " --size 64" + calibration + " -o " + d + "/specular.ktx2").exitCode,
+        runCli("diffuse " + kSampleHdri + " --size 64" + calibration + " -o " + d + "/diffuse.json").exitCode,
         0);
-    ASSERT_EQ(
-        runCli("diffuse " + kSample + " --size 64" + calibration + " -o " + d + "/diffuse.json").exitCode, 0);
     CliRun r =
-        runCli("preview " + d + " --reference " + kSample + " --sphere-size 16 -o " + d + "/preview.png");
+        runCli("preview " + d + " --reference " + kSampleHdri + " --sphere-size 16 -o " + d + "/preview.png");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     auto png = OIIO::ImageInput::open(d + "/preview.png");
     ASSERT_TRUE(png);

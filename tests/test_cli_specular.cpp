@@ -16,11 +16,9 @@ namespace {
 
 using namespace ibl::test;
 
-const std::string kSample = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
-
 TEST(CliSpecular, BakesTheSampleToKtx2ExrAndPreview) {
     fs::path dir = freshTempDir("specular");
-    CliRun r = runCli("specular " + kSample + " --size 32 --quality draft --backend cpu -o " +
+    CliRun r = runCli("specular " + kSampleHdri + " --size 32 --quality draft --backend cpu -o " +
                       (dir / "env.ktx2").string() + " --exr " + (dir / "levels").string() + " --preview " +
                       (dir / "preview.png").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -49,7 +47,7 @@ TEST(CliSpecular, BakesTheSampleToKtx2ExrAndPreview) {
 TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
     fs::path dir = freshTempDir("specular_calibrated");
     CliRun r = runCli(
-        "specular " + kSample + " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
+        "specular " + kSampleHdri + " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
         "--extract-sun --sun-json " + (dir / "sun.json").string() + " -o " + (dir / "env.ktx2").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
     ibl::Ktx2Image ktx = ibl::readKtx2(dir / "env.ktx2");
@@ -63,7 +61,8 @@ TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
     // A calibrated sun (~1e9 cd/m2) does not fit half floats: level 0 is the residual, as every level.
     EXPECT_EQ(ktx.keyValues.count("iblbake.sunInLevel0"), 0u);
     // In 32-bit floats level 0 keeps it (the unconvolved source): the sun's pixels, far above the residual.
-    r = runCli("specular " + kSample + " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
+    r = runCli("specular " + kSampleHdri +
+               " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
                "--extract-sun --sun-json " + (dir / "sun32.json").string() + " --format rgba32f -o " +
                (dir / "env32.ktx2").string());
     ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -80,7 +79,7 @@ TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
         ASSERT_NEAR(full.levels[1][0].pixels[i].g, ktx.levels[1][0].pixels[i].g,
                     1e-3f * std::abs(full.levels[1][0].pixels[i].g) + 1e-6f);
     // Two calibration sources: one line, non-zero, nothing written.
-    CliRun two = runCli("specular " + kSample + " --size 8 --ev100 12 --illuminance 5 -o " +
+    CliRun two = runCli("specular " + kSampleHdri + " --size 8 --ev100 12 --illuminance 5 -o " +
                         (dir / "two.ktx2").string());
     EXPECT_NE(two.exitCode, 0);
     EXPECT_EQ(lineCount(two.err), 1) << two.err;
@@ -94,8 +93,8 @@ TEST(CliSpecular, EveryFormatIsWritten) {
         {"rgba16f", 97}, {"rgba32f", 109}, {"b10g11r11", 122}, {"e5b9g9r9", 123}};
     for (auto [name, vk] : formats) {
         fs::path out = dir / (std::string(name) + ".ktx2");
-        CliRun r = runCli("specular " + kSample + " --size 8 --quality draft --backend cpu --format " + name +
-                          " -o " + out.string());
+        CliRun r = runCli("specular " + kSampleHdri + " --size 8 --quality draft --backend cpu --format " +
+                          name + " -o " + out.string());
         ASSERT_EQ(r.exitCode, 0) << name << ": " << r.err;
         EXPECT_EQ(ibl::readKtx2(out).vkFormat, vk);
     }
@@ -110,11 +109,11 @@ TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
     const std::pair<std::string, std::string> cases[] = {
         {"specular " + (dir / "missing.hdr").string() + out, "missing.hdr"},
         {"specular " + (dir / "notes.txt").string() + out, "notes.txt"},
-        {"specular " + kSample + " --size 100" + out, "--size"},
-        {"specular " + kSample + " --format bc6h" + out, "--format"},
-        {"specular " + kSample + " --quality ultra" + out, "--quality"},
-        {"specular " + kSample + " --layout hexagon" + out, "--layout: 'hexagon'"},
-        {"specular " + kSample + " --size 8 -o /nonexistent-dir/env.ktx2", "/nonexistent-dir/env.ktx2"},
+        {"specular " + kSampleHdri + " --size 100" + out, "--size"},
+        {"specular " + kSampleHdri + " --format bc6h" + out, "--format"},
+        {"specular " + kSampleHdri + " --quality ultra" + out, "--quality"},
+        {"specular " + kSampleHdri + " --layout hexagon" + out, "--layout: 'hexagon'"},
+        {"specular " + kSampleHdri + " --size 8 -o /nonexistent-dir/env.ktx2", "/nonexistent-dir/env.ktx2"},
     };
     for (const auto& [args, named] : cases) {
         CliRun r = runCli(args);

@@ -169,6 +169,18 @@ glm::vec3 directionColor(const glm::dvec3& d) {
     return glm::vec3(0.5 * (glm::normalize(d) + 1.0));
 }
 
+// The largest distance of a cube's texel from directionColor of the texel's centre direction.
+double worstDirectionColorError(const CubeMap& cube) {
+    const int n = cube.faceSize;
+    double worst = 0.0;
+    for (int f = 0; f < 6; ++f)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i)
+                worst = std::max(worst, double(glm::length(glm::vec3(cube.faces[f].at(i, j)) -
+                                                           directionColor(texelDirection(f, i, j, n)))));
+    return worst;
+}
+
 ibl::SourceEnvironment ingest(const fs::path& file, IngestSettings settings = {}) {
     return ibl::ingestEnvironment({file}, settings);
 }
@@ -615,12 +627,7 @@ TEST(IngestLayouts, CrossesAndStripsRoundTrip) {
         const auto env = ingest(file); // detected from the aspect ratio
         EXPECT_EQ(env.report.layout, layout);
         ASSERT_EQ(env.cube.faceSize, n);
-        double worst = 0.0;
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i)
-                    worst = std::max(worst, double(glm::length(glm::vec3(env.cube.faces[f].at(i, j)) -
-                                                               directionColor(texelDirection(f, i, j, n)))));
+        const double worst = worstDirectionColorError(env.cube);
         EXPECT_LT(worst, 1e-6) << ibl::layoutName(layout);
     }
 }
@@ -683,12 +690,7 @@ TEST(IngestLayouts, ExrCubeFollowsImfEnvmap) {
         s.sourceFaceSize = n;
         const auto env = ingest(dir / "cube.exr", s);
         EXPECT_EQ(env.report.layout, EnvLayout::ExrCube);
-        double worst = 0.0;
-        for (int f = 0; f < 6; ++f)
-            for (int j = 0; j < n; ++j)
-                for (int i = 0; i < n; ++i)
-                    worst = std::max(worst, double(glm::length(glm::vec3(env.cube.faces[f].at(i, j)) -
-                                                               directionColor(texelDirection(f, i, j, n)))));
+        const double worst = worstDirectionColorError(env.cube);
         EXPECT_LT(worst, 0.03) << "face size " << n; // within a texel's colour change; a flip is ~1
     }
 }
