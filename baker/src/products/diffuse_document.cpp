@@ -44,17 +44,12 @@ const char* kRadianceConvention =
     "L_i = integral L(w) Y_i(w) dw over every source texel (centre direction, exact solid angle, fp64 "
     "sums), standard orthonormal real SH; evaluate as sum L_i Y_i(w)";
 
-// The record's keys without prefix, the sun's state, and the light itself.
+// The products' calibration key/values without prefix, the light as JSON rather than its one-line text.
 json calibrationObject(const CalibrationRecord& record, const std::optional<DiskLight>& sun) {
     json out = json::object();
-    for (const auto& [key, value] : calibrationMetadata(record, ""))
+    for (const auto& [key, value] : calibrationKeyValues(record, sun, ""))
         out[key] = value;
-    if (sun) {
-        out["sun"] = "extracted as a disk light (Frostbite 4.6), see sunLight";
-        out["sunLight"] = json::parse(sunJson(*sun, record));
-    } else {
-        out["sun"] = "kept in the environment";
-    }
+    if (sun) out["sunLight"] = json::parse(out["sunLight"].get<std::string>());
     return out;
 }
 

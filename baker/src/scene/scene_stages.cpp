@@ -190,12 +190,12 @@ void runSun(const StageContext& c) {
     } catch (const SettingError& e) {
         throw Error(c.scene.name + ": environment.extractSun: " + e.what());
     }
-    const bool absolute = calibration.at("absolute").get<bool>();
-    calibration["sunLight"] = json::parse(diskLightToJson(light, absolute));
+    const std::string lightJson = diskLightToJson(light, calibration.at("absolute").get<bool>());
+    calibration["sunLight"] = json::parse(lightJson);
     writeCube(c.outputDirectory / kCubeFile, cube, "calibrated-environment-without-sun");
     writeJson(c.outputDirectory / kCalibrationFile, calibration);
     std::ofstream out(c.outputDirectory / "sun.json");
-    out << diskLightToJson(light, absolute) << '\n';
+    out << lightJson << '\n';
     out.close();
     if (!out) throw Error((c.outputDirectory / "sun.json").string() + ": cannot write");
 }
