@@ -24,10 +24,20 @@ void BakeRunOptions::addTo(CLI::App& command, const char* forceHelp, const char*
     addBackendAndDevice(command, backend, device);
 }
 
+Scene BakeCommandOptions::loadScene() const {
+    Scene loaded = loadSceneFile(scene);
+    if (clampToFormat) loaded.outputs.clampToFormat = true;
+    return loaded;
+}
+
 CLI::App* addBakeSubcommand(CLI::App& app, BakeCommandOptions& o) {
     CLI::App* cmd = app.add_subcommand("bake", "bake what a scene needs (cached stages are not recomputed)");
     cmd->add_option("scene", o.scene, "scene file (JSON, README \"Scenes\")")->required();
     o.addTo(*cmd, "recompute every stage", "cache directory (default: <outputs.directory>/.iblbake-cache)");
+    cmd->add_flag(
+        "--clamp-to-format", o.clampToFormat,
+        "clamp the KTX2 products to their format's range (as outputs.clampToFormat: the energy lost "
+        "is reported) instead of storing them with a storage scale");
     return cmd;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <iblbake/bake_state/bake_state.h>
+#include <iblbake/scene/scene.h>
 
 #include <CLI/CLI.hpp>
 
@@ -27,6 +28,10 @@ struct BakeRunOptions {
 
 struct BakeCommandOptions : BakeRunOptions {
     std::string scene;
+    bool clampToFormat = false; // --clamp-to-format: sets the scene's outputs.clampToFormat
+
+    // The scene file with the command line's settings applied.
+    Scene loadScene() const;
 };
 
 // Adds the `bake` subcommand, bound to `options` (which must outlive `app`'s parse).

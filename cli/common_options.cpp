@@ -1,6 +1,9 @@
 #include "common_options.h"
 
+#include <iblbake/bake_state/bake_state.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 namespace ibl::cli {
@@ -24,6 +27,12 @@ void BackendOptions::printTiming(const Executor& executor, const char* stage, do
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void printStorage(const std::string& file, const std::string& format, const ProductStorage& storage) {
+    const StoredProduct product{std::filesystem::path(file).filename().string(), format, storage.scale,
+                                storage.clamped, storage.energyLostPercent};
+    std::printf("storage %s\n", storageLine(product).c_str());
 }
 
 } // namespace ibl::cli

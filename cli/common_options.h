@@ -3,6 +3,7 @@
 
 #include "backend_choice.h"
 
+#include <iblbake/baker/products.h>
 #include <iblbake/ktx2/ktx2.h>
 #include <iblbake/opencl/executor.h>
 
@@ -25,5 +26,9 @@ struct BackendOptions {
 };
 
 double millisecondsSince(std::chrono::steady_clock::time_point start);
+
+// The report's "storage" line of a written product (bake_state.h storageLine): its storage scale, or the
+// energy lost per level when clamped on request.
+void printStorage(const std::string& file, const std::string& format, const ProductStorage& storage);
 
 } // namespace ibl::cli

@@ -39,6 +39,7 @@ struct DiffuseOptions {
     std::string window = "auto";
     std::optional<double> windowParam;
     std::string format = "rgba16f";
+    bool clampToFormat = false;
     int size = 256;
     BackendOptions backend;
     CalibrationOptions calibration;
@@ -79,6 +80,9 @@ Action addDiffuseCommand(CLI::App& app) {
     cmd->add_option("--format", o->format, "irradiance cube format: rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
+    cmd->add_flag("--clamp-to-format", o->clampToFormat,
+                  "clamp the irradiance cube to its format's range (energy lost is reported) instead of "
+                  "storing it with a storage scale");
     cmd->add_option("--size", o->size,
                     "face size of the source cube (power of two for --irradiance-method sampled)")
         ->capture_default_str();
@@ -157,10 +161,12 @@ Action addDiffuseCommand(CLI::App& app) {
                                                          calibration.record, calibration.sun);
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
-            Ktx2WriteStats stats = writeKtx2Cube(cubeFile->tempPath(), chain, format, kv);
+            const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
+            Ktx2WriteStats stats = writeProductCube(cubeFile->tempPath(), chain, format, kv, storage);
             std::printf("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
                         o->irradianceSize, o->irradianceMethod.c_str(), o->format.c_str(), cubeMs,
                         (unsigned long long)stats.clampedTexels, (unsigned long long)shClamped);
+            printStorage(o->irradianceCube, o->format, storage);
             cubeJson = {{"file", o->irradianceCube},
                         {"faceSize", o->irradianceSize},
                         {"format", o->format},
@@ -169,6 +175,7 @@ Action addDiffuseCommand(CLI::App& app) {
                         {"normalization", kIrradianceNormalization},
                         {"clampedTexels", stats.clampedTexels},
                         {"shNegativeTexels", shClamped}};
+            cubeJson.update(productStorageToJson(storage));
             if (method == IrradianceMethod::Sampled) cubeJson["samples"] = irradianceSamplesFor(settings);
             o->backend.printTiming(executor, "irradiance-cube", cubeMs);
         }

@@ -37,7 +37,7 @@ std::optional<int> answerUpToDateBake(int argc, char** argv) {
     try {
         app.parse(argc, argv);
         if (options.force) return std::nullopt;
-        const ibl::Scene scene = ibl::loadSceneFile(options.scene);
+        const ibl::Scene scene = options.loadScene();
         const ibl::UpToDate upToDate = ibl::checkBakeUpToDate(scene, options.bakeOptions());
         if (!upToDate.upToDate) return std::nullopt;
         ibl::cli::ConsoleProgress progress(ibl::cli::chooseProgressMode(options.quiet, options.json));

@@ -10,6 +10,7 @@
 #include <iblbake/baker/sun.h>
 #include <iblbake/core/error.h>
 #include <iblbake/ktx2/ktx2.h>
+#include <iblbake/ktx2/storage_scale.h>
 #include <iblbake/runtime/runtime.h>
 
 #include <nlohmann/json.hpp>
@@ -49,9 +50,10 @@ CubeMapChain chainFromKtx2(const fs::path& path, const Ktx2Image& ktx) {
 }
 
 // The residual the bake took the sun out of, from a level 0 that kept it (iblbake.sunInLevel0): the same
-// detection (iblbake.sunMaxSolidAngle) on the same pixels, checked against the bake's sun.json.
+// detection (iblbake.sunMaxSolidAngle) on the same pixels, checked against the bake's sun.json (level 0
+// as stored: radiance x storageScale).
 CubeMap residualLevel0(CubeMap level0, const Ktx2Image& ktx, const std::optional<DiskLight>& sun,
-                       const std::filesystem::path& ktxPath) {
+                       double storageScale, const std::filesystem::path& ktxPath) {
     auto value = [&](const char* key) {
         auto it = ktx.keyValues.find(key);
         return it == ktx.keyValues.end() ? std::string() : it->second;
@@ -73,7 +75,7 @@ CubeMap residualLevel0(CubeMap level0, const Ktx2Image& ktx, const std::optional
                     ": level 0 holds the extracted sun, but it is not found again: " + detection.reason);
     const DiskLight light = extractSun(level0, detection, weights);
     if (glm::dot(light.direction, sun->direction) < std::cos(0.1 * 3.14159265358979 / 180.0) ||
-        std::abs(light.illuminance / sun->illuminance - 1.0) > 0.01)
+        std::abs(light.illuminance / storageScale / sun->illuminance - 1.0) > 0.01)
         throw Error(ktxPath.string() + ": the sun in level 0 is not the one in sun.json");
     return level0;
 }
@@ -108,6 +110,11 @@ Action addGltfCommand(CLI::App& app) {
         CubeMapChain chain = chainFromKtx2(ktxPath, ktx);
 
         GltfIblScene scene;
+        try {
+            scene.storageScale = ktx2StorageScale(ktx); // the chain stays as stored; the intensity divides
+        } catch (const Error& e) {
+            throw Error(ktxPath.string() + ": " + e.what());
+        }
         scene.prescaledIrradiance = readPrescaledIrradiance(dir / "diffuse.json");
         if (fs::exists(dir / "sun.json")) {
             const std::string text = readText(dir / "sun.json");
@@ -124,7 +131,8 @@ Action addGltfCommand(CLI::App& app) {
         // residual; the light it finds is checked against sun.json.
         if (auto in0 = ktx.keyValues.find("iblbake.sunInLevel0");
             in0 != ktx.keyValues.end() && in0->second == "true")
-            chain.levels.front() = residualLevel0(chain.levels.front(), ktx, scene.sun, ktxPath);
+            chain.levels.front() =
+                residualLevel0(chain.levels.front(), ktx, scene.sun, scene.storageScale, ktxPath);
 
         // The extension maps its levels evenly to roughness 0..1; a linear bake already does, any other
         // is re-filtered from its level 0 (the unconvolved source) down to --min-face-size.
@@ -164,7 +172,8 @@ Action addGltfCommand(CLI::App& app) {
         writeGltfIbl(output, scene);
         std::printf("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
                     o->output.c_str(), scene.specular.levels.size(), scene.specular.levels.front().faceSize,
-                    gltfIblIntensity(scene.specular), scene.sun ? ", sun as KHR_lights_punctual" : "");
+                    gltfIblIntensity(scene.specular, scene.storageScale),
+                    scene.sun ? ", sun as KHR_lights_punctual" : "");
         std::printf("time    %.1f ms\n", millisecondsSince(start));
         return 0;
     };

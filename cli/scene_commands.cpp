@@ -22,7 +22,7 @@ Action addBakeCommand(CLI::App& app) {
     auto o = std::make_shared<BakeCommandOptions>();
     addBakeSubcommand(app, *o);
     return [o] {
-        const Scene scene = loadSceneFile(o->scene);
+        const Scene scene = o->loadScene();
         ConsoleProgress progress(chooseProgressMode(o->quiet, o->json));
         const BakeSummary summary = bakeScene(scene, o->bakeOptions(), progress);
         if (!summary.ok) throw Error(summary.error);

@@ -65,6 +65,10 @@ void ConsoleProgress::done(const BakeSummary& summary) {
         std::printf("baked %zu stages (%d ran, %d cached, %zu skipped) in %.2f s (%s) -> %s\n",
                     summary.stages.size(), summary.ran(), summary.cached(), summary.skipped.size(),
                     summary.seconds, summary.backend.c_str(), summary.manifest.string().c_str());
+        // Products stored scaled or clamped on request (DESIGN.md "Float storage"); unscaled ones say
+        // nothing.
+        for (const StoredProduct& p : summary.storage)
+            if (p.clamped || p.storageScale != 1.0) std::printf("storage %s\n", storageLine(p).c_str());
     }
     std::fflush(stdout);
 }

@@ -34,6 +34,7 @@ struct SpecularOptions {
     std::string preview;
     std::string mipMapping = "frostbite";
     float lodBias = SpecularSettings{}.lodBias;
+    bool clampToFormat = false;
     BackendOptions backend;
     CalibrationOptions calibration;
 };
@@ -82,6 +83,9 @@ Action addSpecularCommand(CLI::App& app) {
         ->check(CLI::IsMember(std::vector<std::string>(kMipMappingNames.begin(), kMipMappingNames.end())));
     cmd->add_option("--lod-bias", o->lodBias, "added to the source LOD of each sample")
         ->capture_default_str();
+    cmd->add_flag("--clamp-to-format", o->clampToFormat,
+                  "clamp to the format's range (energy lost is reported) instead of storing with a storage "
+                  "scale");
     o->backend.addTo(*cmd);
     o->calibration.addTo(*cmd);
 
@@ -121,17 +125,20 @@ Action addSpecularCommand(CLI::App& app) {
         ld.settings = "quality=" + o->quality + " samples=" + std::to_string(samplesFor(settings)) +
                       " lodBias=" + std::to_string(settings.lodBias) + " size=" + std::to_string(o->size) +
                       " rotate=" + std::to_string(o->input.rotateDegrees);
-        ld.sunInLevel0 = calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format);
+        ld.sunInLevel0 =
+            calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format, o->clampToFormat);
         ld.sunMaxSolidAngle = o->calibration.sunMaxSolidAngle;
         const Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
         auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
-        Ktx2WriteStats stats = writeKtx2Cube(o->output, chain, format, kv);
+        const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
+        Ktx2WriteStats stats = writeProductCube(o->output, chain, format, kv, storage);
         if (sunJson) sunJson->commit();
         if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, settings.mapping);
         if (!o->preview.empty()) writeChainPreview(o->preview, chain);
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
                     (unsigned long long)stats.repairedNonFinite);
+        printStorage(o->output, o->format, storage);
         std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs, bakeMs,
                     executor.description().c_str(), millisecondsSince(start));
         o->backend.printTiming(executor, "specular", bakeMs);

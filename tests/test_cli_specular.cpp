@@ -3,6 +3,7 @@
 #include "cli_runner.h"
 
 #include <iblbake/ktx2/ktx2.h>
+#include <iblbake/ktx2/storage_scale.h>
 
 #include <gtest/gtest.h>
 
@@ -58,8 +59,19 @@ TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
     std::ifstream sun(dir / "sun.json");
     std::string text(std::istreambuf_iterator<char>(sun), {});
     EXPECT_NE(text.find("\"illuminanceLux\": 99999.99"), std::string::npos) << text;
-    // A calibrated sun (~1e9 cd/m2) does not fit half floats: level 0 is the residual, as every level.
-    EXPECT_EQ(ktx.keyValues.count("iblbake.sunInLevel0"), 0u);
+    // A calibrated sun (~1e9 cd/m2) does not fit half floats as it is: level 0 keeps it with a storage scale
+    // (README "Float storage"), which the readers divide out.
+    EXPECT_EQ(ktx.keyValues.at("iblbake.sunInLevel0"), "true");
+    EXPECT_LT(ibl::ktx2StorageScale(ktx), 1.0);
+    ibl::unscaleKtx2Texels(ktx);
+    // Clamped to half floats on request, level 0 is the residual, as every level.
+    r = runCli("specular " + kSampleHdri +
+               " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
+               "--extract-sun --sun-json " + (dir / "sun16.json").string() + " --clamp-to-format -o " +
+               (dir / "clamped.ktx2").string());
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const ibl::Ktx2Image residual = ibl::readKtx2(dir / "clamped.ktx2");
+    EXPECT_EQ(residual.keyValues.count("iblbake.sunInLevel0"), 0u);
     // In 32-bit floats level 0 keeps it (the unconvolved source): the sun's pixels, far above the residual.
     r = runCli("specular " + kSampleHdri +
                " --size 64 --quality draft --backend cpu --sun-illuminance 100000 " +
@@ -72,10 +84,11 @@ TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
     for (int f = 0; f < 6; ++f)
         for (std::size_t i = 0; i < full.levels[0][f].pixels.size(); ++i) {
             peakFull = std::max(peakFull, full.levels[0][f].pixels[i].g);
-            peakResidual = std::max(peakResidual, ktx.levels[0][f].pixels[i].g);
+            peakResidual = std::max(peakResidual, residual.levels[0][f].pixels[i].g);
         }
     EXPECT_GT(peakFull, 1000.0f * peakResidual);
-    for (std::size_t i = 0; i < full.levels[1][0].pixels.size(); ++i) // level 1 on: the residual's (half)
+    for (std::size_t i = 0; i < full.levels[1][0].pixels.size();
+         ++i) // level 1 on: the residual's (half, scaled)
         ASSERT_NEAR(full.levels[1][0].pixels[i].g, ktx.levels[1][0].pixels[i].g,
                     1e-3f * std::abs(full.levels[1][0].pixels[i].g) + 1e-6f);
     // Two calibration sources: one line, non-zero, nothing written.

@@ -8,6 +8,7 @@
 #include <iblbake/baker/bake_scene.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/ktx2/ktx2.h>
+#include <iblbake/ktx2/storage_scale.h>
 #include <iblbake/runtime/runtime_manifest.h>
 #include <iblbake/scene/scene.h>
 
@@ -428,31 +429,63 @@ TEST(SceneBake, QuietPrintsNothing) {
 }
 
 // With the sun extracted, level 0 of the specular chain keeps the sun's pixels when the format holds them
-// (keepSunInLevel0, as `iblbake specular --extract-sun`): rgba32f does, rgba16f cannot hold a sun
-// calibrated to 100,000 lux (~1e9 cd/m2) and keeps the residual. Manifest, KTX2 key and loader agree.
+// (keepSunInLevel0, as `iblbake specular --extract-sun`): rgba32f does; rgba16f does too, stored with a
+// storage scale (DESIGN.md "Float storage": a sun calibrated to 100,000 lux is ~1e9 cd/m2, half floats end at
+// 65,504), which the manifest records and the loader divides out. Only with outputs.clampToFormat (or
+// `bake --clamp-to-format`) does rgba16f keep the residual, and the summary reports the energy clamped.
+// Manifest, KTX2 keys and loader agree.
 TEST(SceneBake, ExtractedSunStaysInLevel0WhenTheFormatHoldsIt) {
     SceneDir d("scene_sun_level0");
     d.scene["environment"] = {
         {"file", kSample}, {"calibration", {{"sunIlluminance", 100000}}}, {"extractSun", true}};
     d.scene["outputs"]["faceSize"] = 32;
-    float maxOf[2] = {0.0f, 0.0f};
-    for (int wide = 0; wide < 2; ++wide) {
-        d.scene["outputs"]["directory"] = wide ? "out32" : "out16";
-        d.scene["outputs"]["ktx2Format"] = wide ? "rgba32f" : "rgba16f";
-        const JsonRun r = bakeJson(d.write());
+    struct Variant {
+        const char* directory;
+        const char* format;
+        bool clamp;
+    };
+    for (const Variant& v : {Variant{"out32", "rgba32f", false}, Variant{"out16", "rgba16f", false},
+                             Variant{"out16clamp", "rgba16f", true}}) {
+        SCOPED_TRACE(v.directory);
+        d.scene["outputs"]["directory"] = v.directory;
+        d.scene["outputs"]["ktx2Format"] = v.format;
+        const JsonRun r = bakeJson(d.write(), v.clamp ? " --clamp-to-format" : "");
         ASSERT_EQ(r.run.exitCode, 0) << r.run.err;
-        const fs::path out = d.dir / (wide ? "out32" : "out16");
+        const fs::path out = d.dir / v.directory;
         const json manifest = json::parse(readBytes(out / "manifest.json"));
-        EXPECT_EQ(manifest["products"]["specular"]["sunInLevel0"], bool(wide));
+        const json& specular = manifest["products"]["specular"];
+        EXPECT_EQ(specular["sunInLevel0"], !v.clamp);
         const ibl::Ktx2Image ld = ibl::readKtx2(out / "specular.ktx2");
-        EXPECT_EQ(ld.keyValues.count("iblbake.sunInLevel0"), std::size_t(wide));
+        EXPECT_EQ(ld.keyValues.count("iblbake.sunInLevel0"), std::size_t(!v.clamp));
+        const double scale = ibl::ktx2StorageScale(ld);
+        EXPECT_EQ(specular["storageScale"].get<double>(), scale);
+        EXPECT_EQ(specular.contains("storageClamp"), v.clamp);
+        float stored = 0.0f;
         for (const ibl::ImageRGBA& face : ld.levels[0])
             for (const glm::vec4& t : face.pixels)
-                maxOf[wide] = std::max({maxOf[wide], t.r, t.g, t.b});
-        EXPECT_EQ(ibl::loadProbeSetFromManifest(out).set.distantLd().sunInLevel0, bool(wide));
+                stored = std::max({stored, t.r, t.g, t.b});
+        const ibl::LdPyramid loaded = ibl::loadProbeSetFromManifest(out).set.distantLd();
+        EXPECT_EQ(loaded.sunInLevel0, !v.clamp);
+        const float radiance = *std::max_element(loaded.data.begin(), loaded.data.end());
+        if (v.clamp) {
+            EXPECT_EQ(scale, 1.0);
+            EXPECT_LE(stored, 65504.0f); // the residual, clamped where it exceeds half floats
+            const json& reported = r.summary.at("storage").at(0);
+            EXPECT_EQ(reported["file"], "specular.ktx2");
+            EXPECT_TRUE(reported["clamped"].get<bool>());
+            EXPECT_EQ(reported["energyLostPercent"], specular["storageClamp"]["energyLostPercent"]);
+            EXPECT_GT(reported["energyLostPercent"][1].get<double>(), 0.0);
+        } else {
+            if (std::string(v.format) == "rgba16f") {
+                EXPECT_LT(scale, 1.0);
+                EXPECT_LE(stored, 65504.0f);
+            } else {
+                EXPECT_EQ(scale, 1.0);
+            }
+            EXPECT_GT(radiance, 1.0e6f); // the sun's own texels, in radiance
+            EXPECT_EQ(r.summary.at("storage").at(0)["storageScale"].get<double>(), scale);
+        }
     }
-    EXPECT_LE(maxOf[0], 65504.0f); // the residual (half floats end there)
-    EXPECT_GT(maxOf[1], 1.0e6f);   // the sun's own texels
 }
 
 // The runtime's manifest loader against a probe set assembled by hand from the same products.

@@ -1,12 +1,29 @@
 // Loading the baker's KTX2 products (readKtx2 has no OIIO dependency).
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/ktx2.h"
+#include "iblbake/ktx2/storage_scale.h"
 #include "iblbake/runtime/runtime.h"
 
 namespace ibl {
 
-LdPyramid loadLdKtx2(const std::filesystem::path& path) {
+namespace {
+
+// A product file's texels in radiance: divided by its storage scale (storage_scale.h), so that shading is
+// the same whatever scale the file was stored with.
+Ktx2Image readProductKtx2(const std::filesystem::path& path) {
     Ktx2Image image = readKtx2(path);
+    try {
+        unscaleKtx2Texels(image);
+    } catch (const Error& e) {
+        throw Error(path.string() + ": " + e.what());
+    }
+    return image;
+}
+
+} // namespace
+
+LdPyramid loadLdKtx2(const std::filesystem::path& path) {
+    Ktx2Image image = readProductKtx2(path);
     if (image.faceCount != 6)
         throw Error(path.string() + ": not a cube map (" + std::to_string(image.faceCount) + " faces)");
     if (image.pixelWidth != image.pixelHeight) throw Error(path.string() + ": cube faces are not square");
@@ -31,7 +48,7 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
 }
 
 CubeMap loadIrradianceKtx2(const std::filesystem::path& path) {
-    Ktx2Image image = readKtx2(path);
+    Ktx2Image image = readProductKtx2(path);
     if (image.faceCount != 6 || image.levels.empty())
         throw Error(path.string() + ": not a cube map (" + std::to_string(image.faceCount) + " faces)");
     if (image.pixelWidth != image.pixelHeight) throw Error(path.string() + ": cube faces are not square");

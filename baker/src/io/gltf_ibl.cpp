@@ -102,14 +102,14 @@ glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n) {
     return e;
 }
 
-double gltfIblIntensity(const CubeMapChain& specular) {
+double gltfIblIntensity(const CubeMapChain& specular, double storageScale) {
     float brightest = 0.0f;
     for (const CubeMap& level : specular.levels)
         for (const ImageRGBA& face : level.faces)
             for (const glm::vec4& p : face.pixels)
                 for (int c = 0; c < 3; ++c)
                     if (std::isfinite(p[c])) brightest = std::max(brightest, p[c]);
-    return brightest > 0.0f ? double(brightest) / kRgbdMaxValue : 1.0;
+    return (brightest > 0.0f ? double(brightest) / kRgbdMaxValue : 1.0) / storageScale;
 }
 
 std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight) {
@@ -125,7 +125,7 @@ std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight) {
 
 void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
     checkChain(path, scene.specular);
-    const double intensity = gltfIblIntensity(scene.specular);
+    const double intensity = gltfIblIntensity(scene.specular, scene.storageScale);
     const std::string stem = path.stem().string();
 
     nlohmann::json images = nlohmann::json::array();
@@ -137,7 +137,7 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
             const std::string name = stem + "_specular_" + std::to_string(m) + "_" + kFaceNames[f] + ".png";
             imageFiles.push_back(std::make_unique<AtomicFile>(path.parent_path() / name));
             writeRgbdPng(imageFiles.back()->tempPath(), scene.specular.levels[m].faces[std::size_t(f)],
-                         float(1.0 / intensity));
+                         float(1.0 / (intensity * scene.storageScale)));
             faces.push_back(images.size());
             images.push_back({{"uri", name}, {"mimeType", "image/png"}});
         }

@@ -132,7 +132,9 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         {
             AtomicFile file(manifestPath);
             std::ofstream out(file.tempPath());
-            out << buildManifest(manifest).dump(2) << '\n';
+            const nlohmann::json document = buildManifest(manifest);
+            summary.storage = storedProductsFromManifest(document);
+            out << document.dump(2) << '\n';
             out.close();
             if (!out) throw Error(manifestPath.string() + ": cannot write");
             file.commit();

@@ -2,6 +2,9 @@
 // date. Free of backends and file formats, so that the front end (cli/front_end.cpp) links it alone.
 #include "iblbake/bake_state/bake_state.h"
 
+#include <cmath>
+#include <cstdio>
+
 namespace ibl {
 
 namespace {
@@ -57,12 +60,51 @@ BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, Pro
         progress.stageEnd(summary.stages.back(), i, count);
     }
     summary.products = upToDate.products;
+    summary.storage = upToDate.storage;
     summary.manifest = scene.outputs.directory / "manifest.json";
     summary.upToDate = true;
     summary.ok = true;
     summary.seconds = secondsSince(start);
     progress.done(summary);
     return summary;
+}
+
+std::vector<StoredProduct> storedProductsFromManifest(const nlohmann::json& manifest) {
+    std::vector<StoredProduct> out;
+    auto add = [&](const nlohmann::json& entry) {
+        if (!entry.contains("storageScale")) return;
+        StoredProduct p{entry.at("file").get<std::string>(),
+                        entry.at("format").get<std::string>(),
+                        entry["storageScale"].get<double>(),
+                        entry.contains("storageClamp"),
+                        {}};
+        if (p.clamped)
+            p.energyLostPercent = entry["storageClamp"].at("energyLostPercent").get<std::vector<double>>();
+        out.push_back(std::move(p));
+    };
+    const nlohmann::json& products = manifest.at("products");
+    for (const char* name : {"specular", "irradiance"})
+        if (products.contains(name)) add(products[name]);
+    for (const nlohmann::json& probe : products.value("probes", nlohmann::json::array()))
+        add(probe);
+    return out;
+}
+
+std::string storageLine(const StoredProduct& p) {
+    char text[160];
+    if (p.clamped) {
+        std::string line = p.file + ": clamped to " + p.format + " on request, energy lost per level:";
+        for (double percent : p.energyLostPercent) {
+            std::snprintf(text, sizeof text, " %.3g%%", percent);
+            line += text;
+        }
+        return line;
+    }
+    if (p.storageScale == 1.0) return p.file + ": fits " + p.format + " unscaled (storage scale 1)";
+    std::snprintf(text, sizeof text,
+                  ": stored x 2^%d (%.6g) to fit %s (iblbake.storageScale; readers divide)",
+                  int(std::lround(std::log2(p.storageScale))), p.storageScale, p.format.c_str());
+    return p.file + text;
 }
 
 nlohmann::json bakeSummaryJson(const BakeSummary& s) {
@@ -79,6 +121,14 @@ nlohmann::json bakeSummaryJson(const BakeSummary& s) {
         skipped.push_back({{"id", k.id}, {"kind", k.kind}, {"reason", k.reason}});
     for (const fs::path& p : s.products)
         products.push_back(p.string());
+    nlohmann::json storage = nlohmann::json::array();
+    for (const StoredProduct& p : s.storage) {
+        storage.push_back({{"file", p.file},
+                           {"format", p.format},
+                           {"storageScale", p.storageScale},
+                           {"clamped", p.clamped}});
+        if (p.clamped) storage.back()["energyLostPercent"] = p.energyLostPercent;
+    }
     return {{"ok", s.ok},
             {"error", s.error},
             {"backend", s.backend},
@@ -89,7 +139,8 @@ nlohmann::json bakeSummaryJson(const BakeSummary& s) {
             {"stages", stages},
             {"skipped", skipped},
             {"products", products},
-            {"manifest", s.manifest.string()}};
+            {"manifest", s.manifest.string()},
+            {"storage", storage}};
 }
 
 } // namespace ibl

@@ -82,10 +82,17 @@ json buildManifest(const ManifestInputs& in) {
             s.settings.at("size").get<std::uint32_t>(), s.settings.at("samples").get<std::uint32_t>(),
             scene.materials.diffuseModel == SceneDiffuseModel::Disney, in.productHashes.at("dfg_lut.ktx2"));
     }
-    if (stages.count("specular"))
+    // How each KTX2 product was stored (its storage scale, or the clamp asked for), from its entry.
+    auto addStorage = [&](json& entry, const std::string& stageId) {
+        entry.update(productStorageToJson(
+            productStorageFromJson(readJsonFile(in.entries.at(stageId) / kStorageFile))));
+    };
+    if (stages.count("specular")) {
         products["specular"] = ldManifestEntry(
             ldManifestFactsFromJson(readJsonFile(in.entries.at("specular") / kLdManifestFacts)),
             in.productHashes.at("specular.ktx2"));
+        addStorage(products["specular"], "specular");
+    }
     products["diffuse"] = diffuseManifestEntry(readJsonFile(in.entries.at("diffuse") / "diffuse.json"),
                                                in.productHashes.at("diffuse.json"));
     if (stages.count("irradiance")) {
@@ -93,6 +100,7 @@ json buildManifest(const ManifestInputs& in) {
         products["irradiance"] = irradianceManifestEntry(
             s.at("faceSize").get<int>(), s.at("ktx2Format").get<std::string>(),
             irradianceSamples(s.at("quality").get<std::string>()), in.productHashes.at("irradiance.ktx2"));
+        addStorage(products["irradiance"], "irradiance");
     }
     if (stages.count("sun"))
         products["sun"] = sunManifestEntry(diskLightFromJson(calibration.at("sunLight").dump()),
@@ -103,6 +111,7 @@ json buildManifest(const ManifestInputs& in) {
         if (it == stages.end()) continue;
         const std::string file = it->second->products.at(0);
         json probe = ldManifestEntry(probeFacts(*it->second, file), in.productHashes.at(file));
+        addStorage(probe, it->first);
         probe["name"] = p.name;
         probe["position"] = vec3Json(p.position);
         probe["proxy"] = volumeJson(p.proxy);

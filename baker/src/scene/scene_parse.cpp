@@ -306,6 +306,7 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     o.irradianceCube = r.boolean("irradianceCube", false);
     o.irradianceFaceSize = r.integer("irradianceFaceSize", 32, 1, 1024);
     if (!isPowerOfTwo(o.irradianceFaceSize)) fail(r.key("irradianceFaceSize"), "must be a power of two");
+    o.clampToFormat = r.boolean("clampToFormat", false);
     r.finish();
     return o;
 }

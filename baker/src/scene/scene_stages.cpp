@@ -222,8 +222,11 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     ld.settings = "quality=" + s.at("quality").get<std::string>() +
                   " samples=" + std::to_string(samplesFor(settings)) +
                   " roughnessMax=" + s.at("roughnessMax").dump();
-    ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format);
-    writeKtx2Cube(file, chain, format, ldChainKeyValues(ld, calibration.record, calibration.sun));
+    const bool clampToFormat = s.at("clampToFormat").get<bool>();
+    ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format, clampToFormat);
+    const ProductStorage storage = chooseProductStorage(chain, format, clampToFormat);
+    writeProductCube(file, chain, format, ldChainKeyValues(ld, calibration.record, calibration.sun), storage);
+    writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();
     facts.format = s.at("ktx2Format").get<std::string>();
@@ -281,11 +284,14 @@ void runIrradiance(const StageContext& c) {
     settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
     CubeMapChain chain;
     chain.levels.push_back(bakeIrradianceCube(readCube(from / kCubeFile), settings, *c.executor));
-    writeKtx2Cube(c.outputDirectory / "irradiance.ktx2", chain,
-                  parseKtx2Format(s.at("ktx2Format").get<std::string>()),
-                  irradianceKeyValues(irradianceMethodText(IrradianceMethod::Sampled, settings.samples),
-                                      calibration.colorSpace(), calibration.sourceFile(), calibration.record,
-                                      calibration.sun));
+    const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    const ProductStorage storage = chooseProductStorage(chain, format, s.at("clampToFormat").get<bool>());
+    writeProductCube(c.outputDirectory / "irradiance.ktx2", chain, format,
+                     irradianceKeyValues(irradianceMethodText(IrradianceMethod::Sampled, settings.samples),
+                                         calibration.colorSpace(), calibration.sourceFile(),
+                                         calibration.record, calibration.sun),
+                     storage);
+    writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
 }
 
 void runProbe(const StageContext& c) {

@@ -72,6 +72,7 @@ std::string check(const Scene& scene, const BakeOptions& options, UpToDate& out)
         }
     out.products.push_back(file);
     out.backend = backend;
+    out.storage = storedProductsFromManifest(manifest);
     return "";
 }
 
@@ -89,7 +90,7 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options) {
         }
     }
     out.upToDate = out.reason.empty();
-    if (!out.upToDate) out = UpToDate{false, out.reason, {}, {}, {}, std::move(out.inputHashes)};
+    if (!out.upToDate) out = UpToDate{false, out.reason, {}, {}, {}, {}, std::move(out.inputHashes)};
     return out;
 }
 

@@ -1,29 +1,30 @@
 // keepSunInLevel0 (specular.h): shared by `iblbake specular`, the scene bake's specular stage, the accuracy
 // report and the tests, so that they all bake the product the runtime expects.
 #include "iblbake/baker/specular.h"
+#include "iblbake/ktx2/storage_scale.h"
 
-#include <algorithm>
+#include <cmath>
 
 namespace ibl {
 
 namespace {
 
-// Half floats end at 65,504, B10G11R11 at 65,024 and E5B9G9R9 at 65,408: below 60,000 nothing is clamped.
-constexpr float kLargestUnclampedInSmallFloats = 60000.0f;
-
+// Whether clamping to the format's range leaves every finite channel as it is.
 bool fitsUnclamped(const CubeMap& cube, Ktx2Format format) {
-    if (format == Ktx2Format::RGBA32F) return true;
+    const glm::vec3 largest = ktx2LargestValues(format);
     for (const ImageRGBA& face : cube.faces)
         for (const glm::vec4& texel : face.pixels)
-            if (std::max({texel.r, texel.g, texel.b}) > kLargestUnclampedInSmallFloats) return false;
+            for (int c = 0; c < 3; ++c)
+                if (std::isfinite(texel[c]) && texel[c] > largest[c]) return false;
     return true;
 }
 
 } // namespace
 
-bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format) {
+bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format,
+                     bool clampToFormat) {
     if (residualChain.levels.empty() || residualChain.levels[0].faceSize != withSun.faceSize ||
-        !fitsUnclamped(withSun, format))
+        (clampToFormat && !fitsUnclamped(withSun, format)))
         return false;
     residualChain.levels[0] = withSun;
     return true;

@@ -36,6 +36,22 @@ struct StageResult {
     std::vector<std::string> products;
 };
 
+// How a KTX2 product was stored (DESIGN.md "Float storage"), as manifest.json records it (products.h
+// productStorageToJson).
+struct StoredProduct {
+    std::string file;                      // in the output directory
+    std::string format;                    // rgba16f, rgba32f, b10g11r11, e5b9g9r9
+    double storageScale = 1.0;             // stored RGB = radiance x storageScale
+    bool clamped = false;                  // clamped to the format's range on request (outputs.clampToFormat)
+    std::vector<double> energyLostPercent; // with clamped: per level
+};
+// The manifest's products that record a storage scale, in manifest order (specular, irradiance, probes).
+std::vector<StoredProduct> storedProductsFromManifest(const nlohmann::json& manifest);
+// One line for reports: "<file>: stored x 2^-k (<scale>) to fit <format> (iblbake.storageScale; readers
+// divide)", "<file>: fits <format> unscaled", or "<file>: clamped to <format> on request, energy lost per
+// level: a% b% ...".
+std::string storageLine(const StoredProduct& product);
+
 struct BakeSummary {
     bool ok = false;
     std::string error; // one line when !ok
@@ -46,6 +62,7 @@ struct BakeSummary {
     std::string backend; // "opencl" / "cpu" / "none" (no stage ran kernels)
     double seconds = 0.0;
     bool upToDate = false; // the output directory held this bake already: nothing was read from the cache
+    std::vector<StoredProduct> storage; // from the manifest, when ok
     int ran() const;
     int cached() const;
 };
@@ -70,6 +87,7 @@ struct UpToDate {
     std::vector<std::filesystem::path> products; // when up to date: the products in plan order, manifest last
     std::vector<std::string> keys;               // when up to date: the plan's stage keys, in plan order
     std::string backend;                         // when up to date: the backend the manifest records
+    std::vector<StoredProduct> storage;          // when up to date: the manifest's storedProductsFromManifest
     // The content hash of every file the plan reads, by path, when the check got as far as reading them all
     // (empty otherwise): bakeStaleScene takes them instead of reading the inputs again.
     std::map<std::string, std::string> inputHashes;
@@ -84,7 +102,8 @@ BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, Pro
                                std::chrono::steady_clock::time_point start);
 
 // The summary as JSON: {ok, error, backend, seconds, upToDate, ran, cached, stages: [{id, kind, status, key,
-// seconds, products}], skipped: [...], products: [...], manifest}.
+// seconds, products}], skipped: [...], products: [...], manifest, storage: [{file, format, storageScale,
+// clamped, energyLostPercent (with clamped)}]}.
 nlohmann::json bakeSummaryJson(const BakeSummary& summary);
 
 } // namespace ibl

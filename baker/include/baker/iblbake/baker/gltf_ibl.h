@@ -9,7 +9,8 @@
 //   the standard orientation mirrored about its vertical axis, as the extension asks.
 // - Images: 4-channel PNG, RGBD (iblbake/baker/rgbd.h) of value / intensity. `intensity` (the extension's
 //   brightness multiplier, applied by loaders to images and coefficients alike) is chosen so that the
-//   brightest exported channel encodes to RGBD's maximum 255: intensity x decoded = the bake's value.
+//   brightest exported channel encodes to RGBD's maximum 255: intensity x decoded = the bake's value
+//   (the stored texel over the KTX2's storage scale).
 // - irradianceCoefficients: 9 x [r, g, b] in DESIGN.md order, E_lm / intensity with E_lm = A_l L_lm, the
 //   SH coefficients of the irradiance E(n) = sum E_lm Y_lm(n) in the basis of Ramamoorthi & Hanrahan
 //   2001 eq. 3 (which the extension cites; our basis, no Condon-Shortley phase). From our pre-scaled
@@ -35,6 +36,9 @@ namespace ibl {
 struct GltfIblScene {
     // Level m of N holds perceptual roughness m / (N - 1); face sizes halve from level to level.
     CubeMapChain specular;
+    // specular's texels are radiance x storageScale (as its KTX2 stores them, "iblbake.storageScale"); the
+    // light's intensity carries 1 / storageScale, so that intensity x decoded texel is radiance.
+    double storageScale = 1.0;
     ShRgb prescaledIrradiance{}; // our sh.irradiance: A_l k_i L_i (irradianceSH(n) = E(n))
     std::optional<DiskLight> sun;
     bool sunInLux = true;                      // false: the sun's illuminance is in relative units
@@ -45,8 +49,9 @@ struct GltfIblScene {
 ShRgb gltfIrradianceCoefficients(const ShRgb& prescaledIrradiance);
 // E(n) = sum_i E_i Y_i(n), the extension's irradiance from its coefficients (Ramamoorthi & Hanrahan eq. 3).
 glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n);
-// The light's intensity: the brightest channel of every exported level / 255 (1 when that is 0).
-double gltfIblIntensity(const CubeMapChain& specular);
+// The light's intensity: the brightest channel of every exported level / 255 (1 when that is 0), over
+// the chain's storage scale.
+double gltfIblIntensity(const CubeMapChain& specular, double storageScale = 1.0);
 // glTF quaternion [x, y, z, w] of a node whose -Z axis points along -towardLight.
 std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight);
 

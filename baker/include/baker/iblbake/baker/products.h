@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace ibl {
 
@@ -77,6 +78,41 @@ std::string irradianceMethodText(IrradianceMethod method, std::uint32_t samples)
 Ktx2KeyValues irradianceKeyValues(const std::string& methodText, const std::string& colorSpace,
                                   const std::optional<std::string>& source, const CalibrationRecord& record,
                                   const std::optional<DiskLight>& sun);
+
+// ---------------------------------------------------------------------------------------------------
+// Float storage (DESIGN.md "Float storage"; the key and its readers: iblbake/ktx2/storage_scale.h)
+
+// How a product cube goes into its format: times a storage scale so that nothing clamps (the default), or
+// clamped to the format's range when the user asked for that, with the energy the clamp loses.
+struct ProductStorage {
+    double scale = 1.0;                    // stored RGB = radiance x scale (KTX2 "iblbake.storageScale")
+    bool clamped = false;                  // clamped to the format's range on request (scale stays 1)
+    std::vector<double> energyLostPercent; // with `clamped`, per level: 100 (1 - E_clamped / E)
+};
+
+// The energy of a level: sum over its texels of (R + G + B) x the texel's exact solid angle (finite
+// values; fp64), what ProductStorage's energyLostPercent compares.
+double levelEnergy(const CubeMap& level);
+
+// Without clampToFormat: the largest power of two <= 1 such that every finite channel of every level times
+// it fits `format` (ktx2LargestValues; RGBA32F: always 1). With clampToFormat: scale 1 and the energy lost
+// per level when every channel is clamped to the format's range.
+ProductStorage chooseProductStorage(const CubeMapChain& chain, Ktx2Format format, bool clampToFormat);
+
+// "iblbake.storageScale" (decimal, exact: a power of two), "iblbake.storageScaleMeaning", and with
+// `clamped` "iblbake.storageClamped" (the energy lost per level).
+Ktx2KeyValues storageKeyValues(const ProductStorage& storage);
+
+// writeKtx2Cube of the chain times storage.scale, with keyValues and storageKeyValues(storage).
+Ktx2WriteStats writeProductCube(const std::filesystem::path& path, const CubeMapChain& chain,
+                                Ktx2Format format, const Ktx2KeyValues& keyValues,
+                                const ProductStorage& storage);
+
+// The manifest entry's keys (README "Manifest"): "storageScale", and with `clamped` "storageClamp"
+// {"energyLostPercent": [per level], "meaning"}; the same object is a stage's cache record. Its reader
+// throws ibl::Error naming the key.
+nlohmann::json productStorageToJson(const ProductStorage& storage);
+ProductStorage productStorageFromJson(const nlohmann::json& json);
 
 // ---------------------------------------------------------------------------------------------------
 // The iblbake.diffuse document (schemaVersion 1; README "Diffuse probes")

@@ -53,11 +53,15 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
                           std::vector<SpecularLevelTiming>* timings = nullptr);
 
 // Level 0 is the unconvolved source. A chain baked from the residual of a sun extraction gets the cube from
-// before the extraction back as level 0, when `format` stores every texel of it unclamped (16-bit and packed
-// floats end near 65,000; a calibrated sun reaches ~1e9): a mirror then reflects the sun's own pixels, and
-// the runtime fades the disk light out where it reads level 0 (LdPyramid::sunInLevel0, KTX2 key
-// "iblbake.sunInLevel0"), so every roughness counts the sun once. Returns whether level 0 now holds the sun.
-bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format);
+// before the extraction back as level 0 when `format` stores every texel of it unclamped: always, since a
+// product is stored with a storage scale (products.h chooseProductStorage) that makes it fit; with
+// clampToFormat (the user's explicit choice to clamp) only when no channel exceeds the format's range
+// (16-bit and packed floats end near 65,000; a calibrated sun reaches ~1e9). A mirror then reflects the
+// sun's own pixels, and the runtime fades the disk light out where it reads level 0
+// (LdPyramid::sunInLevel0, KTX2 key "iblbake.sunInLevel0"), so every roughness counts the sun once. Returns
+// whether level 0 now holds the sun.
+bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format,
+                     bool clampToFormat = false);
 
 // Brute-force reference for one level: every source texel, solid-angle weighted, fp64 accumulation.
 CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness);

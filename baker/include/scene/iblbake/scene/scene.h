@@ -76,6 +76,9 @@ struct SceneOutputs {
     // (a compact light's irradiance, no ringing) at the cost of a cube lookup at run time.
     bool irradianceCube = false;
     int irradianceFaceSize = 32; // power of two
+    // Clamp the KTX2 products to their format's range instead of storing them with a storage scale
+    // (DESIGN.md "Float storage"); the energy lost is reported.
+    bool clampToFormat = false;
 };
 
 struct Scene {

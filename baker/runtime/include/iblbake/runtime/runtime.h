@@ -92,7 +92,8 @@ SunDisk sunDiskFrom(const Light& light) {
 
 // Loaders for the baker's KTX2 outputs (no OIIO: baker/src/io/ktx2_reader.cpp). The LD chain's mapping
 // comes from its "iblbake.roughnessMapping" key (Frostbite when absent), sunInLevel0 from
-// "iblbake.sunInLevel0".
+// "iblbake.sunInLevel0". LD chains and irradiance cubes come back in radiance: their texels divided by
+// the file's "iblbake.storageScale" (iblbake/ktx2/storage_scale.h; 1 when absent).
 LdPyramid loadLdKtx2(const std::filesystem::path& path);
 DfgTable loadDfgKtx2(const std::filesystem::path& path);
 // The baker's irradiance cube (`iblbake diffuse --irradiance-cube`: one level of E / pi).
