@@ -13,15 +13,22 @@
 #include <iblbake/ktx2/ktx2.h>
 #include <iblbake/ktx2/storage_scale.h>
 #include <iblbake/runtime/runtime.h>
+#include <iblbake/scene/scene.h>
 #include <iblbake/scene/scene_plan.h>
 
+#include "stage_keys.h"
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <map>
 #include <random>
+#include <set>
 #include <unistd.h>
 
 namespace {
@@ -306,6 +313,29 @@ TEST(StorageScale, ProductsThatFitKeepScaleOne) {
     ASSERT_FALSE(kv.empty());
     EXPECT_EQ(kv[0].first, "iblbake.storageScale");
     EXPECT_EQ(kv[0].second, "1");
+}
+
+// The clamp is a setting of the stages that store KTX2 products: it enters their cache keys (and only
+// theirs), so a bake never reuses a scaled product for a clamped one or the other way round.
+TEST(StorageScale, ClampToFormatEntersTheKeysOfTheStoringStages) {
+    const fs::path scenes = fs::path(IBLBAKE_SOURCE_DIR) / "data" / "scenes";
+    std::ifstream in(scenes / "park.json");
+    nlohmann::json scene = nlohmann::json::parse(in);
+    scene["outputs"]["irradianceCube"] = true;
+    auto keysWith = [&](bool clamp) {
+        scene["outputs"]["clampToFormat"] = clamp;
+        const Plan plan = planScene(parseScene(scene.dump(), "park.json", scenes));
+        std::map<std::string, std::string> hashes;
+        for (const PlanStage& stage : plan.stages)
+            for (const PlanInput& input : stage.inputs)
+                hashes[input.file.string()] = "content";
+        return planStageKeys(plan, hashes, "cpu");
+    };
+    const std::map<std::string, std::string> scaled = keysWith(false), clamped = keysWith(true);
+    std::set<std::string> changed;
+    for (const auto& [id, key] : scaled)
+        if (clamped.at(id) != key) changed.insert(id);
+    EXPECT_EQ(changed, (std::set<std::string>{"specular", "irradiance", "probe:pavilion"}));
 }
 
 // `iblbake specular` says how it stored the chain: scaled to fit (default), or clamped on request with the
