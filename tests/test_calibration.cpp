@@ -460,10 +460,10 @@ TEST(CalibrateCli, ExactFactorsScaleEveryPixel) {
     fs::remove_all(dir);
 }
 
-// Sum over a lat-long of value * exact pixel solid angle, in double (independent of the baker's grid class:
-// the cell of ImfEnvmap's LatLongMap, see ingest.h).
+// Sum over a lat-long of value * exact pixel solid angle, in double (independent of the baker's grid class;
+// the cells of the pixel-centre placement, latlong_pixels.h, as `calibrate` reads rooitou_park's pixels).
 glm::dvec3 latLongEnergy(const Pixels& p) {
-    auto edge = [](int k, int n) { return k <= 0 ? 0.0 : k >= n ? 1.0 : (k - 0.5) / (n - 1); };
+    auto edge = [](int k, int n) { return latLongPixelEdge(LatLongPixels::Centre, k, n); };
     glm::dvec3 e(0.0);
     for (int y = 0; y < p.height; ++y) {
         const double dz = std::cos(kPi * edge(y, p.height)) - std::cos(kPi * edge(y + 1, p.height));
@@ -498,6 +498,7 @@ TEST(CalibrateCli, ExtractSunWritesTheLightAndConservesEnergy) {
     EXPECT_NEAR(light.elevationDegrees(), 10.4, 1.0);
     const Pixels p = readPixels(out);
     EXPECT_NE(p.attributes.at("iblbake:sunLight").find("\"illuminanceLux\""), std::string::npos);
+    EXPECT_EQ(p.attributes.at("iblbake:latlongPixels"), "centre");
     // Inspecting the residual finds no sun.
     const nlohmann::json j = inspect(out);
     EXPECT_TRUE(j["sun"].is_null());

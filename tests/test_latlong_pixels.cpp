@@ -283,6 +283,28 @@ TEST(LatLongPixels, CommandsRecordThePlacement) {
     fs::remove_all(dir);
 }
 
+// `calibrate` keeps a lat-long's pixels: its output says which placement they are in, and a file that was
+// read with OpenEXR's placement gets the envmap attribute again, so that ingest reads it back the same way.
+TEST(LatLongPixels, CalibrateOutputKeepsThePlacement) {
+    const fs::path file = kShared / "orientation" / "OrientationLatLong.exr";
+    REQUIRE_FILE(file);
+    const fs::path dir = freshTempDir("latlong_calibrate");
+    for (const std::string placement : {"auto", "centre"}) {
+        const fs::path out = dir / (placement + ".exr");
+        const CliRun r = runCli("calibrate " + file.string() + " --scale 1 --size 16 --latlong-pixels " +
+                                placement + " -o " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const std::string expected = placement == "auto" ? "openexr" : "centre";
+        auto in = OIIO::ImageInput::open(out.string());
+        ASSERT_TRUE(in);
+        EXPECT_EQ(in->spec().get_string_attribute("iblbake:latlongPixels"), expected);
+        IngestSettings s;
+        s.sourceFaceSize = 8;
+        EXPECT_EQ(latLongPixelsName(*ingestEnvironment({out}, s).report.latLongPixels), expected);
+    }
+    fs::remove_all(dir);
+}
+
 // A scene bake records the placement in the specular and irradiance KTX2 keys, diffuse.json and the
 // manifest; environment.latlongPixels overrides it and enters the stage keys (a changed placement re-bakes);
 // a bad value names the key.
