@@ -9,6 +9,7 @@
 // assumes for a float EXR without chromaticities), so the output reads back as written.
 #include "calibration_options.h"
 #include "commands.h"
+#include "input_options.h"
 
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/environment.h>
@@ -32,6 +33,7 @@ struct CalibrateOptions {
     int size = 0;
     std::string layout = "auto";
     std::string inputColorSpace;
+    std::string latLongPixels = "auto";
     CalibrationOptions calibration;
 };
 
@@ -55,6 +57,7 @@ Action addCalibrateCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--input-colorspace", o->inputColorSpace,
                     "input colour space (default: file metadata, else lin_rec709; sRGB for 8-bit files)");
+    addLatLongPixelsOption(*cmd, o->latLongPixels);
     o->calibration.addTo(*cmd);
 
     return [o] {
@@ -67,13 +70,14 @@ Action addCalibrateCommand(CLI::App& app) {
             ingest.layout = parseLayout(o->layout);
             ingest.inputColorSpace = o->inputColorSpace;
             ingest.sourceFaceSize = o->size;
+            ingest.latLongPixels = parseLatLongPixels(o->latLongPixels);
             calibrated = calibrateInInputLayout(o->input, o->calibration.environmentSettings(ingest, false));
         } catch (const SettingError& e) {
             throw withFlag(e, o->calibration);
         }
         const IngestReport& r = calibrated.report;
         const ImageRGBA& image = calibrated.image;
-        const std::string layoutText =
+        const std::string layoutDescription =
             calibrated.latLong
                 ? "latlong (DESIGN.md / OpenEXR LatLongMap: +Y first scanline, +Z at the centre, +X at u = "
                   "0.25)"
@@ -83,11 +87,17 @@ Action addCalibrateCommand(CLI::App& app) {
         exr.channels = 3;
         exr.pixelType = PixelType::Float;
         exr.attributes = {{"iblbake:product", "calibrated-environment"},
-                          {"iblbake:layout", layoutText},
+                          {"iblbake:layout", layoutDescription},
                           {"iblbake:colorSpace", r.workingColorSpace},
                           {"iblbake:source", std::filesystem::path(r.file).filename().string()},
                           {"iblbake:version", IBLBAKE_VERSION},
                           {"Software", "iblbake " IBLBAKE_VERSION}};
+        for (auto& kv : latLongPixelsKeyValues(r.latLongPixels, "iblbake:"))
+            exr.attributes.push_back(std::move(kv));
+        // A lat-long output keeps the input's pixel grid: OpenEXR's placement is what the envmap attribute
+        // says (OIIO writes it from textureformat), so that ingest reads the file back the same way.
+        if (calibrated.latLong && r.latLongPixels == LatLongPixels::OpenExr)
+            exr.attributes.emplace_back("textureformat", "LatLong Environment");
         for (auto& kv : calibrationKeyValues(calibrated.record, calibrated.sun, "iblbake:"))
             exr.attributes.push_back(std::move(kv));
 
@@ -96,7 +106,8 @@ Action addCalibrateCommand(CLI::App& app) {
         if (sunJson) sunJson->commit();
 
         std::printf("input   %s: %dx%d %s, %s -> %s, source cube %d\n", r.file.c_str(), r.width, r.height,
-                    layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(), r.faceSize);
+                    layoutText(r).c_str(), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
+                    r.faceSize);
         std::printf("%s\n", calibrated.record.summary().c_str());
         if (calibrated.sun) {
             const DiskLight& l = *calibrated.sun;

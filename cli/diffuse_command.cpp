@@ -156,9 +156,9 @@ Action addDiffuseCommand(CLI::App& app) {
                 cube = irradianceCubeFromSH(sh.irradiance, o->irradianceSize, &shClamped);
             cubeMs = millisecondsSince(cubeStart);
             const std::string methodText = irradianceMethodText(method, irradianceSamplesFor(settings));
-            const Ktx2KeyValues kv = irradianceKeyValues(methodText, r.workingColorSpace,
-                                                         std::filesystem::path(r.file).filename().string(),
-                                                         calibration.record, calibration.sun);
+            const Ktx2KeyValues kv = irradianceKeyValues(
+                methodText, r.workingColorSpace, std::filesystem::path(r.file).filename().string(),
+                r.latLongPixels, calibration.record, calibration.sun);
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
             const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
@@ -186,7 +186,8 @@ Action addDiffuseCommand(CLI::App& app) {
                                    layoutName(r.layout),
                                    r.inputColorSpace,
                                    env.cube.faceSize,
-                                   o->input.rotateDegrees};
+                                   o->input.rotateDegrees,
+                                   r.latLongPixels};
         nlohmann::json doc =
             diffuseDocument(sh, o->window, r.workingColorSpace, source, calibration.record, calibration.sun);
         doc["timing"] = {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}};

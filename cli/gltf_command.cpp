@@ -166,7 +166,8 @@ Action addGltfCommand(CLI::App& app) {
         scene.extras["iblbake.specularLevels"] = levelsNote;
         for (const auto& [key, value] : ktx.keyValues)
             if (key.rfind("iblbake.calibration", 0) == 0 || key == "iblbake.units" ||
-                key == "iblbake.colorSpace" || key == "iblbake.source")
+                key == "iblbake.colorSpace" || key == "iblbake.source" ||
+                key == std::string("iblbake.") + kLatLongPixelsKey)
                 scene.extras[key] = value;
 
         writeGltfIbl(output, scene);

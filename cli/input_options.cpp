@@ -16,6 +16,15 @@ void InputOptions::addTo(CLI::App& command) {
         ->capture_default_str();
     command.add_option("--rotate", rotateDegrees, "rotate the environment about +Y, degrees")
         ->capture_default_str();
+    addLatLongPixelsOption(command, latLongPixels);
+}
+
+void addLatLongPixelsOption(CLI::App& command, std::string& latLongPixels) {
+    command
+        .add_option("--latlong-pixels", latLongPixels,
+                    "where a lat-long's pixels sit: centre (u = (x+0.5)/W), openexr (u = x/(W-1), "
+                    "ImfEnvmap LatLongMap), auto (openexr for files with the envmap attribute, else centre)")
+        ->capture_default_str();
 }
 
 IngestSettings InputOptions::settings(int sourceFaceSize) const {
@@ -25,12 +34,19 @@ IngestSettings InputOptions::settings(int sourceFaceSize) const {
     s.workingColorSpace = workingColorSpace;
     s.rotateDegrees = rotateDegrees;
     s.sourceFaceSize = sourceFaceSize;
+    s.latLongPixels = parseLatLongPixels(latLongPixels);
     return s;
+}
+
+std::string layoutText(const IngestReport& r) {
+    std::string text = layoutName(r.layout);
+    if (r.latLongPixels) text += std::string(" (pixels ") + latLongPixelsName(*r.latLongPixels) + ")";
+    return text;
 }
 
 void printIngestReport(const IngestReport& r) {
     std::printf("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width, r.height,
-                layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
+                layoutText(r).c_str(), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
                 r.maxLuminanceIn);
     std::printf("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
                 (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,

@@ -5,6 +5,7 @@
 // {
 //   "file": str, "width": int, "height": int,           // the input image
 //   "layout": str, "faceSize": int,                     // detected layout; source cube face size
+//   "latlongPixels": "centre" | "openexr",              // a lat-long's pixel placement (absent for cubes)
 //   "inputColorSpace": str, "workingColorSpace": str,
 //   "repaired": {"nan": int, "inf": int, "negative": int},  // channel values repaired on ingest
 //   "units": "cd/m2" | "relative",                      // from the file's iblbake calibration metadata
@@ -28,6 +29,7 @@
 //   "noSunReason": str                                  // present when "sun" is null
 // }
 #include "commands.h"
+#include "input_options.h"
 
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/environment_stats.h>
@@ -51,6 +53,7 @@ struct InspectOptions {
     int size = 0;
     std::string layout = "auto";
     std::string inputColorSpace;
+    std::string latLongPixels = "auto";
 };
 
 nlohmann::ordered_json numberOrNull(double v) {
@@ -71,12 +74,14 @@ Action addInspectCommand(CLI::App& app) {
         ->capture_default_str();
     cmd->add_option("--input-colorspace", o->inputColorSpace,
                     "input colour space (default: file metadata, else lin_rec709; sRGB for 8-bit files)");
+    addLatLongPixelsOption(*cmd, o->latLongPixels);
 
     return [o] {
         IngestSettings ingest;
         ingest.layout = parseLayout(o->layout);
         ingest.inputColorSpace = o->inputColorSpace;
         ingest.sourceFaceSize = o->size;
+        ingest.latLongPixels = parseLatLongPixels(o->latLongPixels);
         const SourceEnvironment env = ingestEnvironment({o->input}, ingest);
         const IngestReport& r = env.report;
         const glm::dvec3 weights = workingLuminanceWeights(r.workingColorSpace);
@@ -99,6 +104,7 @@ Action addInspectCommand(CLI::App& app) {
             j["width"] = r.width;
             j["height"] = r.height;
             j["layout"] = layoutName(r.layout);
+            if (r.latLongPixels) j["latlongPixels"] = latLongPixelsName(*r.latLongPixels);
             j["faceSize"] = r.faceSize;
             j["inputColorSpace"] = r.inputColorSpace;
             j["workingColorSpace"] = r.workingColorSpace;
@@ -142,7 +148,7 @@ Action addInspectCommand(CLI::App& app) {
 
         const char* lux = absolute ? "lux" : "lux-equivalent (relative units)";
         std::printf("input        %s: %dx%d %s, %s -> %s, source cube %d\n", r.file.c_str(), r.width,
-                    r.height, layoutName(r.layout), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
+                    r.height, layoutText(r).c_str(), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
                     r.faceSize);
         std::printf("repaired     NaN %llu, Inf %llu, negative %llu channel values\n",
                     (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,

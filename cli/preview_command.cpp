@@ -4,6 +4,7 @@
 #include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
+#include "input_options.h"
 
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/exr_output.h>
@@ -39,6 +40,7 @@ struct PreviewOptions {
     std::string bakeDir;
     std::string output;
     std::string reference;
+    std::string latLongPixels = "auto"; // of the reference, as the bake read it
     float exposure = 0.0f;
     int sphereSize = 96;
     BackendOptions backend;
@@ -165,6 +167,7 @@ Action addPreviewCommand(CLI::App& app) {
         ->required();
     cmd->add_option("--reference", o->reference,
                     "the HDRI the bake came from: add the brute-force render and the error heat map");
+    addLatLongPixelsOption(*cmd, o->latLongPixels);
     cmd->add_option("--exposure", o->exposure, "exposure compensation in stops")->capture_default_str();
     cmd->add_option("--sphere-size", o->sphereSize, "pixels per ball")
         ->capture_default_str()
@@ -196,6 +199,7 @@ Action addPreviewCommand(CLI::App& app) {
             const double factor = bake.calibrationFactor;
             IngestSettings ingest;
             ingest.sourceFaceSize = std::max(128, int(set.distantLd().layout.baseFaceSize));
+            ingest.latLongPixels = parseLatLongPixels(o->latLongPixels);
             SourceEnvironment env = ingestEnvironment({fs::path(o->reference)}, ingest);
             applyCalibration(env.cube, factor);
             ReferenceSettings settings;

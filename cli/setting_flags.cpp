@@ -11,6 +11,7 @@ std::string flagOf(const std::string& setting) {
                                                              {"workingColorSpace", "--working-colorspace"},
                                                              {"rotateDegrees", "--rotate"},
                                                              {"sourceFaceSize", "--size"},
+                                                             {"latLongPixels", "--latlong-pixels"},
                                                              {"extractSun", "--extract-sun"},
                                                              {"mipMapping", "--mip-mapping"},
                                                              {"quality", "--quality"},

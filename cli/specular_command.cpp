@@ -122,6 +122,7 @@ Action addSpecularCommand(CLI::App& app) {
         ld.levelCount = levelCount;
         ld.colorSpace = r.workingColorSpace;
         ld.source = std::filesystem::path(r.file).filename().string();
+        ld.latLongPixels = r.latLongPixels;
         ld.settings = "quality=" + o->quality + " samples=" + std::to_string(samplesFor(settings)) +
                       " lodBias=" + std::to_string(settings.lodBias) + " size=" + std::to_string(o->size) +
                       " rotate=" + std::to_string(o->input.rotateDegrees);

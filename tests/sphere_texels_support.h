@@ -21,12 +21,13 @@ inline CubeMap cubeOf(int n, const DirectionalRadiance& value) {
     return cube;
 }
 
-// The same on a w x h lat-long.
-inline ImageRGBA latLongOf(int w, int h, const DirectionalRadiance& value) {
+// The same on a w x h lat-long whose pixels sit where `placement` puts them (latlong_pixels.h).
+inline ImageRGBA latLongOf(int w, int h, const DirectionalRadiance& value,
+                           LatLongPixels placement = LatLongPixels::Centre) {
     ImageRGBA im(w, h);
     for (glm::vec4& p : im.pixels)
         p = glm::vec4(0, 0, 0, 1);
-    SphereTexels t(im);
+    SphereTexels t(im, placement);
     for (std::size_t i = 0; i < t.size(); ++i)
         t.setRgb(i, value(t.direction(i)));
     return im;

@@ -86,22 +86,29 @@ TEST(EnvironmentGeometry, LatLongPixelsAreExact) {
     for (auto [w, h] : {std::pair{4, 2}, {64, 32}, {63, 31}, {100, 50}}) {
         SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
         const ImageRGBA im(w, h);
-        expectExactGeometry(SphereTexels(im));
+        for (LatLongPixels placement : {LatLongPixels::Centre, LatLongPixels::OpenExr})
+            expectExactGeometry(SphereTexels(im, placement));
     }
-    // Pixel (x, y) looks along the LatLongMap direction of its centre (DESIGN.md), except at the poles
-    // where its cell's centroid is off the pole.
+    // Pixel (x, y) looks along the DESIGN.md direction of its centre in the placement's grid (pixel centres
+    // (x+0.5)/W; OpenEXR's x/(W-1)), except at the poles where its cell's centroid is off the pole.
     const ImageRGBA im(64, 32);
-    const SphereTexels t(im);
-    const glm::dvec3 d(directionFromLatlong(10.0f / 63.0f, 12.0f / 31.0f));
-    EXPECT_GT(glm::dot(t.direction(12 * 64 + 10), d), std::cos(0.01));
-    EXPECT_THROW(SphereTexels(ImageRGBA(1, 1)), Error);
+    const SphereTexels centre(im, LatLongPixels::Centre), openExr(im, LatLongPixels::OpenExr);
+    EXPECT_GT(
+        glm::dot(centre.direction(12 * 64 + 10), glm::dvec3(directionFromLatlong(10.5f / 64, 12.5f / 32))),
+        std::cos(0.001));
+    EXPECT_GT(
+        glm::dot(openExr.direction(12 * 64 + 10), glm::dvec3(directionFromLatlong(10.0f / 63, 12.0f / 31))),
+        std::cos(0.001));
+    EXPECT_FALSE(centre.sameGridAs(openExr));
+    EXPECT_THROW(SphereTexels(ImageRGBA(1, 1), LatLongPixels::Centre), Error);
+    EXPECT_THROW(SphereTexels(im, LatLongPixels::Auto), Error);
 }
 
 TEST(EnvironmentGeometry, NeighboursAreSymmetricAndCrossEdges) {
     for (int grid = 0; grid < 2; ++grid) {
         const CubeMap cube(8);
         const ImageRGBA im(16, 8);
-        const SphereTexels t = grid == 0 ? SphereTexels(cube) : SphereTexels(im);
+        const SphereTexels t = grid == 0 ? SphereTexels(cube) : SphereTexels(im, LatLongPixels::Centre);
         std::vector<std::size_t> nb, back;
         for (std::size_t i = 0; i < t.size(); ++i) {
             t.neighbours(i, nb);
@@ -135,7 +142,8 @@ TEST(EnvironmentStats, ConstantEnvironment) {
         const CubeMap cube = cubeOf(grid == 0 ? 32 : 17, [&](const glm::dvec3&) { return c; });
         const ImageRGBA im =
             latLongOf(grid == 2 ? 128 : 51, grid == 2 ? 64 : 25, [&](const glm::dvec3&) { return c; });
-        const EnvironmentStats s = grid < 2 ? computeEnvironmentStats(cube) : computeLatLongStats(im);
+        const EnvironmentStats s =
+            grid < 2 ? computeEnvironmentStats(cube) : computeLatLongStats(im, LatLongPixels::Centre);
         EXPECT_NEAR(s.upwardIlluminance, kPi * L, 1e-6 * kPi * L); // E = pi L
         EXPECT_NEAR(s.meanLuminance, L, 1e-6 * L);
         EXPECT_NEAR(s.logMeanLuminance, L, 1e-6 * L);
@@ -452,10 +460,10 @@ TEST(CalibrateCli, ExactFactorsScaleEveryPixel) {
     fs::remove_all(dir);
 }
 
-// Sum over a lat-long of value * exact pixel solid angle, in double (independent of the baker's grid class:
-// the cell of ImfEnvmap's LatLongMap, see ingest.h).
+// Sum over a lat-long of value * exact pixel solid angle, in double (independent of the baker's grid class;
+// the cells of the pixel-centre placement, latlong_pixels.h, as `calibrate` reads rooitou_park's pixels).
 glm::dvec3 latLongEnergy(const Pixels& p) {
-    auto edge = [](int k, int n) { return k <= 0 ? 0.0 : k >= n ? 1.0 : (k - 0.5) / (n - 1); };
+    auto edge = [](int k, int n) { return latLongPixelEdge(LatLongPixels::Centre, k, n); };
     glm::dvec3 e(0.0);
     for (int y = 0; y < p.height; ++y) {
         const double dz = std::cos(kPi * edge(y, p.height)) - std::cos(kPi * edge(y + 1, p.height));
@@ -490,6 +498,7 @@ TEST(CalibrateCli, ExtractSunWritesTheLightAndConservesEnergy) {
     EXPECT_NEAR(light.elevationDegrees(), 10.4, 1.0);
     const Pixels p = readPixels(out);
     EXPECT_NE(p.attributes.at("iblbake:sunLight").find("\"illuminanceLux\""), std::string::npos);
+    EXPECT_EQ(p.attributes.at("iblbake:latlongPixels"), "centre");
     // Inspecting the residual finds no sun.
     const nlohmann::json j = inspect(out);
     EXPECT_TRUE(j["sun"].is_null());

@@ -1,6 +1,8 @@
 // iblbake export-sh --profile filament against values derived by hand.
 #include "cli_runner.h"
 
+#include <iblbake/baker/latlong_pixels.h>
+
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -18,12 +20,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A lat-long of L(w) = 1 + w.y (DESIGN.md mapping: row y at latitude pi (0.5 - y / (H - 1))), as float EXR.
+// A lat-long of L(w) = 1 + w.y (DESIGN.md mapping: row y at latitude pi (0.5 - v), v its centre in the
+// pixel-centre placement that ingest reads a file without OpenEXR's envmap attribute with), as float EXR.
 void writeLinearSky(const fs::path& path) {
     const int width = 256, height = 128;
     std::vector<float> pixels;
     for (int y = 0; y < height; ++y) {
-        const float value = float(1.0 + std::sin(kPi * (0.5 - double(y) / (height - 1))));
+        const double v = ibl::latLongPixelCentre(ibl::LatLongPixels::Centre, y, height);
+        const float value = float(1.0 + std::sin(kPi * (0.5 - v)));
         for (int x = 0; x < width; ++x)
             pixels.insert(pixels.end(), {value, value, value});
     }

@@ -203,8 +203,8 @@ TEST(HardCases, SubTexelSunKeepsItsEnergyThroughEveryStage) {
     for (glm::vec4& p : latlong.pixels)
         p = glm::vec4(1.0f, 1.0f, 1.0f, 1.0f);
     latlong.at(300, 200) = glm::vec4(1e6f, 1e6f, 1e6f, 1.0f);
-    const CubeMap env = resampleLatLongToCube(latlong, 32);
-    const double sourceMean = computeLatLongStats(latlong).meanLuminance;
+    const CubeMap env = resampleLatLongToCube(latlong, 32, LatLongPixels::Centre);
+    const double sourceMean = computeLatLongStats(latlong, LatLongPixels::Centre).meanLuminance;
     EXPECT_NEAR(meanLuminance(env) / sourceMean, 1.0, 0.005);
     bakeEverything(env, "sub-texel sun");
     EXPECT_TRUE(detectSun(env).found);
@@ -285,7 +285,9 @@ TEST(HardCases, NonPowerOfTwoLatLongFiles) {
         const fs::path spotFile = dir / ("spot_" + what + ".exr");
         writeExr(spotFile, spot);
         const SourceEnvironment spotEnv = ingestEnvironment({spotFile}, settings);
-        EXPECT_NEAR(meanLuminance(spotEnv.cube) / computeLatLongStats(spot).meanLuminance, 1.0, 0.005)
+        EXPECT_NEAR(meanLuminance(spotEnv.cube) /
+                        computeLatLongStats(spot, *spotEnv.report.latLongPixels).meanLuminance,
+                    1.0, 0.005)
             << what;
         bakeEverything(spotEnv.cube, what.c_str());
     }

@@ -27,6 +27,7 @@ using ibl::CubeMap;
 using ibl::EnvLayout;
 using ibl::ImageRGBA;
 using ibl::IngestSettings;
+using ibl::LatLongPixels;
 
 constexpr double kPi = std::numbers::pi;
 
@@ -77,21 +78,18 @@ void writeImage(const fs::path& path, const ImageRGBA& image, const WriteOptions
     ASSERT_TRUE(out->close());
 }
 
-// The lat-long pixel grid of ImfEnvmap's LatLongMap, written out here independently of the baker:
-// pixel (x, y) is centred at u = x / (W - 1), v = y / (H - 1) and covers the half-way points to its
-// neighbours (the seam columns and pole rows are half cells).
-double latLongEdge(int k, int n) {
-    return k <= 0 ? 0.0 : k >= n ? 1.0 : (k - 0.5) / (n - 1);
-}
-
-glm::dvec3 latLongPixelDirection(int x, int y, int w, int h) {
-    ibl::vec3 d = ibl::directionFromLatlong(float(x) / float(w - 1), float(y) / float(h - 1));
+// A lat-long pixel's centre direction and exact solid angle in a placement's grid (latlong_pixels.h); pixel
+// centres unless said otherwise, as ingest reads a file without OpenEXR's envmap attribute.
+glm::dvec3 latLongPixelDirection(int x, int y, int w, int h, LatLongPixels p = LatLongPixels::Centre) {
+    ibl::vec3 d = ibl::directionFromLatlong(float(ibl::latLongPixelCentre(p, x, w)),
+                                            float(ibl::latLongPixelCentre(p, y, h)));
     return glm::dvec3(d);
 }
 
-double latLongPixelSolidAngle(int x, int y, int w, int h) {
-    const double du = latLongEdge(x + 1, w) - latLongEdge(x, w);
-    const double zTop = std::cos(kPi * latLongEdge(y, h)), zBottom = std::cos(kPi * latLongEdge(y + 1, h));
+double latLongPixelSolidAngle(int x, int y, int w, int h, LatLongPixels p = LatLongPixels::Centre) {
+    const double du = ibl::latLongPixelEdge(p, x + 1, w) - ibl::latLongPixelEdge(p, x, w);
+    const double zTop = std::cos(kPi * ibl::latLongPixelEdge(p, y, h)),
+                 zBottom = std::cos(kPi * ibl::latLongPixelEdge(p, y + 1, h));
     return 2.0 * kPi * du * (zTop - zBottom);
 }
 
@@ -103,11 +101,11 @@ ImageRGBA latLongOf(int w, int h, const std::function<glm::vec3(int, int)>& valu
     return im;
 }
 
-glm::dvec3 latLongEnergy(const ImageRGBA& im) {
+glm::dvec3 latLongEnergy(const ImageRGBA& im, LatLongPixels p) {
     glm::dvec3 e(0.0);
     for (int y = 0; y < im.height; ++y)
         for (int x = 0; x < im.width; ++x)
-            e += glm::dvec3(glm::vec3(im.at(x, y))) * latLongPixelSolidAngle(x, y, im.width, im.height);
+            e += glm::dvec3(glm::vec3(im.at(x, y))) * latLongPixelSolidAngle(x, y, im.width, im.height, p);
     return e;
 }
 
@@ -212,21 +210,22 @@ TEST(IngestLayout, NamesRoundTrip) {
 TEST(IngestResample, ConstantEnvironmentGivesConstantCube) {
     const glm::vec3 c(0.25f, 1.0f, 3.5f);
     const ImageRGBA ll = latLongOf(96, 48, [&](int, int) { return c; });
-    for (int n : {1, 7, 16, 40}) {
-        const CubeMap cube = ibl::resampleLatLongToCube(ll, n);
-        double worst = 0.0;
-        for (const ImageRGBA& face : cube.faces)
-            for (const glm::vec4& p : face.pixels)
-                worst = std::max(worst, double(glm::length(glm::vec3(p) - c) / glm::length(c)));
-        EXPECT_LT(worst, 1e-5) << "face size " << n;
-    }
+    for (LatLongPixels placement : {LatLongPixels::Centre, LatLongPixels::OpenExr})
+        for (int n : {1, 7, 16, 40}) {
+            const CubeMap cube = ibl::resampleLatLongToCube(ll, n, placement);
+            double worst = 0.0;
+            for (const ImageRGBA& face : cube.faces)
+                for (const glm::vec4& p : face.pixels)
+                    worst = std::max(worst, double(glm::length(glm::vec3(p) - c) / glm::length(c)));
+            EXPECT_LT(worst, 1e-5) << "face size " << n << ", " << ibl::latLongPixelsName(placement);
+        }
 }
 
 TEST(IngestResample, DirectionEncodingLandsOnEachFace) {
     const int w = 512, h = 256, n = 32;
     const ImageRGBA ll =
         latLongOf(w, h, [&](int x, int y) { return directionColor(latLongPixelDirection(x, y, w, h)); });
-    const CubeMap cube = ibl::resampleLatLongToCube(ll, n);
+    const CubeMap cube = ibl::resampleLatLongToCube(ll, n, LatLongPixels::Centre);
     for (int f = 0; f < 6; ++f) {
         double worst = 0.0;
         for (int j = 0; j < n; ++j)
@@ -246,12 +245,17 @@ TEST(IngestResample, EnergyIsPreserved) {
     ImageRGBA ll = latLongOf(w, h, [&](int, int) { return glm::vec3(uni(rng), uni(rng), uni(rng)); });
     for (int k = 0; k < 20; ++k) // a few bright spots, as in real skies
         ll.at(int(uni(rng) * (w - 1)), int(uni(rng) * (h - 1))) = glm::vec4(glm::vec3(500.0f * uni(rng)), 1);
-    const glm::dvec3 in = latLongEnergy(ll);
-    for (int n : {16, 45, 64, 128}) {
-        const glm::dvec3 out = cubeEnergy(ibl::resampleLatLongToCube(ll, n));
-        for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(out[c] / in[c], 1.0, 1e-3) << "face size " << n << " channel " << c;
-        RecordProperty("energy_ratio_face_" + std::to_string(n), std::to_string(out.y / in.y));
+    for (LatLongPixels placement : {LatLongPixels::Centre, LatLongPixels::OpenExr}) {
+        const glm::dvec3 in = latLongEnergy(ll, placement);
+        const std::string name = ibl::latLongPixelsName(placement);
+        for (int n : {16, 45, 64, 128}) {
+            const glm::dvec3 out = cubeEnergy(ibl::resampleLatLongToCube(ll, n, placement));
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(out[c] / in[c], 1.0, 1e-3)
+                    << "face size " << n << " channel " << c << ", " << name;
+            RecordProperty("energy_ratio_" + name + "_face_" + std::to_string(n),
+                           std::to_string(out.y / in.y));
+        }
     }
 }
 
@@ -271,7 +275,7 @@ TEST(IngestResample, OnePixelSunKeepsItsEnergy) {
             ImageRGBA ll = latLongOf(w, h, [](int, int) { return glm::vec3(0.0f); });
             ll.at(s.x, s.y) = glm::vec4(1e5f, 1e5f, 1e5f, 1.0f);
             const double expected = 1e5 * latLongPixelSolidAngle(s.x, s.y, w, h);
-            const CubeMap cube = ibl::resampleLatLongToCube(ll, n);
+            const CubeMap cube = ibl::resampleLatLongToCube(ll, n, LatLongPixels::Centre);
             const double got = cubeEnergy(cube).y;
             EXPECT_NEAR(got / expected, 1.0, 0.01) << s.where << ", face size " << n;
             worstError = std::max(worstError, std::fabs(got / expected - 1.0));
@@ -360,7 +364,7 @@ TEST(IngestFile, ReadsCommonFormats) {
     TempDir dir;
     const ImageRGBA ll =
         latLongOf(64, 32, [](int x, int y) { return glm::vec3(0.5f + x / 64.0f, 2.0f, 0.25f + y / 32.0f); });
-    const CubeMap reference = ibl::resampleLatLongToCube(ll, 16);
+    const CubeMap reference = ibl::resampleLatLongToCube(ll, 16, LatLongPixels::Centre);
     struct Format {
         const char* name;
         WriteOptions options;
@@ -752,11 +756,12 @@ TEST(IngestShared, OrientationLabelsLandWhereDesignSays) {
     const OIIO::ImageSpec spec = in->spec();
     std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
     ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
-    // Darkest / mean luminance over the 3x3 pixels around a direction (ImfEnvmap pixel centres).
+    // Darkest / mean luminance over the 3x3 pixels around a direction.
     auto rawLum = [&](const glm::dvec3& d, bool darkest) {
         const ibl::float2 uv = ibl::latlongFromDirection(ibl::vec3(d));
-        const int x = int(std::lround(uv.x * (spec.width - 1))),
-                  y = int(std::lround(uv.y * (spec.height - 1)));
+        // The file carries envmap = latlong: OpenEXR's placement.
+        const int x = ibl::latLongPixelAt(LatLongPixels::OpenExr, uv.x, spec.width),
+                  y = ibl::latLongPixelAt(LatLongPixels::OpenExr, uv.y, spec.height);
         double result = darkest ? 1e30 : 0.0;
         for (int dy = -1; dy <= 1; ++dy)
             for (int dx = -1; dx <= 1; ++dx) {

@@ -141,7 +141,7 @@ TEST(Sun, LatLongSunNextToThePole) {
     // A sun in the second row of a lat-long: its neighbourhood wraps over the pole.
     const int w = 256, h = 128;
     ImageRGBA im = latLongOf(w, h, [](const glm::dvec3&) { return glm::vec3(1.0f); });
-    SphereTexels t(im);
+    SphereTexels t(im, LatLongPixels::Centre);
     const std::size_t k = std::size_t(1) * w + 17;
     addEnergy(t, k, 0.2, glm::dvec3(1.0));
     const SunDetection det = detectSun(t);
@@ -257,9 +257,9 @@ struct Peak {
     glm::dvec3 direction;
 };
 
-// The brightest pixel of a lat-long file, read here with OIIO, and its direction under the OpenEXR
-// LatLongMap convention (pixel centre u = x / (W - 1), v = y / (H - 1); SOURCES.md's Kerner note).
-Peak brightestPixel(const fs::path& file) {
+// The brightest pixel of a lat-long file, read here with OIIO, and its direction: the DESIGN.md mapping of
+// its centre in the placement's grid (latlong_pixels.h; SOURCES.md's notes use pixel centres).
+Peak brightestPixel(const fs::path& file, LatLongPixels placement) {
     auto in = OIIO::ImageInput::open(file.string());
     EXPECT_TRUE(in) << OIIO::geterror();
     Peak p;
@@ -273,8 +273,8 @@ Peak brightestPixel(const fs::path& file) {
             const double l = 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
             if (l > p.luminance) p = {x, y, l, glm::dvec3(0.0)};
         }
-    p.direction = glm::dvec3(
-        directionFromLatlong(float(p.x) / float(spec.width - 1), float(p.y) / float(spec.height - 1)));
+    p.direction = glm::dvec3(directionFromLatlong(float(latLongPixelCentre(placement, p.x, spec.width)),
+                                                  float(latLongPixelCentre(placement, p.y, spec.height))));
     return p;
 }
 
@@ -289,16 +289,18 @@ TEST_P(SharedSun, FoundAtTheBrightestPixelAndExtractedExactly) {
     const SunCase c = GetParam();
     REQUIRE_SHARED(c.file);
     const fs::path file = kHdri / c.file;
-    const Peak peak = brightestPixel(file);
+    SourceEnvironment env = ingestEnvironment({file}, {});
+    ASSERT_TRUE(env.report.latLongPixels);
+    const LatLongPixels placement = *env.report.latLongPixels;
+    const Peak peak = brightestPixel(file, placement);
     EXPECT_EQ(peak.x, c.peakX);
     EXPECT_EQ(peak.y, c.peakY);
 
-    SourceEnvironment env = ingestEnvironment({file}, {});
     ImageRGBA latlong = readWorkingLatLong(file, {});
     const EnvironmentStats stats = computeEnvironmentStats(env.cube);
     double cubeE = 0.0;
     for (int grid = 0; grid < 2; ++grid) {
-        SphereTexels t = grid == 0 ? SphereTexels(env.cube) : SphereTexels(latlong);
+        SphereTexels t = grid == 0 ? SphereTexels(env.cube) : SphereTexels(latlong, placement);
         const char* gridName = grid == 0 ? "cube" : "latlong";
         const SunDetection det = detectSun(t);
         ASSERT_TRUE(det.found) << gridName << ": " << det.reason;
@@ -350,7 +352,9 @@ TEST_P(SharedNoSun, ReportsNoSun) {
     const SunDetection cube = detectSun(env.cube);
     EXPECT_FALSE(cube.found) << "cube: sun at elevation " << cube.light.elevationDegrees();
     EXPECT_FALSE(cube.reason.empty());
-    const SunDetection ll = detectSun(SphereTexels(readWorkingLatLong(file, {})));
+    IngestReport report;
+    const ImageRGBA latlong = readWorkingLatLong(file, {}, &report);
+    const SunDetection ll = detectSun(SphereTexels(latlong, *report.latLongPixels));
     EXPECT_FALSE(ll.found) << "latlong: sun at elevation " << ll.light.elevationDegrees();
     std::cout << GetParam() << ": no sun: " << cube.reason << "\n";
 }

@@ -205,6 +205,7 @@ ImageRGBA readWorkingLatLong(const std::filesystem::path& file, const IngestSett
     if (r.layout != EnvLayout::LatLong)
         throw Error(raw.file + ": is a " + layoutName(r.layout) + " environment, not a lat-long");
     if (settings.rotateDegrees != 0.0f) throw Error(raw.file + ": rotation is not supported here");
+    r.latLongPixels = ingest::resolveLatLongPixels(raw, settings.latLongPixels);
     r.inputColorSpace = ingest::resolveInputColorSpace(raw, settings.inputColorSpace);
     const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace);
     r.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);

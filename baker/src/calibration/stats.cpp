@@ -95,24 +95,19 @@ glm::dvec3 polygonVectorSolidAngle(const ingest::FaceFrame& frame, const PlanePo
     return glm::dot(sum, centre) < 0.0 ? -sum : sum;
 }
 
-// ---- lat-long geometry (ImfEnvmap LatLongMap pixel grid, see ingest.h) ----
-
-double latLongEdge(int k, int n) {
-    return k <= 0 ? 0.0 : k >= n ? 1.0 : (k - 0.5) / (n - 1);
-}
+// ---- lat-long geometry (the placement's pixel grid, latlong_pixels.h) ----
 
 struct LatLongCell {
     double phi0, phi1; // longitude range, phi0 < phi1
     double z0, z1;     // z = sin(latitude) range, z0 < z1
 };
 
-LatLongCell latLongCell(int x, int y, int w, int h) {
+LatLongCell latLongCell(int x, int y, int w, int h, LatLongPixels placement) {
     // u grows as longitude falls: phi = (0.5 - u) 2 pi (DESIGN.md).
-    const double phiA = (0.5 - latLongEdge(x, w)) * 2.0 * kPi,
-                 phiB = (0.5 - latLongEdge(x + 1, w)) * 2.0 * kPi;
-    const int yTop = y, yBottom = y + 1;
-    const double zTop = yTop <= 0 ? 1.0 : std::cos(kPi * latLongEdge(yTop, h));
-    const double zBottom = yBottom >= h ? -1.0 : std::cos(kPi * latLongEdge(yBottom, h));
+    const double phiA = (0.5 - latLongPixelEdge(placement, x, w)) * 2.0 * kPi,
+                 phiB = (0.5 - latLongPixelEdge(placement, x + 1, w)) * 2.0 * kPi;
+    const double zTop = y <= 0 ? 1.0 : std::cos(kPi * latLongPixelEdge(placement, y, h));
+    const double zBottom = y + 1 >= h ? -1.0 : std::cos(kPi * latLongPixelEdge(placement, y + 1, h));
     return {phiB, phiA, zBottom, zTop};
 }
 
@@ -140,21 +135,25 @@ SphereTexels::SphereTexels(const CubeMap& cube) : SphereTexels(const_cast<CubeMa
     writable_ = false;
 }
 
-SphereTexels::SphereTexels(ImageRGBA& latlong) : latlong_(&latlong), writable_(true) {
+SphereTexels::SphereTexels(ImageRGBA& latlong, LatLongPixels placement)
+    : latlong_(&latlong), placement_(placement), writable_(true) {
+    if (placement == LatLongPixels::Auto) throw Error("environment: internal: unresolved lat-long placement");
     if (latlong.width < 2 || latlong.height < 2)
         throw Error("environment: a lat-long image needs at least 2x2 pixels, got " +
                     std::to_string(latlong.width) + "x" + std::to_string(latlong.height));
     size_ = std::size_t(latlong.width) * std::size_t(latlong.height);
 }
 
-SphereTexels::SphereTexels(const ImageRGBA& latlong) : SphereTexels(const_cast<ImageRGBA&>(latlong)) {
+SphereTexels::SphereTexels(const ImageRGBA& latlong, LatLongPixels placement)
+    : SphereTexels(const_cast<ImageRGBA&>(latlong), placement) {
     writable_ = false;
 }
 
 bool SphereTexels::sameGridAs(const SphereTexels& other) const {
     if (isCube() != other.isCube()) return false;
     if (isCube()) return cube_->faceSize == other.cube_->faceSize;
-    return latlong_->width == other.latlong_->width && latlong_->height == other.latlong_->height;
+    return latlong_->width == other.latlong_->width && latlong_->height == other.latlong_->height &&
+           placement_ == other.placement_;
 }
 
 glm::vec4& SphereTexels::texel(std::size_t i) const {
@@ -183,7 +182,7 @@ double SphereTexels::solidAngle(std::size_t i) const {
                areaElement(s.a1, s.b1);
     }
     const int w = latlong_->width, h = latlong_->height;
-    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h);
+    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h, placement_);
     return (c.phi1 - c.phi0) * (c.z1 - c.z0);
 }
 
@@ -195,7 +194,7 @@ glm::dvec3 SphereTexels::vectorSolidAngle(std::size_t i) const {
         return polygonVectorSolidAngle(ingest::faceFrame(face), squarePolygon(faceSquare(r % n, r / n, n)));
     }
     const int w = latlong_->width, h = latlong_->height;
-    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h);
+    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h, placement_);
     const double s = sqrtOneMinusSquareIntegral(c.z1) - sqrtOneMinusSquareIntegral(c.z0);
     return {s * (std::cos(c.phi0) - std::cos(c.phi1)), 0.5 * (c.phi1 - c.phi0) * squareDifference(c.z1, c.z0),
             s * (std::sin(c.phi1) - std::sin(c.phi0))};
@@ -218,7 +217,7 @@ double SphereTexels::upwardCosine(std::size_t i) const {
         return std::max(0.0, polygonVectorSolidAngle(frame, poly).y);
     }
     const int w = latlong_->width, h = latlong_->height;
-    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h);
+    const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h, placement_);
     const double z0 = std::max(c.z0, 0.0), z1 = std::max(c.z1, 0.0);
     return 0.5 * (c.phi1 - c.phi0) * squareDifference(z1, z0);
 }
@@ -406,8 +405,9 @@ EnvironmentStats computeEnvironmentStats(const CubeMap& cube, const glm::dvec3& 
     return computeEnvironmentStats(SphereTexels(cube), weights);
 }
 
-EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, const glm::dvec3& weights) {
-    return computeEnvironmentStats(SphereTexels(latlong), weights);
+EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, LatLongPixels placement,
+                                     const glm::dvec3& weights) {
+    return computeEnvironmentStats(SphereTexels(latlong, placement), weights);
 }
 
 double zenithLuminance(const SphereTexels& texels, double capDegrees, const glm::dvec3& weights,

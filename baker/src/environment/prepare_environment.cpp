@@ -101,7 +101,7 @@ CalibratedImage calibrateInInputLayout(const std::filesystem::path& file,
     out.image = readWorkingLatLong(file, ingest);
     applyCalibration(out.image, out.record.factor);
     const glm::dvec3 weights = workingLuminanceWeights(out.report.workingColorSpace);
-    SphereTexels texels(out.image);
+    SphereTexels texels(out.image, *out.report.latLongPixels); // the placement the cube was ingested with
     out.sun = namingFile(out.report.file, [&] {
         return takeSunOut(texels, settings.sun, extractionDetection(settings, weights));
     });

@@ -82,7 +82,9 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     if (report.layout == EnvLayout::LatLong) {
         report.faceSize = settings.sourceFaceSize > 0 ? settings.sourceFaceSize
                                                       : defaultLatLongFaceSize(first.pixels.width);
-        env.cube = ingest::resampleLatLongToCubeRotated(first.pixels, report.faceSize, rotate);
+        report.latLongPixels = ingest::resolveLatLongPixels(first, settings.latLongPixels);
+        env.cube = ingest::resampleLatLongToCubeRotated(first.pixels, report.faceSize, *report.latLongPixels,
+                                                        rotate);
     } else {
         const ingest::SourceFaces faces = report.layout == EnvLayout::ExrCube
                                               ? ingest::facesFromExrCube(first)

@@ -49,6 +49,9 @@ RawImage readImage(const std::filesystem::path& file);
 // The layout of a single image: `requested` if not Auto (checked against the size), else detected from
 // metadata and aspect ratio. Throws ibl::Error naming the file when it cannot tell or the size does not fit.
 EnvLayout resolveLayout(const RawImage& image, EnvLayout requested);
+// The placement of a lat-long image's pixels: `requested` unless Auto, else OpenExr when the file carries
+// OpenEXR's envmap = latlong attribute (OIIO textureformat "LatLong Environment"), else Centre.
+LatLongPixels resolveLatLongPixels(const RawImage& image, LatLongPixels requested);
 
 // ---- colour (color.cpp) ----
 // The input colour space: `requested` if given, else from metadata; returned as the config's name.
@@ -91,7 +94,8 @@ int sourceFaceSizeOf(const SourceFaces& faces);
 
 // ---- lat-long (latlong_to_cube.cpp) ----
 // resampleLatLongToCube with the environment rotated by `rotateRadians` about +Y (see IngestSettings).
-CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, double rotateRadians);
+CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
+                                     double rotateRadians);
 
 // ---- rotation of a cube (rotate_cube.cpp) ----
 // Rotates about +Y by supersampled bilinear lookups (approximate; used only for cube inputs).

@@ -2,7 +2,7 @@
 //
 // In the coordinates (longitude phi, z = sin(latitude)) the solid angle is dphi * dz (Lambert's
 // cylindrical equal-area projection), and a lat-long pixel is an axis-aligned rectangle in which the
-// image is constant (pixel grid of ImfEnvmap's LatLongMap, see LatLongGrid). A cube texel, seen from the
+// image is constant (the placement's pixel grid, latlong_pixels.h). A cube texel, seen from the
 // centre, is a convex spherical quadrilateral: every meridian crosses it in one arc [z_lo(phi), z_hi(phi)],
 // found by clipping the meridian's half-plane against the texel square on the face plane. So
 //
@@ -94,23 +94,19 @@ bool clipMeridian(const FaceFrame& f, const Square& sq, double phi, double& zLo,
     return true;
 }
 
-// Pixel grid of ImfEnvmap's LatLongMap: pixel (x, y) is centred at u = x / (W - 1), v = y / (H - 1), so the
-// first and last columns both sit on the 180-degree seam and the first and last rows on the poles. Each
-// pixel covers the half-way points to its neighbours: edge k (0 < k < n) is at (k - 0.5) / (n - 1), and
-// the seam columns and pole rows are half as wide as the others.
-std::vector<double> latLongEdges(int n) {
+// Pixel edges of a row or column of n pixels in the placement's grid (latlong_pixels.h).
+std::vector<double> latLongEdges(LatLongPixels placement, int n) {
     std::vector<double> e(std::size_t(n) + 1);
-    for (int k = 1; k < n; ++k)
-        e[std::size_t(k)] = (k - 0.5) / (n - 1);
-    e.front() = 0.0;
-    e.back() = 1.0;
+    for (int k = 0; k <= n; ++k)
+        e[std::size_t(k)] = latLongPixelEdge(placement, k, n);
     return e;
 }
 
 class LatLongGrid {
   public:
-    explicit LatLongGrid(const ImageRGBA& image)
-        : image_(image), uEdge_(latLongEdges(image.width)), zEdge_(latLongEdges(image.height)) {
+    LatLongGrid(const ImageRGBA& image, LatLongPixels placement)
+        : image_(image), placement_(placement), uEdge_(latLongEdges(placement, image.width)),
+          zEdge_(latLongEdges(placement, image.height)) {
         // Row edges as z = sin(latitude) = cos(pi v).
         for (double& z : zEdge_)
             z = std::cos(kPi * z);
@@ -120,10 +116,10 @@ class LatLongGrid {
 
     const std::vector<double>& uEdges() const { return uEdge_; }
 
-    // Column holding u in [0, 1).
+    // Column holding u in [0, 1). The first guess only has to be near: the loops make it exact.
     int column(double u) const {
         const int w = image_.width;
-        int c = w == 1 ? 0 : std::clamp(int(std::floor(u * (w - 1) + 0.5)), 0, w - 1);
+        int c = latLongPixelAt(placement_, u, w);
         while (c > 0 && u < uEdge_[std::size_t(c)])
             --c;
         while (c < w - 1 && u >= uEdge_[std::size_t(c) + 1])
@@ -149,7 +145,7 @@ class LatLongGrid {
     int row(double z) const {
         const int h = image_.height;
         const double v = approximateAcos(std::clamp(z, -1.0, 1.0)) / kPi;
-        int r = h == 1 ? 0 : std::clamp(int(std::floor(v * (h - 1) + 0.5)), 0, h - 1);
+        int r = latLongPixelAt(placement_, v, h);
         while (r > 0 && z > zEdge(r))
             --r;
         while (r < h - 1 && z < zEdge(r + 1))
@@ -158,6 +154,7 @@ class LatLongGrid {
     }
 
     const ImageRGBA& image_;
+    LatLongPixels placement_;
     std::vector<double> uEdge_, zEdge_;
 };
 
@@ -236,10 +233,12 @@ TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, co
 
 } // namespace
 
-CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, double rotateRadians) {
+CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
+                                     double rotateRadians) {
     if (latlong.width <= 0 || latlong.height <= 0) throw Error("lat-long resampling: empty image");
     if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
-    const LatLongGrid grid(latlong);
+    if (placement == LatLongPixels::Auto) throw Error("lat-long resampling: internal: unresolved placement");
+    const LatLongGrid grid(latlong, placement);
     CubeMap cube(faceSize);
     const double step = 2.0 / faceSize;
     const int corners = faceSize + 1; // per face and axis
@@ -275,8 +274,8 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, dou
 
 } // namespace ingest
 
-CubeMap resampleLatLongToCube(const ImageRGBA& latlong, int faceSize) {
-    return ingest::resampleLatLongToCubeRotated(latlong, faceSize, 0.0);
+CubeMap resampleLatLongToCube(const ImageRGBA& latlong, int faceSize, LatLongPixels placement) {
+    return ingest::resampleLatLongToCubeRotated(latlong, faceSize, placement, 0.0);
 }
 
 } // namespace ibl

@@ -122,6 +122,10 @@ EnvLayout detect(const RawImage& image) {
 
 } // namespace
 
+LatLongPixels resolveLatLongPixels(const RawImage& image, LatLongPixels requested) {
+    return ibl::resolveLatLongPixels(requested, image.textureFormat == "LatLong Environment");
+}
+
 EnvLayout resolveLayout(const RawImage& image, EnvLayout requested) {
     const EnvLayout layout = requested == EnvLayout::Auto ? detect(image) : requested;
     checkSize(image, layout);

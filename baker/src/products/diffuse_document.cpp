@@ -63,17 +63,18 @@ json diffuseDocument(const DiffuseSH& sh, const std::string& requestedWindow, co
         json::array({"(0,0) 0.282095", "(1,-1) 0.488603*y", "(1,0) 0.488603*z", "(1,1) 0.488603*x",
                      "(2,-2) 1.092548*x*y", "(2,-1) 1.092548*y*z", "(2,0) 0.315392*(3*z*z-1)",
                      "(2,1) 1.092548*x*z", "(2,2) 0.546274*(x*x-y*y)"});
+    json sourceObject = {{"file", source.file},
+                         {"width", source.width},
+                         {"height", source.height},
+                         {"layout", source.layout},
+                         {"inputColorSpace", source.inputColorSpace},
+                         {"faceSize", source.faceSize},
+                         {"rotateDegrees", source.rotateDegrees}};
+    addLatLongPixels(sourceObject, source.latLongPixels);
     return {{"schema", "iblbake.diffuse"},
             {"schemaVersion", 1},
             {"generator", "iblbake " IBLBAKE_VERSION},
-            {"source",
-             {{"file", source.file},
-              {"width", source.width},
-              {"height", source.height},
-              {"layout", source.layout},
-              {"inputColorSpace", source.inputColorSpace},
-              {"faceSize", source.faceSize},
-              {"rotateDegrees", source.rotateDegrees}}},
+            {"source", sourceObject},
             {"colorSpace", colorSpace},
             {"units", record.absolute() ? "cd/m2 (luminance); irradiance in lux"
                                         : "relative (input values, uncalibrated)"},

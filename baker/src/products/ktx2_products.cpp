@@ -1,7 +1,30 @@
 // KTX2 key/values of the LD chains, the irradiance cube and the DFG LUT (iblbake/baker/products.h).
 #include "iblbake/baker/products.h"
+#include "iblbake/core/error.h"
 
 namespace ibl {
+
+const char* const kLatLongPixelsKey = "latlongPixels";
+
+Ktx2KeyValues latLongPixelsKeyValues(const std::optional<LatLongPixels>& placement,
+                                     const std::string& prefix) {
+    if (!placement) return {};
+    return {{prefix + kLatLongPixelsKey, latLongPixelsName(*placement)}};
+}
+
+void addLatLongPixels(nlohmann::json& object, const std::optional<LatLongPixels>& placement) {
+    if (placement) object[kLatLongPixelsKey] = latLongPixelsName(*placement);
+}
+
+std::optional<LatLongPixels> latLongPixelsFromJson(const nlohmann::json& object) {
+    if (!object.contains(kLatLongPixelsKey)) return std::nullopt;
+    const nlohmann::json& value = object[kLatLongPixelsKey];
+    const LatLongPixels placement =
+        value.is_string() ? parseLatLongPixels(value.get<std::string>()) : LatLongPixels::Auto;
+    if (placement == LatLongPixels::Auto)
+        throw Error(std::string(kLatLongPixelsKey) + ": " + value.dump() + " is not centre or openexr");
+    return placement;
+}
 
 Ktx2KeyValues dfgLutMetadata(const std::string& prefix, const std::string& rowWord, std::uint32_t samples) {
     return {{prefix + "product", "dfg-lut"},
@@ -22,6 +45,8 @@ Ktx2KeyValues ldChainKeyValues(const LdChainProduct& c, const CalibrationRecord&
                         {"iblbake.settings", c.settings}};
     if (c.integratedLevels) kv.emplace_back("iblbake.integratedLevels", std::to_string(*c.integratedLevels));
     if (c.source) kv.emplace_back("iblbake.source", *c.source);
+    for (auto& entry : latLongPixelsKeyValues(c.latLongPixels))
+        kv.push_back(std::move(entry));
     for (auto& entry : calibrationKeyValues(record, sun))
         kv.push_back(std::move(entry));
     if (c.sunInLevel0) {
@@ -45,13 +70,16 @@ std::string irradianceMethodText(IrradianceMethod method, std::uint32_t samples)
 }
 
 Ktx2KeyValues irradianceKeyValues(const std::string& methodText, const std::string& colorSpace,
-                                  const std::optional<std::string>& source, const CalibrationRecord& record,
-                                  const std::optional<DiskLight>& sun) {
+                                  const std::optional<std::string>& source,
+                                  const std::optional<LatLongPixels>& latLongPixels,
+                                  const CalibrationRecord& record, const std::optional<DiskLight>& sun) {
     Ktx2KeyValues kv = {{"iblbake.product", "irradiance"},
                         {"iblbake.irradianceNormalization", kIrradianceNormalization},
                         {"iblbake.method", methodText},
                         {"iblbake.colorSpace", colorSpace}};
     if (source) kv.emplace_back("iblbake.source", *source);
+    for (auto& entry : latLongPixelsKeyValues(latLongPixels))
+        kv.push_back(std::move(entry));
     for (auto& entry : calibrationKeyValues(record, sun))
         kv.push_back(std::move(entry));
     return kv;

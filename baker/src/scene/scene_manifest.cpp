@@ -154,6 +154,8 @@ json buildManifest(const ManifestInputs& in) {
         {"products", products},
         {"stages", stageKeys}};
     addCalibrationToManifest(manifest, record, calibration.at("colorSpace").get<std::string>());
+    if (calibration.contains("source"))
+        addLatLongPixels(manifest, latLongPixelsFromJson(calibration.at("source")));
     return manifest;
 }
 

@@ -158,6 +158,8 @@ std::vector<fs::path> files(ObjectReader& r, const std::string& k, const fs::pat
 const std::vector<std::string> kLayouts = {"auto",   "latlong", "exr-cube", "hcross",
                                            "vcross", "hstrip",  "vstrip",   "six-files"};
 
+const std::vector<std::string> kLatLongPixels = {"auto", "centre", "openexr"};
+
 void checkLayoutFileCount(ObjectReader& r, const std::string& layoutKey, const std::string& layout,
                           std::size_t fileCount) {
     if ((layout == "six-files") != (fileCount == 6))
@@ -227,6 +229,7 @@ SceneEnvironment environment(const json& v, const fs::path& base, const Fail& fa
     e.colorSpace = r.string("colorSpace", "");
     e.workingColorSpace = r.choice("workingColorSpace", "lin_rec709", {"lin_rec709", "acescg"});
     e.rotationDegrees = r.number("rotation", 0.0);
+    e.latLongPixels = r.choice("latlongPixels", "auto", kLatLongPixels);
     if (const json* c = r.take("calibration")) e.calibration = calibration(*c, r.key("calibration"), fail);
     e.extractSun = r.boolean("extractSun", false);
     r.finish();
@@ -250,6 +253,7 @@ SceneProbe probe(const json& v, const std::string& path, const fs::path& base, c
     checkLayoutFileCount(r, "layout", p.layout, p.capture.size());
     p.colorSpace = r.string("colorSpace", "");
     p.rotationDegrees = r.number("rotation", 0.0);
+    p.latLongPixels = r.choice("latlongPixels", "auto", kLatLongPixels);
     if (!r.has("position")) fail(r.key("position"), "is required");
     p.position = r.vec3("position", glm::dvec3(0.0));
     p.proxy = volume(r.required("proxy"), r.key("proxy"), fail, p.position);

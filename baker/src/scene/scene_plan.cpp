@@ -83,6 +83,7 @@ Plan planScene(const Scene& scene) {
                       {"colorSpace", env.colorSpace},
                       {"workingColorSpace", env.workingColorSpace},
                       {"rotation", env.rotationDegrees},
+                      {"latlongPixels", env.latLongPixels},
                       {"calibration", calibrationJson(env.calibration)},
                       {"faceSize", o.faceSize}};
         s.reason = "ingest and calibrate the distant environment (read by the diffuse" +
@@ -173,6 +174,7 @@ Plan planScene(const Scene& scene) {
             s.settings["colorSpace"] = p.colorSpace;
             s.settings["workingColorSpace"] = env.workingColorSpace;
             s.settings["rotation"] = p.rotationDegrees;
+            s.settings["latlongPixels"] = p.latLongPixels;
             if (p.calibration) {
                 s.settings["calibration"] = calibrationJson(*p.calibration);
             } else if (env.calibration.source != SceneCalibration::None) {

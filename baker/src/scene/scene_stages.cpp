@@ -79,6 +79,9 @@ struct CachedCalibration {
         if (!document.contains("source")) return std::nullopt;
         return document["source"].at("file").get<std::string>();
     }
+    std::optional<LatLongPixels> latLongPixels() const {
+        return document.contains("source") ? latLongPixelsFromJson(document["source"]) : std::nullopt;
+    }
 };
 
 CachedCalibration readCalibration(const fs::path& entry) {
@@ -102,6 +105,7 @@ IngestSettings ingestSettings(const json& s) {
     ingest.workingColorSpace = s.at("workingColorSpace").get<std::string>();
     ingest.rotateDegrees = s.at("rotation").get<float>();
     ingest.sourceFaceSize = s.at("faceSize").get<int>();
+    ingest.latLongPixels = parseLatLongPixels(s.at("latlongPixels").get<std::string>());
     return ingest;
 }
 
@@ -120,6 +124,7 @@ std::string sceneKeyFor(const std::string& setting, const PlanStage& stage, cons
     if (setting == "inputColorSpace") return owner + ".colorSpace";
     if (setting == "workingColorSpace") return "environment.workingColorSpace";
     if (setting == "rotateDegrees") return owner + ".rotation";
+    if (setting == "latLongPixels") return owner + ".latlongPixels";
     if (setting == "sourceFaceSize")
         return stage.kind == "probe-ld" ? "outputs.probeFaceSize" : "outputs.faceSize";
     if (setting == "extractSun") return "environment.extractSun";
@@ -173,6 +178,7 @@ void runEnvironment(const StageContext& c) {
                                  {"layout", layoutName(env.report.layout)},
                                  {"inputColorSpace", env.report.inputColorSpace},
                                  {"rotateDegrees", s.at("rotation")}};
+        addLatLongPixels(calibration["source"], env.report.latLongPixels);
         writeCube(c.outputDirectory / kCubeFile, env.cube, "calibrated-environment");
         writeJson(c.outputDirectory / kCalibrationFile, calibration);
     });
@@ -219,6 +225,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     ld.integratedLevels = settings.integratedLevels;
     ld.colorSpace = calibration.colorSpace();
     ld.source = calibration.sourceFile();
+    ld.latLongPixels = calibration.latLongPixels();
     ld.settings = "quality=" + s.at("quality").get<std::string>() +
                   " samples=" + std::to_string(samplesFor(settings)) +
                   " roughnessMax=" + s.at("roughnessMax").dump();
@@ -266,6 +273,7 @@ void runDiffuse(const StageContext& c) {
         source.layout = in.value("layout", "");
         source.inputColorSpace = in.value("inputColorSpace", "");
         source.rotateDegrees = in.value("rotateDegrees", 0.0);
+        source.latLongPixels = latLongPixelsFromJson(in);
     }
     source.faceSize = cube.faceSize;
     writeJson(c.outputDirectory / "diffuse.json",
@@ -289,6 +297,7 @@ void runIrradiance(const StageContext& c) {
     writeProductCube(c.outputDirectory / "irradiance.ktx2", chain, format,
                      irradianceKeyValues(irradianceMethodText(IrradianceMethod::Sampled, settings.samples),
                                          calibration.colorSpace(), calibration.sourceFile(),
+                                         calibration.latLongPixels(),
                                          calibration.record, calibration.sun),
                      storage);
     writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
@@ -308,9 +317,10 @@ void runProbe(const StageContext& c) {
         }
         const PreparedEnvironment prepared = prepareEnvironment(inputFiles(c.stage), settings);
         const SourceEnvironment& env = prepared.env;
+        json source = {{"file", fs::path(env.report.file).filename().string()}};
+        addLatLongPixels(source, env.report.latLongPixels);
         const CachedCalibration calibration{
-            {{"colorSpace", env.report.workingColorSpace},
-             {"source", {{"file", fs::path(env.report.file).filename().string()}}}},
+            {{"colorSpace", env.report.workingColorSpace}, {"source", source}},
             prepared.record,
             std::nullopt};
         writeLdChain(c, env.cube, calibration, "local-probe-ld", c.outputDirectory / "ld.ktx2");

@@ -105,7 +105,8 @@ glm::dvec3 workingLuminanceWeights(const std::string& workingColorSpace);
 // The same read -> repair -> colour conversion -> repair as ingestEnvironment, without resampling into a
 // cube: the input lat-long in the working space at its own resolution, for outputs that keep the input's
 // layout (`iblbake calibrate`). settings.layout must resolve to LatLong and rotation must be 0 (throws
-// ibl::Error naming the file otherwise). `report` gets what ingestEnvironment would report, faceSize 0.
+// ibl::Error naming the file otherwise). `report` gets what ingestEnvironment would report, faceSize 0 (its
+// latLongPixels is the placement the pixels are to be read with, SphereTexels(image, placement)).
 ImageRGBA readWorkingLatLong(const std::filesystem::path& file, const IngestSettings& settings,
                              IngestReport* report = nullptr);
 

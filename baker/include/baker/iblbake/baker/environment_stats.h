@@ -6,6 +6,7 @@
 // 0.2126 R + 0.7152 G + 0.0722 B). Directions follow DESIGN.md: right-handed, +Y up.
 #pragma once
 
+#include "iblbake/baker/latlong_pixels.h"
 #include "iblbake/core/cubemap.h"
 #include "iblbake/core/image.h"
 
@@ -23,16 +24,17 @@ inline constexpr glm::dvec3 kRec709Luminance{0.2126, 0.7152, 0.0722};
 // the pixels of either
 //   - a cube map: texel (face f, column i, row j) has index (f * N + j) * N + i; its footprint is the
 //     spherical quadrilateral under the face-plane square of kernels/cube.h, or
-//   - a lat-long image: pixel (x, y) has index y * W + x; its footprint is the cell of ImfEnvmap's
-//     LatLongMap pixel grid (centre u = x / (W - 1), v = y / (H - 1), edges half-way between centres, the
-//     seam columns and pole rows half cells), the same grid the ingest resamples from.
+//   - a lat-long image: pixel (x, y) has index y * W + x; its footprint is its cell in the pixel grid of
+//     the placement it was read with (latlong_pixels.h), the same grid the ingest resamples from.
 class SphereTexels {
   public:
     // Views that may write (setRgb) and read-only views, chosen by the constness of the argument.
     explicit SphereTexels(CubeMap& cube);
     explicit SphereTexels(const CubeMap& cube);
-    explicit SphereTexels(ImageRGBA& latlong); // throws ibl::Error for an image smaller than 2 x 2
-    explicit SphereTexels(const ImageRGBA& latlong);
+    // `placement` must be resolved (Centre or OpenExr: IngestReport::latLongPixels). Throws ibl::Error for
+    // an image smaller than 2 x 2.
+    SphereTexels(ImageRGBA& latlong, LatLongPixels placement);
+    SphereTexels(const ImageRGBA& latlong, LatLongPixels placement);
 
     bool isCube() const { return cube_ != nullptr; }
     int faceSize() const { return cube_ ? cube_->faceSize : 0; } // 0 for a lat-long
@@ -61,6 +63,7 @@ class SphereTexels {
   private:
     CubeMap* cube_ = nullptr;
     ImageRGBA* latlong_ = nullptr;
+    LatLongPixels placement_ = LatLongPixels::Centre;
     std::size_t size_ = 0;
     bool writable_ = false;
     glm::vec4& texel(std::size_t i) const;
@@ -92,8 +95,8 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels,
                                          const glm::dvec3& luminanceWeights = kRec709Luminance);
 EnvironmentStats computeEnvironmentStats(const CubeMap& cube,
                                          const glm::dvec3& luminanceWeights = kRec709Luminance);
-// `latlong` is an equirect image in the DESIGN.md mapping, measured on its own pixel grid.
-EnvironmentStats computeLatLongStats(const ImageRGBA& latlong,
+// `latlong` is an equirect image in the DESIGN.md mapping, measured on its own pixel grid (`placement`).
+EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, LatLongPixels placement,
                                      const glm::dvec3& luminanceWeights = kRec709Luminance);
 
 // Frostbite eq. 11 with S = 100, K = 12.5: EV100 = log2(L * 100 / 12.5) = log2(8 L); NaN for L <= 0.

@@ -2,11 +2,13 @@
 // (DESIGN.md "Data flow": OIIO -> float image -> OCIO -> working linear RGB -> sanitize -> source cube).
 #pragma once
 
+#include "iblbake/baker/latlong_pixels.h"
 #include "iblbake/core/cubemap.h"
 #include "iblbake/core/image.h"
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,7 +29,7 @@ namespace ibl {
 // where it has to be turned upside down (its last row touches -Y's last row).
 enum class EnvLayout {
     Auto,
-    LatLong,         // equirect, DESIGN.md lat-long mapping (OpenEXR LatLongMap, its pixel centres too)
+    LatLong,         // equirect, DESIGN.md lat-long mapping (OpenEXR LatLongMap), pixels by latlong_pixels.h
     ExrCube,         // OpenEXR envmap=cube: 6 faces stacked vertically, ImfEnvmap CubeMap convention
     HorizontalCross, // 4:3, see above
     VerticalCross,   // 3:4, see above
@@ -53,6 +55,9 @@ struct IngestSettings {
     // Face size of the source cube. 0 = from the input: a lat-long's width / 4 rounded to the nearest
     // power of two, a cube's own face size.
     int sourceFaceSize = 0;
+    // Where a lat-long's pixels sit (latlong_pixels.h): Auto = OpenExr for a file carrying OpenEXR's envmap
+    // = latlong attribute, else pixel centres. Not used by cube layouts.
+    LatLongPixels latLongPixels = LatLongPixels::Auto;
 };
 
 struct IngestReport {
@@ -67,6 +72,8 @@ struct IngestReport {
     std::uint64_t nanRepaired = 0, infRepaired = 0, negativeRepaired = 0;
     float maxLuminanceIn = 0.0f; // brightest input pixel's luminance after colour conversion and repair
     int faceSize = 0;            // of the source cube
+    // The placement a lat-long input was read with (Centre or OpenExr); nothing for cube layouts.
+    std::optional<LatLongPixels> latLongPixels;
 };
 
 struct SourceEnvironment {
@@ -76,15 +83,14 @@ struct SourceEnvironment {
 
 // files: one file, or six for EnvLayout::SixFiles. Throws ibl::Error with a one-line message naming the
 // file and the problem; an ibl::SettingError when one setting is the cause, setting() naming its field
-// ("layout", "inputColorSpace", "workingColorSpace", "rotateDegrees", "sourceFaceSize").
+// ("layout", "inputColorSpace", "workingColorSpace", "rotateDegrees", "sourceFaceSize", "latLongPixels").
 SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& files,
                                     const IngestSettings& settings);
 
 // Area-correct lat-long -> cube resampling (exposed for tests): each cube texel gets the solid-angle
 // average of the lat-long over the texel's exact footprint, the lat-long being constant over each pixel.
-// Pixel centres follow ImfEnvmap's LatLongMap exactly: pixel (x, y) is centred at u = x / (W - 1),
-// v = y / (H - 1) (the first and last columns on the 180-degree seam, the first and last rows on the
-// poles) and covers the half-way points to its neighbours. Sum of value * solid angle is kept.
-CubeMap resampleLatLongToCube(const ImageRGBA& latlong, int faceSize);
+// Pixel (x, y) covers the cell `placement` gives it (latlong_pixels.h; Centre or OpenExr). Sum of
+// value * solid angle is kept.
+CubeMap resampleLatLongToCube(const ImageRGBA& latlong, int faceSize, LatLongPixels placement);
 
 } // namespace ibl

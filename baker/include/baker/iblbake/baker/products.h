@@ -7,6 +7,7 @@
 
 #include "iblbake/baker/calibration.h"
 #include "iblbake/baker/irradiance.h"
+#include "iblbake/baker/latlong_pixels.h"
 #include "iblbake/baker/sh.h"
 #include "iblbake/baker/sun.h"
 #include "iblbake/ktx2/ktx2.h"
@@ -45,6 +46,21 @@ nlohmann::json calibrationRecordToJson(const CalibrationRecord& record);
 CalibrationRecord calibrationRecordFromJson(const nlohmann::json& json);
 
 // ---------------------------------------------------------------------------------------------------
+// The source's lat-long pixel placement (latlong_pixels.h), recorded by every product of a lat-long source:
+// KTX2 key "iblbake.latlongPixels", OpenEXR attribute "iblbake:latlongPixels", glTF extras
+// "iblbake.latlongPixels", and "latlongPixels" in the diffuse document's and calibration.json's "source"
+// and at the top of the manifest; the value is "centre" or "openexr". Products of cube inputs carry none
+// (the key is absent: their source has no lat-long pixels), as do files written before it was recorded.
+
+extern const char* const kLatLongPixelsKey; // "latlongPixels", without prefix
+Ktx2KeyValues latLongPixelsKeyValues(const std::optional<LatLongPixels>& placement,
+                                     const std::string& prefix = "iblbake.");
+// Sets object["latlongPixels"] when there is a placement; latLongPixelsFromJson reads it back (nothing when
+// absent; throws ibl::Error for a value that is not centre or openexr).
+void addLatLongPixels(nlohmann::json& object, const std::optional<LatLongPixels>& placement);
+std::optional<LatLongPixels> latLongPixelsFromJson(const nlohmann::json& object);
+
+// ---------------------------------------------------------------------------------------------------
 // KTX2 products
 
 // The DFG LUT's metadata (KTX2 key/values, or with prefix "iblbake:" OpenEXR attributes): product, layout,
@@ -58,16 +74,17 @@ struct LdChainProduct {
     int levelCount = 0;
     std::optional<int> integratedLevels; // recorded when the bake stopped integrating early (scene bakes)
     std::string colorSpace;
-    std::optional<std::string> source; // the input's file name
-    std::string settings;              // "quality=... samples=..." as the writer ran it
-    bool sunInLevel0 = false;          // specular.h keepSunInLevel0
+    std::optional<std::string> source;          // the input's file name
+    std::optional<LatLongPixels> latLongPixels; // the input's, when a lat-long (IngestReport)
+    std::string settings;                       // "quality=... samples=..." as the writer ran it
+    bool sunInLevel0 = false;                   // specular.h keepSunInLevel0
     // With sunInLevel0: the detection limit the sun was extracted with (`iblbake gltf` finds it again).
     std::optional<double> sunMaxSolidAngle;
 };
 // "iblbake.product", "iblbake.roughnessMapping" (mipMappingName: frostbite | linear),
 // "iblbake.roughnessMappingMeaning" (mipMappingMeaning), "iblbake.levelCount", "iblbake.integratedLevels",
-// "iblbake.colorSpace", "iblbake.source", "iblbake.settings", calibrationKeyValues, "iblbake.sunInLevel0" =
-// "true" and "iblbake.sunMaxSolidAngle" when level 0 kept the sun.
+// "iblbake.colorSpace", "iblbake.source", "iblbake.latlongPixels", "iblbake.settings", calibrationKeyValues,
+// "iblbake.sunInLevel0" = "true" and "iblbake.sunMaxSolidAngle" when level 0 kept the sun.
 Ktx2KeyValues ldChainKeyValues(const LdChainProduct& chain, const CalibrationRecord& record,
                                const std::optional<DiskLight>& sun);
 
@@ -76,8 +93,9 @@ extern const char* const kIrradianceNormalization;
 // "sampled: ..." with the sample count, or "sh: ..." (the windowed SH evaluated per texel).
 std::string irradianceMethodText(IrradianceMethod method, std::uint32_t samples);
 Ktx2KeyValues irradianceKeyValues(const std::string& methodText, const std::string& colorSpace,
-                                  const std::optional<std::string>& source, const CalibrationRecord& record,
-                                  const std::optional<DiskLight>& sun);
+                                  const std::optional<std::string>& source,
+                                  const std::optional<LatLongPixels>& latLongPixels,
+                                  const CalibrationRecord& record, const std::optional<DiskLight>& sun);
 
 // ---------------------------------------------------------------------------------------------------
 // Float storage (DESIGN.md "Float storage"; the key and its readers: iblbake/ktx2/storage_scale.h)
@@ -123,12 +141,14 @@ struct DiffuseSource {
     std::string layout, inputColorSpace;
     int faceSize = 0; // of the cube the SH were projected from
     double rotateDegrees = 0.0;
+    std::optional<LatLongPixels> latLongPixels; // a lat-long input's placement
 };
-// schema, schemaVersion, generator, source, colorSpace, units, calibration (the record's keys without
-// prefix, "sun", and "sunLight" as a light object when extracted), directions, sh {order, coefficientCount,
-// basis, basisOrder, clampedCosineFactors, window {..., requested}, minIrradiance, radianceUnwindowed,
-// radiance, irradiance, irradianceOverPi and their conventions}. `iblbake diffuse` adds "irradianceCube"
-// and "timing" (what it ran); a scene bake writes the document as it is (its bytes are a cache entry).
+// schema, schemaVersion, generator, source (with latlongPixels for a lat-long), colorSpace, units,
+// calibration (the record's keys without prefix, "sun", and "sunLight" as a light object when extracted),
+// directions, sh {order, coefficientCount, basis, basisOrder, clampedCosineFactors, window {..., requested},
+// minIrradiance, radianceUnwindowed, radiance, irradiance, irradianceOverPi and their conventions}. `iblbake
+// diffuse` adds "irradianceCube" and "timing" (what it ran); a scene bake writes the document as it is (its
+// bytes are a cache entry).
 nlohmann::json diffuseDocument(const DiffuseSH& sh, const std::string& requestedWindow,
                                const std::string& colorSpace, const DiffuseSource& source,
                                const CalibrationRecord& record, const std::optional<DiskLight>& sun);

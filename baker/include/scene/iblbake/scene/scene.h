@@ -27,6 +27,8 @@ struct SceneEnvironment {
     std::string colorSpace;                   // input colour space; "" = from the file
     std::string workingColorSpace = "lin_rec709";
     double rotationDegrees = 0.0; // about +Y
+    std::string latLongPixels =
+        "auto"; // latlong_pixels.h parseLatLongPixels spellings: auto, centre, openexr
     SceneCalibrationChoice calibration;
     bool extractSun = false;
 };
@@ -45,6 +47,7 @@ struct SceneProbe {
     std::string layout = "auto";
     std::string colorSpace;
     double rotationDegrees = 0.0;
+    std::string latLongPixels = "auto";
     glm::dvec3 position{0.0};             // the capture point in world space
     SceneVolume proxy;                    // its center defaults to the capture point
     std::optional<SceneVolume> influence; // default: the proxy
