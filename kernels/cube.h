@@ -9,11 +9,11 @@
 
 IBL_BEGIN_NAMESPACE
 
-typedef struct {
+IBL_STRUCT(CubeCoord) {
     int face; // 0..5: +X, -X, +Y, -Y, +Z, -Z
     float s;  // [0, 1] along the face's row
     float t;  // [0, 1] down the face's rows
-} CubeCoord;
+};
 
 // Unnormalized direction through (s, t) of a face (OpenGL table "Selection of cube map images").
 IBL_FN vec3 cubeFaceDirection(int face, float s, float t) {
@@ -29,7 +29,8 @@ IBL_FN vec3 cubeFaceDirection(int face, float s, float t) {
 
 // Unit direction through the centre of texel (x, y) of an n-texel face.
 IBL_FN vec3 cubeTexelDirection(int face, uint x, uint y, uint n) {
-    return v3normalize(cubeFaceDirection(face, ((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n));
+    return v3normalize(
+        cubeFaceDirection(face, (IBL_FLOAT(x) + 0.5f) / IBL_FLOAT(n), (IBL_FLOAT(y) + 0.5f) / IBL_FLOAT(n)));
 }
 
 // Face and (s, t) hit by a direction (need not be normalized; must not be zero). Ties between
@@ -37,9 +38,9 @@ IBL_FN vec3 cubeTexelDirection(int face, uint x, uint y, uint n) {
 // only, so that work-items taking different faces stay vectorized together.
 IBL_FN CubeCoord cubeCoordFromDirection(vec3 d) {
     float ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
-    int xMajor = ax >= ay && ax >= az;
-    int yMajor = !xMajor && ay >= az;
-    int zMajor = !xMajor && !yMajor;
+    bool xMajor = ax >= ay && ax >= az;
+    bool yMajor = !xMajor && ay >= az;
+    bool zMajor = !xMajor && !yMajor;
     CubeCoord c;
     c.face = xMajor ? (d.x >= 0.0f ? 0 : 1) : yMajor ? (d.y >= 0.0f ? 2 : 3) : (d.z >= 0.0f ? 4 : 5);
     float ma = xMajor ? ax : yMajor ? ay : az;
@@ -60,9 +61,9 @@ IBL_FN float cubeAreaElement(float x, float y) {
 
 // Exact solid angle of texel (i, j) of an N-texel face.
 IBL_FN float cubeTexelSolidAngle(int i, int j, int n) {
-    float inv = 2.0f / (float)n;
-    float x0 = (float)i * inv - 1.0f, x1 = x0 + inv;
-    float y0 = (float)j * inv - 1.0f, y1 = y0 + inv;
+    float inv = 2.0f / IBL_FLOAT(n);
+    float x0 = IBL_FLOAT(i) * inv - 1.0f, x1 = x0 + inv;
+    float y0 = IBL_FLOAT(j) * inv - 1.0f, y1 = y0 + inv;
     return cubeAreaElement(x0, y0) - cubeAreaElement(x0, y1) - cubeAreaElement(x1, y0) +
            cubeAreaElement(x1, y1);
 }

@@ -27,20 +27,20 @@ IBL_FN uint mipLevelCountForFaceSize(uint faceSize) {
 // The perceptual roughness level m of a chain of levelCount levels holds (0 for a one-level chain).
 IBL_FN float mipLevelRoughness(uint mapping, uint level, uint levelCount) {
     if (levelCount <= 1u) return 0.0f;
-    float t = (float)level / (float)(levelCount - 1u);
+    float t = IBL_FLOAT(level) / IBL_FLOAT(levelCount - 1u);
     return mapping == IBL_MIP_LINEAR ? t : t * t;
 }
 
 // The fractional level (LOD) that holds perceptual roughness r, clamped to [0, 1] first.
 IBL_FN float mipLevelForRoughness(uint mapping, float perceptualRoughness, uint levelCount) {
     float r = saturate(perceptualRoughness);
-    float maxLevel = (float)(levelCount - 1u);
+    float maxLevel = IBL_FLOAT(levelCount - 1u);
     return (mapping == IBL_MIP_LINEAR ? r : sqrt(r)) * maxLevel;
 }
 
 IBL_END_NAMESPACE
 
-#ifndef __OPENCL_VERSION__
+#ifdef __cplusplus
 
 #include <array>
 #include <cctype>

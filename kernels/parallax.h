@@ -26,14 +26,14 @@ IBL_BEGIN_NAMESPACE
 // Stands in for infinity in the slab test (finite, so 0 * it stays 0 and selects stay NaN-free).
 #define IBL_PARALLAX_FAR 1e30f
 
-typedef struct {
+IBL_STRUCT(ProbeVolume) {
     uint32_t shape; // IBL_VOLUME_SPHERE or IBL_VOLUME_BOX
     vec3 center;
     vec3 axisX; // orthonormal world axes of the local frame
     vec3 axisY;
     vec3 axisZ;
     vec3 extent; // box: half extents along the axes; sphere: radius in x (y, z unused)
-} ProbeVolume;
+};
 
 IBL_FN float v3length(vec3 a) {
     return sqrt(v3dot(a, a));
@@ -69,10 +69,10 @@ IBL_FN vec3 volumeDirectionToWorld(ProbeVolume v, vec3 d) {
 }
 
 // Radius / half extents all > 0 (false for NaN).
-IBL_FN int volumeIsValid(ProbeVolume v) {
-    int sphereOk = v.extent.x > 0.0f;
-    int boxOk = v.extent.x > 0.0f && v.extent.y > 0.0f && v.extent.z > 0.0f;
-    return v.shape == IBL_VOLUME_SPHERE ? sphereOk : (v.shape == IBL_VOLUME_BOX ? boxOk : 0);
+IBL_FN bool volumeIsValid(ProbeVolume v) {
+    bool sphereOk = v.extent.x > 0.0f;
+    bool boxOk = v.extent.x > 0.0f && v.extent.y > 0.0f && v.extent.z > 0.0f;
+    return v.shape == IBL_VOLUME_SPHERE ? sphereOk : (v.shape == IBL_VOLUME_BOX ? boxOk : false);
 }
 
 // Parameter interval [x, y] of the ray p + t d (local coordinates, d need not be unit) inside the volume;
@@ -84,16 +84,16 @@ IBL_FN float2 sphereRayIntersect(vec3 p, vec3 d, float radius) {
     float c = (v3dot(p, p) - radius * radius) * inva;
     float disc = b * b - c;
     float s = sqrt(fmax(disc, 0.0f));
-    int miss = disc < 0.0f || a <= 0.0f;
+    bool miss = disc < 0.0f || a <= 0.0f;
     return miss ? make_float2(IBL_PARALLAX_FAR, -IBL_PARALLAX_FAR) : make_float2(-b - s, -b + s);
 }
 
 // One slab |p + t d| <= e: its interval, or everything / nothing for a ray parallel to it.
 IBL_FN float2 slabInterval(float p, float d, float e) {
-    int parallel = fabs(d) < 1e-20f;
+    bool parallel = fabs(d) < 1e-20f;
     float inv = 1.0f / (parallel ? 1.0f : d);
     float ta = (-e - p) * inv, tb = (e - p) * inv;
-    int inside = fabs(p) <= e;
+    bool inside = fabs(p) <= e;
     float t0 = parallel ? (inside ? -IBL_PARALLAX_FAR : IBL_PARALLAX_FAR) : fmin(ta, tb);
     float t1 = parallel ? (inside ? IBL_PARALLAX_FAR : -IBL_PARALLAX_FAR) : fmax(ta, tb);
     return make_float2(t0, t1);
@@ -106,13 +106,13 @@ IBL_FN float2 boxRayIntersect(vec3 p, vec3 d, vec3 halfExtent) {
     return make_float2(fmax(sx.x, fmax(sy.x, sz.x)), fmin(sx.y, fmin(sy.y, sz.y)));
 }
 
-typedef struct {
-    int hit;                   // the ray leaves the proxy ahead of the receiver (far intersection t >= 0)
+IBL_STRUCT(ParallaxHit) {
+    bool hit;                  // the ray leaves the proxy ahead of the receiver (far intersection t >= 0)
     float distanceToHit;       // receiver -> intersection (t for a unit direction)
     float distanceFromCapture; // capture point -> intersection
     vec3 direction;            // capture point -> intersection, world axes, unit (the ray itself when
                                // the intersection is the capture point)
-} ParallaxHit;
+};
 
 // Re-projection of a unit world direction `dir` from the receiver `position` onto the proxy, as in
 // Listings F.1 (sphere) and F.2 (box): only the far intersection counts, so a receiver inside the proxy
@@ -164,7 +164,7 @@ IBL_FN float influenceWeight(ProbeVolume v, float fadeDistance, vec3 position) {
     float sphereAlpha = saturate((v.extent.x - v3length(q)) / fadeSafe);
     vec3 fade3 = v3(fade, fade, fade);
     float boxDistance = distanceBoxPoint(v3sub(fade3, v.extent), v3sub(v.extent, fade3), q);
-    int insideBox = fabs(q.x) < v.extent.x && fabs(q.y) < v.extent.y && fabs(q.z) < v.extent.z;
+    bool insideBox = fabs(q.x) < v.extent.x && fabs(q.y) < v.extent.y && fabs(q.z) < v.extent.z;
     float boxAlpha = insideBox ? 1.0f - saturate(boxDistance / fadeSafe) : 0.0f;
     float alpha = v.shape == IBL_VOLUME_BOX ? boxAlpha : sphereAlpha;
     return volumeIsValid(v) ? smoothstep01(alpha) : 0.0f;

@@ -2,10 +2,15 @@
 // In OpenCL C the builtin vector types and functions are used as they are; in C++ the same
 // names are provided on top of GLM inside namespace ibl, so one source serves the kernels,
 // the CPU backend, the reference integrators and the runtime module (pbrt-v4 style).
+// The runtime's headers (probe.h and what it includes) also compile as GLSL ES 3.00 / GLSL 4.50 with
+// IBL_GLSL defined (baker/runtime/glsl: probe.glsl). For that the shared code keeps to what GLSL has too:
+// structs declared with IBL_STRUCT, casts through IBL_FLOAT/IBL_UINT/IBL_INT, buffers as IBL_FLOAT_BUFFER
+// read with IBL_READ, conditions that are bool (flag tests written `(flags & F) != 0u`), unsigned literals
+// where the other operand is unsigned (GLSL ES converts nothing implicitly), no pointers, no `static`.
 #ifndef IBL_PORTABLE_H
 #define IBL_PORTABLE_H
 
-#ifdef __OPENCL_VERSION__
+#if defined(__OPENCL_VERSION__)
 
 #define IBL_FN static inline
 #define IBL_CONSTANT __constant
@@ -29,6 +34,58 @@ typedef struct {
 #define IBL_UNIFORM_LOOP_HEAD() barrier(CLK_LOCAL_MEM_FENCE)
 #else
 #define IBL_UNIFORM_LOOP_HEAD()
+#endif
+
+#elif defined(IBL_GLSL)
+
+// GLSL ES 3.00 / 4.50: the builtins are GLSL's; a float buffer is an offset into one data texture
+// (iblData below) or whatever the integrator's iblRead reads (define IBL_GLSL_CUSTOM_READ and provide
+// `float iblRead(uint index)`, e.g. over a GLSL 4.50 storage buffer).
+#ifdef GL_ES
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+#endif
+#define IBL_FN
+#define IBL_CONSTANT const
+#define IBL_GLOBAL
+#define IBL_BEGIN_NAMESPACE
+#define IBL_END_NAMESPACE
+#define IBL_UNIFORM_LOOP_HEAD()
+#define IBL_STRUCT(name) struct name
+#define IBL_FLOAT(x) float(x)
+#define IBL_UINT(x) uint(x)
+#define IBL_INT(x) int(x)
+#define IBL_FLOAT_BUFFER uint
+#define IBL_READ(buffer, index) iblRead((buffer) + (index))
+#ifndef IBL_MAX_LOCAL_PROBES
+#define IBL_MAX_LOCAL_PROBES 4
+#endif
+#define IBL_ARRAY_PARAM(type, name, glslSize) type name[glslSize]
+#define uint32_t uint
+#define int32_t int
+#define float2 vec2
+#define float3 vec3
+#define float4 vec4
+#define make_float2(x, y) vec2(x, y)
+#define make_float3(x, y, z) vec3(x, y, z)
+#define make_float4(x, y, z, w) vec4(x, y, z, w)
+#define fabs abs
+#define fmin min
+#define fmax max
+#define atan2 atan
+// C's copysign, -0.0 included (a compare with 0 would give +1 for -0.0).
+float copysign(float magnitude, float signSource) {
+    return uintBitsToFloat((floatBitsToUint(magnitude) & 0x7FFFFFFFu) |
+                           (floatBitsToUint(signSource) & 0x80000000u));
+}
+#ifndef IBL_GLSL_CUSTOM_READ
+// The floats of every buffer, row-major in an R32F texture of any width (texel i at (i % width, i / width)).
+uniform highp sampler2D iblData;
+float iblRead(uint index) {
+    uint width = uint(textureSize(iblData, 0).x);
+    return texelFetch(iblData, ivec2(int(index % width), int(index / width)), 0).r;
+}
 #endif
 
 #else // C++
@@ -87,6 +144,20 @@ inline float select(float a, float b, bool c) {
 }
 IBL_END_NAMESPACE
 
+#endif
+
+#ifndef IBL_GLSL
+// The GLSL-compatible spellings (see the top) in C and C++: a struct named by a typedef (GLSL has no
+// typedef), C casts, a buffer as a pointer read by indexing, an array parameter as a pointer.
+#define IBL_STRUCT(name)                                                                                     \
+    typedef struct name name;                                                                                \
+    struct name
+#define IBL_FLOAT(x) ((float)(x))
+#define IBL_UINT(x) ((uint)(x))
+#define IBL_INT(x) ((int)(x))
+#define IBL_FLOAT_BUFFER IBL_GLOBAL const float*
+#define IBL_READ(buffer, index) ((buffer)[index])
+#define IBL_ARRAY_PARAM(type, name, glslSize) IBL_GLOBAL const type* name
 #endif
 
 IBL_BEGIN_NAMESPACE

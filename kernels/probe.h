@@ -20,7 +20,7 @@
 #include "parallax.h"
 #include "sampling.h"
 
-#ifndef __OPENCL_VERSION__
+#ifdef __cplusplus
 IBL_BEGIN_NAMESPACE
 using std::exp2;
 using std::pow;
@@ -51,37 +51,37 @@ IBL_BEGIN_NAMESPACE
 #define IBL_RT_SUN_IN_LEVEL0 (1u << 15)
 
 // One LD chain inside a float buffer that may hold several (local probes share one buffer).
-typedef struct {
-    CubePyramidLayout layout; // bordered pyramid (cube_sample.h); levelCount = the chain's levels
-    uint32_t dataOffset;      // first float of this pyramid in its buffer
-    uint32_t mapping;         // IBL_MIP_* (mip_mapping.h)
-} LdChain;
+IBL_STRUCT(LdChain) {
+    CubePyramidLayout shape; // bordered pyramid (cube_sample.h); levelCount = the chain's levels
+    uint32_t dataOffset;     // first float of this pyramid in its buffer
+    uint32_t mapping;        // IBL_MIP_* (mip_mapping.h)
+};
 
 // Pre-scaled SH L2 irradiance (DESIGN.md order, 9 RGB coefficients, coefficient i's RGB at 3i..3i+2).
-typedef struct {
+IBL_STRUCT(ShIrradiance) {
     float c[27];
-} ShIrradiance;
+};
 
 // A distant disk light (Frostbite 4.6): illuminance * color is the RGB illuminance (lux) on a surface
 // facing it.
-typedef struct {
+IBL_STRUCT(SunDisk) {
     vec3 direction;      // unit, toward the light
     float angularRadius; // radians
     vec3 color;          // linear RGB, luminance 1
     float illuminance;   // E_perp, lux
-} SunDisk;
+};
 
-typedef struct {
+IBL_STRUCT(LocalProbe) {
     LdChain ld;            // in the local-probe LD buffer
     ProbeVolume proxy;     // re-projection geometry
     ProbeVolume influence; // where the probe applies
     vec3 captureOffset;    // capture point = proxy.center + offset along the proxy's axes
     float fadeDistance;    // soft transition width inside the influence boundary
-} LocalProbe;
+};
 
 // Everything of one evaluation that is the same for every point (a kernel argument by value: 4-byte
 // scalars only, identical layout in C++ and OpenCL C).
-typedef struct {
+IBL_STRUCT(RuntimeParams) {
     uint32_t flags;           // IBL_RT_*
     uint32_t dfgSize;         // N of the N x N DFG LUT (3 floats per texel: DFG1, DFG2, Disney)
     uint32_t localProbeCount; // in evaluation order (smallest influence first)
@@ -93,11 +93,11 @@ typedef struct {
     // One bordered level of E / pi in the distant buffer after the LD pyramid (IBL_RT_IRRADIANCE_CUBE):
     // the baker's irradiance cube, free of L2 SH's ringing and its limit to low frequencies.
     LdChain irradiance;
-} RuntimeParams;
+};
 
 // A shading point. view points from the surface toward the eye (Filament's v); neither vector has to be
 // normalized (a zero normal becomes +Y, a zero view the normal).
-typedef struct {
+IBL_STRUCT(ShadingPoint) {
     vec3 position;
     vec3 normal;
     vec3 view;
@@ -105,43 +105,46 @@ typedef struct {
     float metallic;
     float perceptualRoughness;
     float ao;
-} ShadingPoint;
+};
 
-typedef struct {
+IBL_STRUCT(ShadeResult) {
     vec3 diffuse;     // indirect diffuse + the sun's diffuse
     vec3 specular;    // indirect specular + the sun's specular
     float localAlpha; // composed alpha of the local probes (4.9.5); the distant probe got 1 - localAlpha
-} ShadeResult;
+};
 
 // ---------------------------------------------------------------------------------------------------
 // Lookups
 
 IBL_FN float ldLodForRoughness(LdChain ld, float perceptualRoughness) {
-    return mipLevelForRoughness(ld.mapping, perceptualRoughness, ld.layout.levelCount);
+    return mipLevelForRoughness(ld.mapping, perceptualRoughness, ld.shape.levelCount);
 }
 
 // Trilinear LD in direction d (non-zero, need not be unit) for a perceptual roughness.
-IBL_FN vec3 sampleLd(IBL_GLOBAL const float* buffer, LdChain ld, vec3 d, float perceptualRoughness) {
-    return cubeSampleLod(buffer + ld.dataOffset, ld.layout, d, ldLodForRoughness(ld, perceptualRoughness));
+IBL_FN vec3 sampleLd(IBL_FLOAT_BUFFER data, LdChain ld, vec3 d, float perceptualRoughness) {
+    return cubeSampleLod(data + ld.dataOffset, ld.shape, d, ldLodForRoughness(ld, perceptualRoughness));
 }
 
 // Bilinear DFG LUT (DESIGN.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped to the
 // texel centres (so NoV < 0.5 / N reads the first column, as Listing 24's max(NdotV, 0.5 / size)).
 // Returns (DFG1, DFG2, Disney).
-IBL_FN vec3 dfgLookup(IBL_GLOBAL const float* lut, uint size, float NoV, float perceptualRoughness) {
-    float n = (float)size;
+IBL_FN vec3 dfgLookup(IBL_FLOAT_BUFFER lut, uint size, float NoV, float perceptualRoughness) {
+    float n = IBL_FLOAT(size);
     float x = clamp(NoV * n - 0.5f, 0.0f, n - 1.0f),
           y = clamp(perceptualRoughness * n - 0.5f, 0.0f, n - 1.0f);
     float x0f = floor(x), y0f = floor(y);
     float fx = x - x0f, fy = y - y0f;
-    uint x0 = (uint)x0f, y0 = (uint)y0f;
+    uint x0 = IBL_UINT(x0f), y0 = IBL_UINT(y0f);
     uint x1 = min(x0 + 1u, size - 1u), y1 = min(y0 + 1u, size - 1u);
     uint i00 = 3u * (y0 * size + x0), i10 = 3u * (y0 * size + x1);
     uint i01 = 3u * (y1 * size + x0), i11 = 3u * (y1 * size + x1);
     float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
-    return v3(w00 * lut[i00] + w10 * lut[i10] + w01 * lut[i01] + w11 * lut[i11],
-              w00 * lut[i00 + 1] + w10 * lut[i10 + 1] + w01 * lut[i01 + 1] + w11 * lut[i11 + 1],
-              w00 * lut[i00 + 2] + w10 * lut[i10 + 2] + w01 * lut[i01 + 2] + w11 * lut[i11 + 2]);
+    return v3(w00 * IBL_READ(lut, i00) + w10 * IBL_READ(lut, i10) + w01 * IBL_READ(lut, i01) +
+                  w11 * IBL_READ(lut, i11),
+              w00 * IBL_READ(lut, i00 + 1u) + w10 * IBL_READ(lut, i10 + 1u) + w01 * IBL_READ(lut, i01 + 1u) +
+                  w11 * IBL_READ(lut, i11 + 1u),
+              w00 * IBL_READ(lut, i00 + 2u) + w10 * IBL_READ(lut, i10 + 2u) + w01 * IBL_READ(lut, i01 + 2u) +
+                  w11 * IBL_READ(lut, i11 + 2u));
 }
 
 // Filament's irradianceSH(n) (5.3.4.1) on the pre-scaled coefficients. Kept small and separate so that it
@@ -233,7 +236,7 @@ IBL_FN vec3 sunSpecularRepresentativePoint(SunDisk sun, vec3 N, vec3 V, vec3 R, 
     vec3 L = sunSpecularDirection(sun, R);
     float alphaSun = fmax(alpha, 2e-3f);
     float alphaWide = fmin(alphaSun + 0.5f * sin(sun.angularRadius), 1.0f);
-    float normalization = energyNormalization ? sq(alphaSun / alphaWide) : 1.0f;
+    float normalization = energyNormalization != 0u ? sq(alphaSun / alphaWide) : 1.0f;
     vec3 H = v3safeNormalize(v3add(V, L), N);
     float NoL = saturate(v3dot(N, L)), NoH = saturate(v3dot(N, H)), LoH = saturate(v3dot(L, H));
     float dv = D_GGXFromCross(v3cross(N, H), NoH, alphaSun) * normalization *
@@ -249,17 +252,17 @@ IBL_FN vec3 sunSpecularRepresentativePoint(SunDisk sun, vec3 N, vec3 V, vec3 R, 
 // normalization guess. Measured against the uniform disk (tests/test_runtime_accuracy.cpp "Sun"), metal
 // spheres at r = 0.1: 0.36% for the real sun, 3.3% for a 1.6-degree disk, where the normalized
 // representative point is off by 10.9% and 19.7%; 16 points: 1.0% and 12%, 64: 0.2% and 1.6%.
-#define IBL_SUN_POINTS 32
+#define IBL_SUN_POINTS 32u
 IBL_FN vec3 sunSpecularQuadrature(SunDisk sun, vec3 D, vec3 N, vec3 V, float NoVc, float alpha, vec3 f0,
                                   float f90) {
     Frame frame = frameFromNormal(D);
     float radius = tan(sun.angularRadius);
     float alphaV = fmax(alpha, 2e-3f);
-    float alphaD = fmax(alphaV, 0.5f * radius * sqrt(IBL_PI / (float)IBL_SUN_POINTS)); // half the spacing
+    float alphaD = fmax(alphaV, 0.5f * radius * sqrt(IBL_PI / IBL_FLOAT(IBL_SUN_POINTS))); // half the spacing
     float c = 1.0f, s = 0.0f; // the golden angle's rotation, applied k times
     vec3 sum = v3(0.0f, 0.0f, 0.0f);
     for (uint k = 0u; k < IBL_SUN_POINTS; ++k) {
-        float rho = radius * sqrt(((float)k + 0.5f) * (1.0f / (float)IBL_SUN_POINTS));
+        float rho = radius * sqrt((IBL_FLOAT(k) + 0.5f) * (1.0f / IBL_FLOAT(IBL_SUN_POINTS)));
         vec3 L = v3normalize(v3add(D, v3add(v3scale(frame.t, rho * c), v3scale(frame.b, rho * s))));
         float cNext = c * -0.73736888f - s * 0.67549029f; // cos, sin of 2 pi (2 - golden ratio)
         s = c * 0.67549029f + s * -0.73736888f;
@@ -269,7 +272,7 @@ IBL_FN vec3 sunSpecularQuadrature(SunDisk sun, vec3 D, vec3 N, vec3 V, float NoV
         float dv = D_GGXFromCross(v3cross(N, H), NoH, alphaD) * V_SmithGGXCorrelated(NoVc, NoL, alphaV) * NoL;
         sum = v3madd(fresnelSchlickRgb(f0, f90, LoH), dv, sum);
     }
-    return v3scale(sum, 1.0f / (float)IBL_SUN_POINTS);
+    return v3scale(sum, 1.0f / IBL_FLOAT(IBL_SUN_POINTS));
 }
 
 // The sun's specular per unit E_perp (IBL_RT_SUN_QUADRATURE). A lobe much narrower than the quadrature's
@@ -279,7 +282,7 @@ IBL_FN vec3 sunSpecularQuadrature(SunDisk sun, vec3 D, vec3 N, vec3 V, float NoV
 // blend between (r = 0 and 0.1 on disks of 0.27 and 1.6 degrees: tests/test_runtime_accuracy.cpp).
 IBL_FN vec3 sunSpecularDisk(SunDisk sun, vec3 D, vec3 N, vec3 V, vec3 R, float NoVc, float NoD, float alpha,
                             vec3 f0, float f90) {
-    float spacing = tan(sun.angularRadius) * sqrt(IBL_PI / (float)IBL_SUN_POINTS);
+    float spacing = tan(sun.angularRadius) * sqrt(IBL_PI / IBL_FLOAT(IBL_SUN_POINTS));
     float t = saturate((alpha / fmax(spacing, 1e-12f) - 0.25f) * (1.0f / 0.75f));
     vec3 result = v3(0.0f, 0.0f, 0.0f);
     if (t < 1.0f)
@@ -292,10 +295,10 @@ IBL_FN vec3 sunSpecularDisk(SunDisk sun, vec3 D, vec3 N, vec3 V, vec3 R, float N
 // ---------------------------------------------------------------------------------------------------
 // Probes
 
-typedef struct {
+IBL_STRUCT(ProbeSample) {
     vec3 radiance;
     float alpha;
-} ProbeSample;
+};
 
 // Appendix F for one local probe: parallax-corrected, distance-based-rough LD and the influence weight.
 // dominantR is unit. As in Listings F.1/F.2 the lookup direction is lerp(localR, dominantR, r) with localR
@@ -304,7 +307,7 @@ typedef struct {
 // first moved reflections near walls by up to a wall pattern's period at r = 0.2-0.3 in our glossy-floor
 // test). The distance-based roughness chooses the LD level only: the DFG term and the energy compensation
 // keep the material's roughness (the BRDF's albedo does not change with the footprint).
-IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_GLOBAL const float* localLd, vec3 position,
+IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_FLOAT_BUFFER localLd, vec3 position,
                                       vec3 dominantR, float perceptualRoughness, uint flags) {
     ProbeSample s;
     s.radiance = v3(0.0f, 0.0f, 0.0f);
@@ -314,7 +317,7 @@ IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_GLOBAL const float* 
     ParallaxHit h = parallaxCorrect(probe.proxy, probe.captureOffset, position, dominantR);
     if (weight > 0.0f && h.hit) {
         float localRoughness =
-            (flags & IBL_RT_DISTANCE_ROUGHNESS)
+            (flags & IBL_RT_DISTANCE_ROUGHNESS) != 0u
                 ? computeDistanceBaseRoughness(h.distanceToHit, h.distanceFromCapture, perceptualRoughness)
                 : perceptualRoughness;
         vec3 localR = v3scale(h.direction, h.distanceFromCapture);
@@ -327,12 +330,13 @@ IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_GLOBAL const float* 
 
 // Frostbite 4.9.5 medium and large range: local probes in order while alpha < 1, each adding
 // a = saturate(probe.alpha - alpha) of itself; then the distant probe with the remaining 1 - alpha.
-IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_GLOBAL const float* distantLd,
-                                     IBL_GLOBAL const LocalProbe* probes, IBL_GLOBAL const float* localLd,
-                                     vec3 position, vec3 dominantR, float perceptualRoughness) {
+IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd,
+                                     IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
+                                     IBL_FLOAT_BUFFER localLd, vec3 position, vec3 dominantR,
+                                     float perceptualRoughness) {
     vec3 rgb = v3(0.0f, 0.0f, 0.0f);
     float alpha = 0.0f;
-    for (uint i = 0; i < p.localProbeCount && alpha < 1.0f; ++i) {
+    for (uint i = 0u; i < p.localProbeCount && alpha < 1.0f; ++i) {
         ProbeSample s =
             localProbeSpecular(probes[i], localLd, position, dominantR, perceptualRoughness, p.flags);
         float a = saturate(s.alpha - alpha);
@@ -341,18 +345,19 @@ IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_GLOBAL const float* di
     }
     if (alpha < 1.0f)
         rgb = v3madd(sampleLd(distantLd, p.distant, dominantR, perceptualRoughness), 1.0f - alpha, rgb);
-    ProbeSample out;
-    out.radiance = rgb;
-    out.alpha = alpha;
-    return out;
+    ProbeSample result;
+    result.radiance = rgb;
+    result.alpha = alpha;
+    return result;
 }
 
 // ---------------------------------------------------------------------------------------------------
 // The shading of one point
 
-IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_GLOBAL const float* distantLd,
-                              IBL_GLOBAL const float* dfgLut, IBL_GLOBAL const LocalProbe* probes,
-                              IBL_GLOBAL const float* localLd) {
+IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER distantLd,
+                              IBL_FLOAT_BUFFER dfgLut,
+                              IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
+                              IBL_FLOAT_BUFFER localLd) {
     uint flags = p.flags;
     vec3 N = v3safeNormalize(sp.normal, v3(0.0f, 1.0f, 0.0f));
     vec3 V = v3safeNormalize(sp.view, N);
@@ -367,12 +372,12 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_GLOBAL const
     vec3 diffuseColor = v3scale(sp.baseColor, 1.0f - metallic);
     float dielectric = p.dielectricF0 * (1.0f - metallic);
     vec3 f0 = v3madd(sp.baseColor, metallic, v3(dielectric, dielectric, dielectric));
-    float f90 = (flags & IBL_RT_F90_FROM_F0) ? saturate(50.0f * 0.33f * (f0.x + f0.y + f0.z)) : 1.0f;
+    float f90 = (flags & IBL_RT_F90_FROM_F0) != 0u ? saturate(50.0f * 0.33f * (f0.x + f0.y + f0.z)) : 1.0f;
 
     vec3 dfg = dfgLookup(dfgLut, p.dfgSize, NoV, perceptualRoughness);
     float r = fmax(dfg.x + dfg.y, 1e-4f);
     vec3 energy = v3(1.0f, 1.0f, 1.0f);
-    if (flags & IBL_RT_ENERGY_COMPENSATION)
+    if ((flags & IBL_RT_ENERGY_COMPENSATION) != 0u)
         energy = v3(1.0f + f0.x * (1.0f / r - 1.0f), 1.0f + f0.y * (1.0f / r - 1.0f),
                     1.0f + f0.z * (1.0f / r - 1.0f));
     vec3 specularColor =
@@ -380,70 +385,72 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_GLOBAL const
 
     // Mirror direction reflect(-V, N), then the lobe's dominant direction (Listing 22).
     vec3 R = v3sub(v3scale(N, 2.0f * NoVsigned), V);
-    vec3 dominantR = (flags & IBL_RT_SPECULAR_DOMINANT) ? getSpecularDominantDir(N, R, alpha) : R;
+    vec3 dominantR = (flags & IBL_RT_SPECULAR_DOMINANT) != 0u ? getSpecularDominantDir(N, R, alpha) : R;
     dominantR = v3safeNormalize(dominantR, N);
 
-    ShadeResult out;
-    out.diffuse = v3(0.0f, 0.0f, 0.0f);
-    out.specular = v3(0.0f, 0.0f, 0.0f);
-    out.localAlpha = 0.0f;
+    ShadeResult result;
+    result.diffuse = v3(0.0f, 0.0f, 0.0f);
+    result.specular = v3(0.0f, 0.0f, 0.0f);
+    result.localAlpha = 0.0f;
 
-    if (flags & IBL_RT_SPECULAR) {
+    if ((flags & IBL_RT_SPECULAR) != 0u) {
         ProbeSample ld =
             composeSpecularLd(p, distantLd, probes, localLd, sp.position, dominantR, perceptualRoughness);
-        float occlusion = (flags & IBL_RT_SPECULAR_OCCLUSION) ? computeSpecOcclusion(NoV, ao, alpha) : 1.0f;
-        if (flags & IBL_RT_HORIZON_OCCLUSION) occlusion *= horizonOcclusion(dominantR, N);
-        out.specular =
+        float occlusion =
+            (flags & IBL_RT_SPECULAR_OCCLUSION) != 0u ? computeSpecOcclusion(NoV, ao, alpha) : 1.0f;
+        if ((flags & IBL_RT_HORIZON_OCCLUSION) != 0u) occlusion *= horizonOcclusion(dominantR, N);
+        result.specular =
             v3(ld.radiance.x * specularColor.x * energy.x, ld.radiance.y * specularColor.y * energy.y,
                ld.radiance.z * specularColor.z * energy.z);
-        out.specular = v3scale(out.specular, occlusion);
-        out.localAlpha = ld.alpha;
+        result.specular = v3scale(result.specular, occlusion);
+        result.localAlpha = ld.alpha;
     }
 
-    if (flags & IBL_RT_DIFFUSE) {
-        vec3 nd = (flags & IBL_RT_DIFFUSE_DOMINANT)
+    if ((flags & IBL_RT_DIFFUSE) != 0u) {
+        vec3 nd = (flags & IBL_RT_DIFFUSE_DOMINANT) != 0u
                       ? v3safeNormalize(getDiffuseDominantDir(N, V, NoV, alpha), N)
                       : N;
-        vec3 e = (flags & IBL_RT_IRRADIANCE_CUBE)
-                     ? cubeSampleLevel(distantLd + p.irradiance.dataOffset, p.irradiance.layout, 0u,
+        vec3 e = (flags & IBL_RT_IRRADIANCE_CUBE) != 0u
+                     ? cubeSampleLevel(distantLd + p.irradiance.dataOffset, p.irradiance.shape, 0u,
                                        cubeCoordFromDirection(nd))
                      : irradianceSH(p.sh, nd);
-        float scale = ((flags & (IBL_RT_SH_OVER_PI | IBL_RT_IRRADIANCE_CUBE)) ? 1.0f : IBL_INV_PI) * ao *
-                      ((flags & IBL_RT_DISNEY_DIFFUSE) ? dfg.z : 1.0f);
-        out.diffuse = v3(diffuseColor.x * fmax(e.x, 0.0f) * scale, diffuseColor.y * fmax(e.y, 0.0f) * scale,
-                         diffuseColor.z * fmax(e.z, 0.0f) * scale);
+        float scale = ((flags & (IBL_RT_SH_OVER_PI | IBL_RT_IRRADIANCE_CUBE)) != 0u ? 1.0f : IBL_INV_PI) *
+                      ao * ((flags & IBL_RT_DISNEY_DIFFUSE) != 0u ? dfg.z : 1.0f);
+        result.diffuse =
+            v3(diffuseColor.x * fmax(e.x, 0.0f) * scale, diffuseColor.y * fmax(e.y, 0.0f) * scale,
+               diffuseColor.z * fmax(e.z, 0.0f) * scale);
     }
 
-    if (flags & IBL_RT_SUN) {
+    if ((flags & IBL_RT_SUN) != 0u) {
         // Listing 6: E = E_perp <N.D>; diffuse as a punctual light in D, specular toward the disk point L.
         vec3 D = v3safeNormalize(p.sun.direction, v3(0.0f, 1.0f, 0.0f));
         float NoD = saturate(v3dot(N, D));
         vec3 E = v3scale(p.sun.color, p.sun.illuminance * NoD);
         float NoVc = fmax(NoV, 1e-4f);
         float fd = 1.0f;
-        if (flags & IBL_RT_DISNEY_DIFFUSE) {
+        if ((flags & IBL_RT_DISNEY_DIFFUSE) != 0u) {
             float LoH = sqrt(saturate(0.5f + 0.5f * v3dot(V, D)));
             fd = Fr_DisneyDiffuse(NoVc, NoD, LoH, perceptualRoughness);
         }
-        if (flags & IBL_RT_DIFFUSE)
-            out.diffuse = v3madd(v3(diffuseColor.x * E.x, diffuseColor.y * E.y, diffuseColor.z * E.z),
-                                 fd * IBL_INV_PI, out.diffuse);
+        if ((flags & IBL_RT_DIFFUSE) != 0u)
+            result.diffuse = v3madd(v3(diffuseColor.x * E.x, diffuseColor.y * E.y, diffuseColor.z * E.z),
+                                    fd * IBL_INV_PI, result.diffuse);
 
-        if (flags & IBL_RT_SPECULAR) {
-            vec3 spec = (flags & IBL_RT_SUN_QUADRATURE)
+        if ((flags & IBL_RT_SPECULAR) != 0u) {
+            vec3 spec = (flags & IBL_RT_SUN_QUADRATURE) != 0u
                             ? sunSpecularDisk(p.sun, D, N, V, R, NoVc, NoD, alpha, f0, f90)
                             : v3scale(sunSpecularRepresentativePoint(p.sun, N, V, R, NoVc, alpha, f0, f90,
                                                                      flags & IBL_RT_SUN_NORMALIZATION),
                                       NoD);
             float sunWeight = p.sun.illuminance;
-            if (flags & IBL_RT_SUN_IN_LEVEL0)
+            if ((flags & IBL_RT_SUN_IN_LEVEL0) != 0u)
                 sunWeight *= saturate(ldLodForRoughness(p.distant, perceptualRoughness));
-            out.specular = v3add(out.specular, v3(spec.x * energy.x * p.sun.color.x * sunWeight,
-                                                  spec.y * energy.y * p.sun.color.y * sunWeight,
-                                                  spec.z * energy.z * p.sun.color.z * sunWeight));
+            result.specular = v3add(result.specular, v3(spec.x * energy.x * p.sun.color.x * sunWeight,
+                                                        spec.y * energy.y * p.sun.color.y * sunWeight,
+                                                        spec.z * energy.z * p.sun.color.z * sunWeight));
         }
     }
-    return out;
+    return result;
 }
 
 IBL_END_NAMESPACE

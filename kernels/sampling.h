@@ -16,12 +16,12 @@ IBL_FN float radicalInverse2(uint bits) {
     bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
     bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
     bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-    return (float)bits * 2.3283064365386963e-10f;
+    return IBL_FLOAT(bits) * 2.3283064365386963e-10f;
 }
 
 // Hammersley point i of n in [0,1)^2 (first coordinate centred in its stratum).
 IBL_FN float2 hammersley(uint i, uint n) {
-    return make_float2(((float)i + 0.5f) / (float)n, radicalInverse2(i));
+    return make_float2((IBL_FLOAT(i) + 0.5f) / IBL_FLOAT(n), radicalInverse2(i));
 }
 
 // Point of the unit disk with area-uniform density: sqrt(u1) (cos 2 pi u2, sin 2 pi u2).
@@ -30,11 +30,11 @@ IBL_FN float2 unitDiskPoint(float2 u) {
     return make_float2(r * cos(phi), r * sin(phi));
 }
 
-typedef struct {
+IBL_STRUCT(Frame) {
     vec3 t; // tangent
     vec3 b; // bitangent
     vec3 n; // normal
-} Frame;
+};
 
 // Orthonormal basis around n, continuous and stable at the poles (Duff et al. 2017, "Building an
 // Orthonormal Basis, Revisited"), unlike the up-vector switch of Frostbite's importanceSampleCosDir.
@@ -71,12 +71,12 @@ IBL_FN vec3 sampleGGXHalfVector(float u1, float cosPhi, float sinPhi, float alph
 
 // Per-view part of GGX VNDF sampling (Heitz 2018, "Sampling the GGX Distribution of Visible Normals"):
 // the view in the hemisphere configuration and its orthonormal basis.
-typedef struct {
+IBL_STRUCT(VndfView) {
     vec3 vh;
     vec3 t1;
     vec3 t2;
     float alpha;
-} VndfView;
+};
 
 IBL_FN VndfView vndfPrepare(vec3 viewLocal, float alpha) {
     VndfView p;

@@ -118,7 +118,7 @@ std::size_t ProbeSet::addLocalProbe(const LocalProbeDesc& desc, const LdPyramid&
     if (localData_.size() + ld.data.size() > std::size_t(UINT32_MAX))
         throw Error("probe set: local LD data exceeds 2^32 floats");
     LocalProbe p{};
-    p.ld.layout = ld.layout;
+    p.ld.shape = ld.layout;
     p.ld.dataOffset = uint32_t(localData_.size());
     p.ld.mapping = uint32_t(ld.mapping);
     p.proxy = desc.proxy;
@@ -160,12 +160,12 @@ RuntimeParams makeRuntimeParams(const ProbeSet& set, const RuntimeOptions& o, st
     p.dfgSize = set.dfg().size;
     p.localProbeCount = uint32_t(set.localProbes().size());
     p.pointCount = uint32_t(pointCount);
-    p.distant.layout = set.distantLd().layout;
+    p.distant.shape = set.distantLd().layout;
     p.distant.dataOffset = 0;
     p.distant.mapping = uint32_t(set.distantLd().mapping);
     if (set.sun()) p.sun = *set.sun();
     p.dielectricF0 = o.dielectricF0;
-    p.irradiance.layout = set.irradianceLayout();
+    p.irradiance.shape = set.irradianceLayout();
     p.irradiance.dataOffset = uint32_t(set.distantLd().data.size());
     for (int i = 0; i < 9; ++i)
         for (int c = 0; c < 3; ++c)
