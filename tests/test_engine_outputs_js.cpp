@@ -1,6 +1,7 @@
 // Engine outputs read by independent parsers (tests/js, installed by the CTest fixture js_npm_ci):
 // every KTX2 iblbake writes through ktx-parse (tests/js/check_ktx2.mjs), and the glTF export through
-// Khronos' glTF-Validator (tests/js/validate_gltf.mjs). Skipped, with the reason, without Node.js.
+// Khronos' glTF-Validator (tests/js/validate_gltf.mjs); and the consumers users run, in headless Chromium:
+// the glTF in Babylon.js (tests/js/babylon_gltf.mjs). Skipped, with the reason, without Node.js.
 #include "bake_dir_support.h"
 
 #include <iblbake/ktx2/ktx2.h>
@@ -195,4 +196,32 @@ TEST_F(IndependentParser, GltfPassesKhronosValidator) {
     EXPECT_EQ(missing.exitCode, 1) << missing.out;
     fs::remove_all(bake);
     fs::remove_all(out);
+}
+
+// A park bake at 128-texel faces with the sun extracted, exported as glTF: what a user loads in Babylon.
+fs::path bakeAndExportPark(const std::string& name) {
+    const fs::path dir = ibl::test::freshTempDir(name);
+    const std::string calibration = " --size 128 --sun-illuminance 100000 --extract-sun --sun-json " +
+                                    (dir / "sun.json").string() + " --quality draft ";
+    CliRun specular = runCli("specular " + ibl::test::sampleHdri() + calibration + "-o " +
+                             (dir / "specular.ktx2").string());
+    EXPECT_EQ(specular.exitCode, 0) << specular.err;
+    CliRun diffuse = runCli("diffuse " + ibl::test::sampleHdri() + calibration + "--irradiance-size 8 -o " +
+                            (dir / "diffuse.json").string());
+    EXPECT_EQ(diffuse.exitCode, 0) << diffuse.err;
+    CliRun gltf =
+        runCli("gltf " + dir.string() + " -o " + (dir / "scene.gltf").string() + " --quality draft");
+    EXPECT_EQ(gltf.exitCode, 0) << gltf.err;
+    return dir;
+}
+
+// Babylon.js 9.28 loads the export right side up: the sun within 2 degrees of the KHR light (decoded,
+// in the sky and on a mirror sphere), sky above the horizon, its SH our irradiance, its texels ours.
+TEST_F(IndependentParser, BabylonShowsTheGltfRightSideUp) {
+    const fs::path dir = bakeAndExportPark("babylon_gltf");
+    NodeRun r = runNode("babylon_gltf.mjs",
+                        (dir / "scene.gltf").string() + " " + dir.string() + " " + IBLBAKE_SCREENSHOT_DIR);
+    std::printf("%s", r.out.c_str());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
 }
