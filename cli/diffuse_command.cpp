@@ -11,6 +11,7 @@
 #include <iblbake/baker/sh.h>
 #include <iblbake/core/error.h>
 #include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
 
 #include <nlohmann/json.hpp>
@@ -39,6 +40,7 @@ struct DiffuseOptions {
     std::string window = "auto";
     std::optional<double> windowParam;
     std::string format = "rgba16f";
+    std::string profile = "standard";
     int size = 256;
     BackendOptions backend;
     CalibrationOptions calibration;
@@ -79,6 +81,10 @@ Action addDiffuseCommand(CLI::App& app) {
     cmd->add_option("--format", o->format, "irradiance cube format: rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
+    cmd->add_option("--profile", o->profile,
+                    "irradiance cube layout: standard (OpenGL faces), three (three.js CubeTexture)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--size", o->size,
                     "face size of the source cube (power of two for --irradiance-method sampled)")
         ->capture_default_str();
@@ -152,9 +158,10 @@ Action addDiffuseCommand(CLI::App& app) {
                 cube = irradianceCubeFromSH(sh.irradiance, o->irradianceSize, &shClamped);
             cubeMs = millisecondsSince(cubeStart);
             const std::string methodText = irradianceMethodText(method, irradianceSamplesFor(settings));
-            const Ktx2KeyValues kv = irradianceKeyValues(methodText, r.workingColorSpace,
-                                                         std::filesystem::path(r.file).filename().string(),
-                                                         calibration.record, calibration.sun);
+            Ktx2KeyValues kv = irradianceKeyValues(methodText, r.workingColorSpace,
+                                                   std::filesystem::path(r.file).filename().string(),
+                                                   calibration.record, calibration.sun);
+            kv.emplace_back(kCubeProfileKey, o->profile);
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
             Ktx2WriteStats stats = writeKtx2Cube(cubeFile->tempPath(), chain, format, kv);

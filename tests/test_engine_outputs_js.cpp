@@ -1,7 +1,8 @@
 // Engine outputs read by independent parsers (tests/js, installed by the CTest fixture js_npm_ci):
 // every KTX2 iblbake writes through ktx-parse (tests/js/check_ktx2.mjs), and the glTF export through
 // Khronos' glTF-Validator (tests/js/validate_gltf.mjs); and the consumers users run, in headless Chromium:
-// the glTF in Babylon.js (tests/js/babylon_gltf.mjs). Skipped, with the reason, without Node.js.
+// the glTF in Babylon.js (tests/js/babylon_gltf.mjs), the cube KTX2 in three.js through the shipped loader
+// helper (tests/js/three_cube.mjs). Skipped, with the reason, without Node.js.
 #include "bake_dir_support.h"
 
 #include <iblbake/ktx2/ktx2.h>
@@ -221,6 +222,28 @@ TEST_F(IndependentParser, BabylonShowsTheGltfRightSideUp) {
     const fs::path dir = bakeAndExportPark("babylon_gltf");
     NodeRun r = runNode("babylon_gltf.mjs",
                         (dir / "scene.gltf").string() + " " + dir.string() + " " + IBLBAKE_SCREENSHOT_DIR);
+    std::printf("%s", r.out.c_str());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
+}
+
+// three.js r187 shows a `--profile three` cube (and a standard one, through the loader helper) unmirrored:
+// the sun within 2 degrees in scene.background and on a PMREM mirror sphere, sky above the horizon; a
+// standard cube built into a texture as stored shows the sun mirrored in x.
+TEST_F(IndependentParser, ThreeShowsTheCubeUnmirrored) {
+    const fs::path dir = ibl::test::freshTempDir("three_cube");
+    const std::string bake = "specular " + ibl::test::sampleHdri() +
+                             " --size 128 --sun-illuminance 100000 --extract-sun --quality draft ";
+    CliRun standard = runCli(bake + "--sun-json " + (dir / "sun.json").string() + " -o " +
+                             (dir / "standard.ktx2").string());
+    ASSERT_EQ(standard.exitCode, 0) << standard.err;
+    CliRun three = runCli(bake + "--profile three --sun-json " + (dir / "sun_three.json").string() + " -o " +
+                          (dir / "three.ktx2").string());
+    ASSERT_EQ(three.exitCode, 0) << three.err;
+    NodeRun r =
+        runNode("three_cube.mjs", (dir / "three.ktx2").string() + " " + (dir / "standard.ktx2").string() +
+                                      " " + (dir / "sun.json").string() + " " + IBLBAKE_SOURCE_DIR +
+                                      "/baker/runtime/js " + IBLBAKE_SCREENSHOT_DIR);
     std::printf("%s", r.out.c_str());
     EXPECT_EQ(r.exitCode, 0) << r.out;
     fs::remove_all(dir);

@@ -9,7 +9,8 @@ import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import {
   angleDegrees, brightestSpot, cubeFaceDirection, cubeSamples, cubeTexel, dot, here, launchBrowser, luminance,
-  normalize, openPage, ourIrradiance, readKtx2Cube, startServer, writeToneMappedPng,
+  normalize, openPage, ourIrradiance, pixelSamples, readKtx2Cube, reflection, startServer, unproject,
+  writeToneMappedPng,
 } from './consumer_common.mjs';
 
 const [gltfFile, bakeDir, artifactDir, handedness] = process.argv.slice(2);
@@ -76,39 +77,9 @@ const spotAngle = angleDegrees(gltfFromCube(spot.direction), gltfFromWorld(b.tow
 check(spotAngle < 2, `brightest spot Babylon decoded (${spot.count} texels) is ${spotAngle.toFixed(2)} deg from the KHR sun (limit 2)`);
 
 // 2. Rendered: the brightest pixel of the sky toward the sun and of the mirror sphere's reflections.
-function unproject(view, px, py) {
-  const m = view.inverseViewProjection;
-  const point = (zNdc) => {
-    const x = ((px + 0.5) / view.size) * 2 - 1, y = ((py + 0.5) / view.size) * 2 - 1;
-    const w = x * m[3] + y * m[7] + zNdc * m[11] + m[15];
-    return [0, 1, 2].map((c) => (x * m[c] + y * m[4 + c] + zNdc * m[8 + c] + m[12 + c]) / w);
-  };
-  const near = point(-1), far = point(1);
-  return normalize([far[0] - near[0], far[1] - near[1], far[2] - near[2]]);
-}
-function pixelSamples(view, directionOf) {
-  const samples = [];
-  for (let py = 0; py < view.size; ++py)
-    for (let px = 0; px < view.size; ++px) {
-      const direction = directionOf(px, py), i = 4 * (py * view.size + px);
-      if (direction)
-        samples.push({ direction, value: luminance(view.pixels[i], view.pixels[i + 1], view.pixels[i + 2]), weight: 1 });
-    }
-  return samples;
-}
 const skyAngle = angleDegrees(brightestSpot(pixelSamples(b.sunView, (x, y) => unproject(b.sunView, x, y))).direction, b.towardSun);
 check(skyAngle < 2, `brightest spot of the rendered sky is ${skyAngle.toFixed(2)} deg from the KHR sun (limit 2)`);
 
-// The mirror sphere (radius 1 at the origin): a pixel's ray hits it at p, normal p, reflected ray r.
-function reflection(view, px, py) {
-  const o = view.cameraPosition, d = unproject(view, px, py);
-  const bHalf = dot(o, d), c = dot(o, o) - 1, disc = bHalf * bHalf - c;
-  if (disc <= 0) return null;
-  const t = -bHalf - Math.sqrt(disc), p = normalize([o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]]);
-  if (-dot(d, p) < 0.3) return null; // grazing: the rim mixes sphere and sky
-  const k = 2 * dot(d, p);
-  return [d[0] - k * p[0], d[1] - k * p[1], d[2] - k * p[2]];
-}
 const mirrorSun = brightestSpot(pixelSamples(b.mirrorView, (x, y) => reflection(b.mirrorView, x, y)));
 const mirrorAngle = angleDegrees(mirrorSun.direction, b.towardSun);
 check(mirrorAngle < 2, `brightest spot the mirror sphere reflects is ${mirrorAngle.toFixed(2)} deg from the KHR sun (limit 2)`);

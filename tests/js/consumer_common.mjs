@@ -117,6 +117,40 @@ export function cubeSamples(faces, n) {
   return samples;
 }
 
+// --- Rendered views: { size, pixels (RGBA float, rows bottom to top), cameraPosition,
+// inverseViewProjection (x' = x m[0] + y m[4] + z m[8] + m[12], ...: Babylon's Matrix.m and three's
+// Matrix4.elements alike) } -----------------------------------------------------------------------
+// The world direction of pixel (px, py)'s ray.
+export function unproject(view, px, py) {
+  const m = view.inverseViewProjection;
+  const point = (zNdc) => {
+    const x = ((px + 0.5) / view.size) * 2 - 1, y = ((py + 0.5) / view.size) * 2 - 1;
+    const w = x * m[3] + y * m[7] + zNdc * m[11] + m[15];
+    return [0, 1, 2].map((c) => (x * m[c] + y * m[4 + c] + zNdc * m[8 + c] + m[12 + c]) / w);
+  };
+  const near = point(-1), far = point(1);
+  return normalize([far[0] - near[0], far[1] - near[1], far[2] - near[2]]);
+}
+export function pixelSamples(view, directionOf) {
+  const samples = [];
+  for (let py = 0; py < view.size; ++py)
+    for (let px = 0; px < view.size; ++px) {
+      const direction = directionOf(px, py), i = 4 * (py * view.size + px);
+      if (direction)
+        samples.push({ direction, value: luminance(view.pixels[i], view.pixels[i + 1], view.pixels[i + 2]), weight: 1 });
+    }
+  return samples;
+}
+// The mirror sphere (radius 1 at the origin): a pixel's ray hits it at p, normal p, reflected ray r.
+export function reflection(view, px, py) {
+  const o = view.cameraPosition, d = unproject(view, px, py);
+  const bHalf = dot(o, d), c = dot(o, o) - 1, disc = bHalf * bHalf - c;
+  if (disc <= 0) return null;
+  const t = -bHalf - Math.sqrt(disc), p = normalize([o[0] + t * d[0], o[1] + t * d[1], o[2] + t * d[2]]);
+  if (-dot(d, p) < 0.3) return null; // grazing: the rim mixes sphere and sky
+  const k = 2 * dot(d, p);
+  return [d[0] - k * p[0], d[1] - k * p[1], d[2] - k * p[2]];
+}
 // --- Our files -----------------------------------------------------------------------------------
 function halfToFloat(h) {
   const sign = h & 0x8000 ? -1 : 1, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;

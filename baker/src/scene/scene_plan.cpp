@@ -40,7 +40,8 @@ json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
             {"roughnessMax", m.roughnessMax},
             {"mipMapping", o.mipMapping},
             {"quality", o.quality},
-            {"ktx2Format", o.ktx2Format}};
+            {"ktx2Format", o.ktx2Format},
+            {"profile", o.profile}};
 }
 
 } // namespace
@@ -136,8 +137,10 @@ Plan planScene(const Scene& scene) {
     // Diffuse is always needed (every material has a diffuse lobe); the cube only when the scene asks.
     if (o.irradianceCube) {
         PlanStage s{"irradiance", "irradiance-cube", {lightSource}, {}, {}, {"irradiance.ktx2"}, true, ""};
-        s.settings = {
-            {"faceSize", o.irradianceFaceSize}, {"quality", o.quality}, {"ktx2Format", o.ktx2Format}};
+        s.settings = {{"faceSize", o.irradianceFaceSize},
+                      {"quality", o.quality},
+                      {"ktx2Format", o.ktx2Format},
+                      {"profile", o.profile}};
         s.reason = "outputs.irradianceCube: diffuse from a cube of E/pi (sampled, bright texels exact)";
         plan.stages.push_back(std::move(s));
     } else {

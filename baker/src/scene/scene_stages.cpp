@@ -10,6 +10,7 @@
 #include "iblbake/baker/specular.h"
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 
 #include <nlohmann/json.hpp>
@@ -223,7 +224,9 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                   " samples=" + std::to_string(samplesFor(settings)) +
                   " roughnessMax=" + s.at("roughnessMax").dump();
     ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format);
-    writeKtx2Cube(file, chain, format, ldChainKeyValues(ld, calibration.record, calibration.sun));
+    Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
+    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
+    writeKtx2Cube(file, chain, format, keyValues);
     LdManifestFacts facts;
     facts.file = file.filename().string();
     facts.format = s.at("ktx2Format").get<std::string>();
@@ -281,11 +284,12 @@ void runIrradiance(const StageContext& c) {
     settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
     CubeMapChain chain;
     chain.levels.push_back(bakeIrradianceCube(readCube(from / kCubeFile), settings, *c.executor));
+    Ktx2KeyValues keyValues = irradianceKeyValues(
+        irradianceMethodText(IrradianceMethod::Sampled, settings.samples), calibration.colorSpace(),
+        calibration.sourceFile(), calibration.record, calibration.sun);
+    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
     writeKtx2Cube(c.outputDirectory / "irradiance.ktx2", chain,
-                  parseKtx2Format(s.at("ktx2Format").get<std::string>()),
-                  irradianceKeyValues(irradianceMethodText(IrradianceMethod::Sampled, settings.samples),
-                                      calibration.colorSpace(), calibration.sourceFile(), calibration.record,
-                                      calibration.sun));
+                  parseKtx2Format(s.at("ktx2Format").get<std::string>()), keyValues);
 }
 
 void runProbe(const StageContext& c) {
