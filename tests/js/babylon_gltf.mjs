@@ -8,7 +8,7 @@
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import {
-  angleDegrees, brightestSpot, cubeFaceDirection, cubeSamples, cubeTexel, dot, here, launchBrowser, luminance,
+  angleDegrees, brightestSpot, cubeFaceDirection, cubeSamples, cubeTexel, here, launchBrowser, luminance,
   normalize, openPage, ourIrradiance, pixelSamples, readKtx2Cube, reflection, startServer, unproject,
   writeToneMappedPng,
 } from './consumer_common.mjs';

@@ -10,7 +10,6 @@ import puppeteer from 'puppeteer-core';
 import { read } from 'ktx-parse';
 
 export const here = path.dirname(fileURLToPath(import.meta.url));
-export const nodeModules = path.join(here, 'node_modules');
 
 const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript',
                '.json': 'application/json', '.gltf': 'model/gltf+json', '.png': 'image/png',
