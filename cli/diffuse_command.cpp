@@ -11,6 +11,7 @@
 #include <iblbake/baker/sh.h>
 #include <iblbake/core/error.h>
 #include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
 
 #include <nlohmann/json.hpp>
@@ -40,6 +41,7 @@ struct DiffuseOptions {
     std::optional<double> windowParam;
     std::string format = "rgba16f";
     bool clampToFormat = false;
+    std::string profile = "standard";
     int size = 256;
     BackendOptions backend;
     CalibrationOptions calibration;
@@ -83,6 +85,10 @@ Action addDiffuseCommand(CLI::App& app) {
     cmd->add_flag("--clamp-to-format", o->clampToFormat,
                   "clamp the irradiance cube to its format's range (energy lost is reported) instead of "
                   "storing it with a storage scale");
+    cmd->add_option("--profile", o->profile,
+                    "irradiance cube layout: standard (OpenGL faces), three (three.js CubeTexture)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--size", o->size,
                     "face size of the source cube (power of two for --irradiance-method sampled)")
         ->capture_default_str();
@@ -156,9 +162,10 @@ Action addDiffuseCommand(CLI::App& app) {
                 cube = irradianceCubeFromSH(sh.irradiance, o->irradianceSize, &shClamped);
             cubeMs = millisecondsSince(cubeStart);
             const std::string methodText = irradianceMethodText(method, irradianceSamplesFor(settings));
-            const Ktx2KeyValues kv = irradianceKeyValues(
-                methodText, r.workingColorSpace, std::filesystem::path(r.file).filename().string(),
-                r.latLongPixels, calibration.record, calibration.sun);
+            Ktx2KeyValues kv = irradianceKeyValues(methodText, r.workingColorSpace,
+                                                   std::filesystem::path(r.file).filename().string(),
+                                                   r.latLongPixels, calibration.record, calibration.sun);
+            kv.emplace_back(kCubeProfileKey, o->profile);
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
             const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);

@@ -10,6 +10,7 @@
 #include <iblbake/baker/products.h>
 #include <iblbake/baker/specular.h>
 #include <iblbake/core/error.h>
+#include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
 
 #include <algorithm>
@@ -30,6 +31,7 @@ struct SpecularOptions {
     std::string quality = "production";
     std::uint32_t samples = 0;
     std::string format = "rgba16f";
+    std::string profile = "standard";
     std::string exrDir;
     std::string preview;
     std::string mipMapping = "frostbite";
@@ -76,6 +78,10 @@ Action addSpecularCommand(CLI::App& app) {
     cmd->add_option("--format", o->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
+    cmd->add_option("--profile", o->profile,
+                    "cube layout for the engine: standard (OpenGL faces), three (three.js CubeTexture)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
     cmd->add_option("--preview", o->preview, "also write a tone-mapped PNG of every level");
     cmd->add_option("--mip-mapping", o->mipMapping, "roughness per level: frostbite (eq. 63) or linear")
@@ -129,7 +135,8 @@ Action addSpecularCommand(CLI::App& app) {
         ld.sunInLevel0 =
             calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format, o->clampToFormat);
         ld.sunMaxSolidAngle = o->calibration.sunMaxSolidAngle;
-        const Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
+        Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
+        kv.emplace_back(kCubeProfileKey, o->profile);
         auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
         const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
         Ktx2WriteStats stats = writeProductCube(o->output, chain, format, kv, storage);

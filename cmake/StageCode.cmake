@@ -26,6 +26,7 @@ set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include/core baker/include/opencl ba
 set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files (products), the entry layout
     baker/src/scene/scene_stages.cpp baker/src/scene/stage_cache.cpp baker/src/io/ktx2_writer.cpp
     baker/src/io/ktx2_reader.cpp baker/src/io/ktx2_format_names.cpp baker/src/io/ktx2_storage_scale.cpp
+    baker/src/io/cube_profile.cpp
     baker/src/products)
 set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options
     baker/src/executor.cpp baker/src/opencl baker/src/dispatch)

@@ -1,6 +1,8 @@
 // Engine outputs read by independent parsers (tests/js, installed by the CTest fixture js_npm_ci):
 // every KTX2 iblbake writes through ktx-parse (tests/js/check_ktx2.mjs), and the glTF export through
-// Khronos' glTF-Validator (tests/js/validate_gltf.mjs). Skipped, with the reason, without Node.js.
+// Khronos' glTF-Validator (tests/js/validate_gltf.mjs); and the consumers users run, in headless Chromium:
+// the glTF in Babylon.js (tests/js/babylon_gltf.mjs), the cube KTX2 in three.js through the shipped loader
+// helper (tests/js/three_cube.mjs). Skipped, with the reason, without Node.js.
 #include "bake_dir_support.h"
 
 #include <iblbake/ktx2/ktx2.h>
@@ -9,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <ostream>
 
@@ -195,4 +198,63 @@ TEST_F(IndependentParser, GltfPassesKhronosValidator) {
     EXPECT_EQ(missing.exitCode, 1) << missing.out;
     fs::remove_all(bake);
     fs::remove_all(out);
+}
+
+// The consumer pages need headless Chromium (Debian `chromium`, .ci/install-deps; IBLBAKE_CHROMIUM
+// overrides the path).
+bool chromiumFound() {
+    const char* overridePath = std::getenv("IBLBAKE_CHROMIUM");
+    return fs::exists(overridePath ? overridePath : "/usr/bin/chromium");
+}
+
+// A park bake at 128-texel faces with the sun extracted, exported as glTF: what a user loads in Babylon.
+fs::path bakeAndExportPark(const std::string& name) {
+    const fs::path dir = ibl::test::freshTempDir(name);
+    const std::string calibration = " --size 128 --sun-illuminance 100000 --extract-sun --sun-json " +
+                                    (dir / "sun.json").string() + " --quality draft ";
+    CliRun specular = runCli("specular " + ibl::test::sampleHdri() + calibration + "-o " +
+                             (dir / "specular.ktx2").string());
+    EXPECT_EQ(specular.exitCode, 0) << specular.err;
+    CliRun diffuse = runCli("diffuse " + ibl::test::sampleHdri() + calibration + "--irradiance-size 8 -o " +
+                            (dir / "diffuse.json").string());
+    EXPECT_EQ(diffuse.exitCode, 0) << diffuse.err;
+    CliRun gltf =
+        runCli("gltf " + dir.string() + " -o " + (dir / "scene.gltf").string() + " --quality draft");
+    EXPECT_EQ(gltf.exitCode, 0) << gltf.err;
+    return dir;
+}
+
+// Babylon.js 9.28 loads the export right side up: the sun within 2 degrees of the KHR light (decoded,
+// in the sky and on a mirror sphere), sky above the horizon, its SH our irradiance, its texels ours.
+TEST_F(IndependentParser, BabylonShowsTheGltfRightSideUp) {
+    if (!chromiumFound()) GTEST_SKIP() << "headless Chromium was not found (.ci/install-deps installs it)";
+    const fs::path dir = bakeAndExportPark("babylon_gltf");
+    NodeRun r = runNode("babylon_gltf.mjs",
+                        (dir / "scene.gltf").string() + " " + dir.string() + " " + IBLBAKE_SCREENSHOT_DIR);
+    std::printf("%s", r.out.c_str());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
+}
+
+// three.js r187 shows a `--profile three` cube (and a standard one, through the loader helper) unmirrored:
+// the sun within 2 degrees in scene.background and on a PMREM mirror sphere, sky above the horizon; a
+// standard cube built into a texture as stored shows the sun mirrored in x.
+TEST_F(IndependentParser, ThreeShowsTheCubeUnmirrored) {
+    if (!chromiumFound()) GTEST_SKIP() << "headless Chromium was not found (.ci/install-deps installs it)";
+    const fs::path dir = ibl::test::freshTempDir("three_cube");
+    const std::string bake = "specular " + ibl::test::sampleHdri() +
+                             " --size 128 --sun-illuminance 100000 --extract-sun --quality draft ";
+    CliRun standard = runCli(bake + "--sun-json " + (dir / "sun.json").string() + " -o " +
+                             (dir / "standard.ktx2").string());
+    ASSERT_EQ(standard.exitCode, 0) << standard.err;
+    CliRun three = runCli(bake + "--profile three --sun-json " + (dir / "sun_three.json").string() + " -o " +
+                          (dir / "three.ktx2").string());
+    ASSERT_EQ(three.exitCode, 0) << three.err;
+    NodeRun r =
+        runNode("three_cube.mjs", (dir / "three.ktx2").string() + " " + (dir / "standard.ktx2").string() +
+                                      " " + (dir / "sun.json").string() + " " + IBLBAKE_SOURCE_DIR +
+                                      "/baker/runtime/js " + IBLBAKE_SCREENSHOT_DIR);
+    std::printf("%s", r.out.c_str());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
 }

@@ -4,6 +4,7 @@
 #include "bake_dir_support.h"
 
 #include <iblbake/baker/calibration.h>
+#include <cube.h>
 #include <iblbake/baker/sh.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/ktx2/ktx2.h>
@@ -37,15 +38,16 @@ ibl::ShRgb shFromJson(const nlohmann::json& a) {
     return sh;
 }
 
-// The extension's irradiance, written out here from Ramamoorthi & Hanrahan 2001 eq. 3 (the basis the
-// extension cites) rather than taken from the library: E(n) = sum_lm E_lm Y_lm(n).
-glm::dvec3 irradianceFromExtension(const ibl::ShRgb& e, const glm::dvec3& n) {
+// The irradiance as Babylon.js reads the coefficients, written out here rather than taken from the
+// library: SphericalHarmonics.FromArray in its basis (Condon-Shortley signs on (1,-1), (1,1), (2,-1),
+// (2,1)), evaluated at the normal in Babylon's left-handed frame, where glTF (x, y, z) is (-x, y, z).
+glm::dvec3 irradianceAsBabylonReadsIt(const ibl::ShRgb& e, const glm::dvec3& gltfNormal) {
     const double k0 = 0.5 * std::sqrt(1.0 / kPi), k1 = std::sqrt(3.0 / (4.0 * kPi));
     const double k2 = 0.5 * std::sqrt(15.0 / kPi), k20 = 0.25 * std::sqrt(5.0 / kPi);
     const double k22 = 0.25 * std::sqrt(15.0 / kPi);
-    const double x = n.x, y = n.y, z = n.z;
-    return e[0] * k0 + e[1] * (k1 * y) + e[2] * (k1 * z) + e[3] * (k1 * x) + e[4] * (k2 * x * y) +
-           e[5] * (k2 * y * z) + e[6] * (k20 * (3.0 * z * z - 1.0)) + e[7] * (k2 * x * z) +
+    const double x = -gltfNormal.x, y = gltfNormal.y, z = gltfNormal.z;
+    return e[0] * k0 - e[1] * (k1 * y) + e[2] * (k1 * z) - e[3] * (k1 * x) + e[4] * (k2 * x * y) -
+           e[5] * (k2 * y * z) + e[6] * (k20 * (3.0 * z * z - 1.0)) - e[7] * (k2 * x * z) +
            e[8] * (k22 * (x * x - y * y));
 }
 
@@ -105,6 +107,15 @@ ibl::Ktx2Image withResidualLevel0(ibl::Ktx2Image ktx) {
 
 // Every texel of level `level` of the export against level `ktxLevel` of the KTX2 (in radiance); returns the
 // largest relative error (for the report) and fails on any texel outside the RGBD bound.
+// Where Babylon.js shows texel (x, row) of exported face f of an n-texel level, as our (face, x, y): it
+// uploads the image's rows in the opposite order, and shows cube direction c at glTF (-c.x, c.y, c.z).
+ibl::CubeCoord ourTexelShownAt(int face, int x, int row, int n) {
+    const ibl::vec3 c = ibl::cubeTexelDirection(face, uint32_t(x), uint32_t(n - 1 - row), uint32_t(n));
+    return ibl::cubeCoordFromDirection(ibl::vec3(-c.x, c.y, c.z));
+}
+
+// Every texel of level `level` of the export against level `ktxLevel` of the KTX2, where Babylon shows
+// it; returns the largest relative error (for the report) and fails on any texel outside the RGBD bound.
 double compareLevel(const fs::path& dir, const nlohmann::json& light, int level, const ibl::Ktx2Image& ktx,
                     int ktxLevel) {
     const double intensity = light.at("intensity").get<double>();
@@ -118,7 +129,12 @@ double compareLevel(const fs::path& dir, const nlohmann::json& light, int level,
         EXPECT_EQ(width, ref.width);
         if (decoded.size() != ref.pixels.size()) return 1.0;
         for (std::size_t i = 0; i < decoded.size(); ++i) {
-            const glm::dvec3 v = glm::dvec3(glm::vec3(ref.pixels[i])) / intensity;
+            const ibl::CubeCoord at =
+                ourTexelShownAt(f, int(i % std::size_t(width)), int(i / std::size_t(width)), width);
+            const ibl::ImageRGBA& face = ktx.levels[std::size_t(ktxLevel)][std::size_t(at.face)];
+            const std::size_t j =
+                std::size_t(at.t * float(width)) * std::size_t(width) + std::size_t(at.s * float(width));
+            const glm::dvec3 v = glm::dvec3(glm::vec3(face.pixels[j])) / intensity;
             const double maxRgb = std::max({v.x, v.y, v.z});
             for (int c = 0; c < 3; ++c) {
                 if (std::abs(decoded[i][c] - v[c]) > rgbdBound(v[c], maxRgb)) {
@@ -164,7 +180,8 @@ TEST_F(GltfExport, IrradianceCoefficientsReproduceOurShIrradiance) {
                                      {0, 0, -1}, {1, 1, 1},  {-0.3, 0.8, 0.5}, {0.6, -0.2, -0.77}};
     for (glm::dvec3 n : directions) {
         n = glm::normalize(n);
-        const glm::dvec3 expected = ibl::evalPrescaledSH(ours, n), got = irradianceFromExtension(fromGltf, n);
+        const glm::dvec3 expected = ibl::evalPrescaledSH(ours, n),
+                         got = irradianceAsBabylonReadsIt(fromGltf, n);
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(got[c], expected[c], 1e-5 * std::abs(expected[c]))
                 << "n = " << n.x << " " << n.y << " " << n.z << " channel " << c;

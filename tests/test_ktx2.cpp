@@ -2,7 +2,10 @@
 // specification requires (header, DFD, key/value data, level index and padding), rounding and sanitizing,
 // failure behaviour of the writer, and a reader that rejects damaged files with ibl::Error.
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
+
+#include <cube.h>
 
 #include <gtest/gtest.h>
 
@@ -780,3 +783,55 @@ TEST(Ktx2Reader, AbsurdSizesAreRejectedWithoutAllocating) {
 }
 
 } // namespace
+
+// A cube whose texels hold their own direction, for the layout of the three profile.
+ibl::CubeMapChain directionCube(int n) {
+    ibl::CubeMapChain chain;
+    ibl::CubeMap level;
+    level.faceSize = n;
+    for (int f = 0; f < 6; ++f) {
+        level.faces[std::size_t(f)] = ibl::ImageRGBA(n, n);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                level.faces[std::size_t(f)].pixels[std::size_t(y * n + x)] =
+                    glm::vec4(ibl::cubeTexelDirection(f, uint32_t(x), uint32_t(y), uint32_t(n)), 1.0f);
+    }
+    chain.levels.push_back(level);
+    return chain;
+}
+
+// --profile three stores the cube mirrored in x (three.js samples a CubeTexture at (-x, y, z)); readKtx2
+// gives the standard layout back, so iblbake's readers see one convention.
+TEST(Ktx2CubeProfile, ThreeStoresTheCubeMirroredInXAndReadsBackStandard) {
+    TempDir dir;
+    const int n = 8;
+    const ibl::CubeMapChain chain = directionCube(n);
+    ibl::writeKtx2Cube(dir / "three.ktx2", chain, ibl::Ktx2Format::RGBA32F,
+                       {{ibl::kCubeProfileKey, "three"}});
+    const ibl::Ktx2Image back = ibl::readKtx2(dir / "three.ktx2");
+    EXPECT_EQ(back.keyValues.at(ibl::kCubeProfileKey), "three");
+    for (int f = 0; f < 6; ++f)
+        EXPECT_EQ(back.levels[0][std::size_t(f)].pixels, chain.levels[0].faces[std::size_t(f)].pixels) << f;
+
+    // As stored (the key renamed, same length, so the reader leaves the layout alone): the texel through
+    // which three looks along d holds our direction (-d.x, d.y, d.z).
+    std::ifstream in(dir / "three.ktx2", std::ios::binary);
+    std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), {});
+    const std::string key = ibl::kCubeProfileKey;
+    auto at = std::search(bytes.begin(), bytes.end(), key.begin(), key.end());
+    ASSERT_NE(at, bytes.end());
+    *(at + std::ptrdiff_t(key.size()) - 1) = 'X';
+    const ibl::Ktx2Image stored = ibl::parseKtx2(bytes, "three.ktx2");
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::vec3 d = ibl::cubeTexelDirection(f, uint32_t(x), uint32_t(y), uint32_t(n));
+                const glm::vec4 texel = stored.levels[0][std::size_t(f)].pixels[std::size_t(y * n + x)];
+                EXPECT_NEAR(texel.x, -d.x, 1e-6f);
+                EXPECT_NEAR(texel.y, d.y, 1e-6f);
+                EXPECT_NEAR(texel.z, d.z, 1e-6f);
+            }
+    EXPECT_THROW(ibl::writeKtx2Cube(dir / "bad.ktx2", chain, ibl::Ktx2Format::RGBA32F,
+                                    {{ibl::kCubeProfileKey, "unity"}}),
+                 ibl::Error);
+}

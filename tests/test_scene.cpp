@@ -79,6 +79,7 @@ TEST(SceneParse, DefaultsOfAMinimalScene) {
     EXPECT_EQ(s.outputs.probeFaceSize, 256);
     EXPECT_EQ(s.outputs.quality, "production");
     EXPECT_EQ(s.outputs.ktx2Format, "rgba16f");
+    EXPECT_EQ(s.outputs.profile, "standard");
 }
 
 TEST(SceneParse, ProxyCentreDefaultsToTheCapturePoint) {
@@ -253,4 +254,23 @@ TEST(ScenePlan, LdLevelsStopAtTheRoughestMaterial) {
         if (s.id == "specular") {
             EXPECT_EQ(s.settings.at("integratedLevels"), 7);
         }
+}
+
+// outputs.profile (the cubes' layout for the engine) is one of standard, three, and decides the LD and
+// irradiance stages' settings (so their stage keys); outputs.runtimeProfile stays free text.
+TEST(SceneParse, ProfileIsStandardOrThreeAndEntersTheCubeStages) {
+    json doc = minimalScene();
+    doc["outputs"]["profile"] = "three";
+    doc["outputs"]["irradianceCube"] = true;
+    const ibl::Scene s = parse(doc);
+    EXPECT_EQ(s.outputs.profile, "three");
+    int cubeStages = 0;
+    for (const ibl::PlanStage& stage : ibl::planScene(s).stages) {
+        if (stage.kind != "specular-ld" && stage.kind != "irradiance-cube") continue;
+        EXPECT_EQ(stage.settings.at("profile"), "three") << stage.id;
+        ++cubeStages;
+    }
+    EXPECT_EQ(cubeStages, 2);
+    doc["outputs"]["profile"] = "unity";
+    EXPECT_NE(errorOf(doc.dump()).find("outputs.profile"), std::string::npos) << errorOf(doc.dump());
 }

@@ -29,6 +29,31 @@ double basisConstant(int i) {
     return std::sqrt(15.0 / (4.0 * kPi));
 }
 
+// How Babylon.js reads irradianceCoefficients: SphericalHarmonics.FromArray in its basis, whose constants
+// carry the Condon-Shortley sign on (1,-1), (1,1), (2,-1), (2,1), evaluated at the normal in its
+// left-handed frame, where the glTF loader's root maps glTF (x, y, z) to (-x, y, z), which flips the
+// terms odd in x (x, xy, xz). Written coefficient i = E_i x kBabylonSign[i] gives our E(n).
+constexpr double kBabylonSign[9] = {1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, 1.0};
+
+// Babylon.js (9.28, the extension's reference loader) uploads each specular image with its rows in the
+// opposite order (the image's first row becomes the face's last, t = 1) and, in its default left-handed
+// scene, shows cube direction c at glTF direction (-c.x, c.y, c.z) (same root transform; cube lookups use
+// the world direction). So image f holds at column x, row r our texel of direction
+// mirrorX(face f's direction at (x, N - 1 - r)): mirroring x swaps +X and -X and reverses every face's
+// columns, so that is our face kMirroredFace[f] turned a half turn.
+constexpr int kMirroredFace[6] = {1, 0, 2, 3, 4, 5};
+
+ImageRGBA exportedFaceImage(const CubeMap& level, int face) {
+    const ImageRGBA& source = level.faces[std::size_t(kMirroredFace[face])];
+    ImageRGBA image(source.width, source.height);
+    for (int r = 0; r < source.height; ++r)
+        for (int x = 0; x < source.width; ++x)
+            image.pixels[std::size_t(r) * std::size_t(source.width) + std::size_t(x)] =
+                source.pixels[std::size_t(source.height - 1 - r) * std::size_t(source.width) +
+                              std::size_t(source.width - 1 - x)];
+    return image;
+}
+
 // p_i(n): 1, y, z, x, xy, yz, 3z^2 - 1, xz, x^2 - y^2.
 double polynomial(int i, const glm::dvec3& n) {
     switch (i) {
@@ -91,14 +116,14 @@ nlohmann::json sunLight(const DiskLight& sun, bool inLux) {
 ShRgb gltfIrradianceCoefficients(const ShRgb& prescaledIrradiance) {
     ShRgb out{};
     for (int i = 0; i < 9; ++i)
-        out[std::size_t(i)] = prescaledIrradiance[std::size_t(i)] / basisConstant(i);
+        out[std::size_t(i)] = prescaledIrradiance[std::size_t(i)] * (kBabylonSign[i] / basisConstant(i));
     return out;
 }
 
 glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n) {
     glm::dvec3 e(0.0);
     for (int i = 0; i < 9; ++i)
-        e += coefficients[std::size_t(i)] * (basisConstant(i) * polynomial(i, n));
+        e += coefficients[std::size_t(i)] * (kBabylonSign[i] * basisConstant(i) * polynomial(i, n));
     return e;
 }
 
@@ -136,7 +161,7 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
         for (int f = 0; f < 6; ++f) {
             const std::string name = stem + "_specular_" + std::to_string(m) + "_" + kFaceNames[f] + ".png";
             imageFiles.push_back(std::make_unique<AtomicFile>(path.parent_path() / name));
-            writeRgbdPng(imageFiles.back()->tempPath(), scene.specular.levels[m].faces[std::size_t(f)],
+            writeRgbdPng(imageFiles.back()->tempPath(), exportedFaceImage(scene.specular.levels[m], f),
                          float(1.0 / (intensity * scene.storageScale)));
             faces.push_back(images.size());
             images.push_back({{"uri", name}, {"mimeType", "image/png"}});

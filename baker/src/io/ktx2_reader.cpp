@@ -3,6 +3,7 @@
 // allocated, so the largest allocation is bounded by a small multiple of the file size. The file is read
 // whole and parsed from memory, which is also the entry point of the fuzz target (fuzz/ktx2_reader.cpp).
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "ktx2_format.h"
 #include "small_float.h"
@@ -312,6 +313,17 @@ Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name)
                 cursor += info.texelBytes;
             }
             image.levels[p].push_back(std::move(face));
+        }
+    }
+    // Every cube in the standard layout, whatever profile it was stored for (cube_profile.h).
+    if (auto profile = image.keyValues.find(kCubeProfileKey);
+        profile != image.keyValues.end() && h.faceCount == 6) {
+        try {
+            if (parseCubeProfile(profile->second) == CubeProfile::Three)
+                for (std::vector<ImageRGBA>& level : image.levels)
+                    mirrorCubeFacesX(level);
+        } catch (const Error& e) {
+            throw Error(name + ": " + kCubeProfileKey + ": " + e.what());
         }
     }
     return image;

@@ -3,6 +3,7 @@
 // sanitized (NaN, Inf, out-of-range values) and counted before encoding, so no Inf/NaN is ever stored.
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "ktx2_format.h"
 #include "small_float.h"
@@ -277,9 +278,24 @@ Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Kt
         throw Error(name + ": " + std::to_string(chain.levels.size()) + " levels for face size " +
                     std::to_string(base) + " (at most " + std::to_string(maxLevels) + ")");
 
+    // The layout the file's iblbake.profile declares (cube_profile.h).
+    CubeMapChain mirrored;
+    const auto profile = std::find_if(keyValues.begin(), keyValues.end(),
+                                      [](const auto& kv) { return kv.first == kCubeProfileKey; });
+    try {
+        if (profile != keyValues.end() && parseCubeProfile(profile->second) == CubeProfile::Three) {
+            mirrored = chain;
+            for (CubeMap& level : mirrored.levels)
+                mirrorCubeFacesX(level.faces);
+        }
+    } catch (const Error& e) {
+        throw Error(name + ": " + kCubeProfileKey + ": " + e.what());
+    }
+    const CubeMapChain& stored = mirrored.levels.empty() ? chain : mirrored;
+
     std::vector<LevelView> levels;
-    for (std::size_t m = 0; m < chain.levels.size(); ++m) {
-        const CubeMap& level = chain.levels[m];
+    for (std::size_t m = 0; m < stored.levels.size(); ++m) {
+        const CubeMap& level = stored.levels[m];
         const int size = std::max(1, base >> m);
         if (level.faceSize != size)
             throw Error(name + ": level " + std::to_string(m) + " has face size " +

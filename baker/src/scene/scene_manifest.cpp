@@ -136,6 +136,7 @@ json buildManifest(const ManifestInputs& in) {
         {"generator", "iblbake " IBLBAKE_VERSION},
         {"manifestCode", builtInStageCodeIdentity().at("manifest")}, // read by the up-to-date check
         {"runtimeProfile", scene.outputs.runtimeProfile},
+        {"profile", scene.outputs.profile}, // the cubes' iblbake.profile (cube_profile.h)
         {"backend", in.backend},
         {"conventions",
          {{"directions", "right-handed, +Y up"},

@@ -4,6 +4,7 @@
 #include "iblbake/scene/scene.h"
 
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 
 #include <mip_mapping.h>
@@ -299,6 +300,7 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     if (directory.empty()) fail(r.key("directory"), "must name a directory");
     o.directory = resolve(directory, base);
     o.ktx2Format = r.choice("ktx2Format", "rgba16f", kKtx2FormatNames);
+    o.profile = r.choice("profile", "standard", kCubeProfileNames);
     o.quality = r.choice("quality", "production", {"draft", "production", "reference"});
     o.faceSize = r.integer("faceSize", 256, 1, 4096);
     if (!isPowerOfTwo(o.faceSize)) fail(r.key("faceSize"), "must be a power of two");

@@ -41,7 +41,8 @@ json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
             {"mipMapping", o.mipMapping},
             {"quality", o.quality},
             {"ktx2Format", o.ktx2Format},
-            {"clampToFormat", o.clampToFormat}};
+            {"clampToFormat", o.clampToFormat},
+            {"profile", o.profile}};
 }
 
 } // namespace
@@ -141,7 +142,8 @@ Plan planScene(const Scene& scene) {
         s.settings = {{"faceSize", o.irradianceFaceSize},
                       {"quality", o.quality},
                       {"ktx2Format", o.ktx2Format},
-                      {"clampToFormat", o.clampToFormat}};
+                      {"clampToFormat", o.clampToFormat},
+                      {"profile", o.profile}};
         s.reason = "outputs.irradianceCube: diffuse from a cube of E/pi (sampled, bright texels exact)";
         plan.stages.push_back(std::move(s));
     } else {

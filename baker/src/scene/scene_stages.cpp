@@ -10,6 +10,7 @@
 #include "iblbake/baker/specular.h"
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 
 #include <nlohmann/json.hpp>
@@ -232,7 +233,9 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     const bool clampToFormat = s.at("clampToFormat").get<bool>();
     ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format, clampToFormat);
     const ProductStorage storage = chooseProductStorage(chain, format, clampToFormat);
-    writeProductCube(file, chain, format, ldChainKeyValues(ld, calibration.record, calibration.sun), storage);
+    Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
+    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
+    writeProductCube(file, chain, format, keyValues, storage);
     writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();
@@ -294,12 +297,11 @@ void runIrradiance(const StageContext& c) {
     chain.levels.push_back(bakeIrradianceCube(readCube(from / kCubeFile), settings, *c.executor));
     const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
     const ProductStorage storage = chooseProductStorage(chain, format, s.at("clampToFormat").get<bool>());
-    writeProductCube(c.outputDirectory / "irradiance.ktx2", chain, format,
-                     irradianceKeyValues(irradianceMethodText(IrradianceMethod::Sampled, settings.samples),
-                                         calibration.colorSpace(), calibration.sourceFile(),
-                                         calibration.latLongPixels(),
-                                         calibration.record, calibration.sun),
-                     storage);
+    Ktx2KeyValues keyValues = irradianceKeyValues(
+        irradianceMethodText(IrradianceMethod::Sampled, settings.samples), calibration.colorSpace(),
+        calibration.sourceFile(), calibration.latLongPixels(), calibration.record, calibration.sun);
+    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
+    writeProductCube(c.outputDirectory / "irradiance.ktx2", chain, format, keyValues, storage);
     writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
 }
 

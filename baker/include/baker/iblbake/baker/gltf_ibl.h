@@ -1,23 +1,28 @@
 // A bake as glTF 2.0: the image-based light through EXT_lights_image_based (Khronos glTF repository,
 // extensions/2.0/Vendor/EXT_lights_image_based) and the extracted sun through KHR_lights_punctual.
 //
-// Conventions written (README "Engine outputs"):
+// Conventions written (README "Engine outputs"). Where the extension's text is unclear or disagrees with
+// Babylon.js (9.28, the loader it was written for), the file follows Babylon, checked by numbers in
+// headless Chromium (tests/js/babylon_gltf.mjs):
 // - Frame: glTF's (right-handed, +Y up) is DESIGN.md's, so `rotation` is the identity [0, 0, 0, 1].
 // - specularImages[m][f]: level m of N holds perceptual roughness m / (N - 1) ("the various mip levels
-//   evenly map to roughness values from 0 to 1"); faces +X, -X, +Y, -Y, +Z, -Z; each face stored as in
-//   our KTX2 (OpenGL face orientation, first stored row = t = 0, the first row of the PNG), which is
-//   the standard orientation mirrored about its vertical axis, as the extension asks.
+//   evenly map to roughness values from 0 to 1"); faces +X, -X, +Y, -Y, +Z, -Z. Babylon uploads each
+//   image with its rows in the opposite order and, in its default left-handed scene, shows cube
+//   direction c at glTF direction (-c.x, c.y, c.z); so image f is our face with +X and -X swapped
+//   (f = 0 holds our -X, 1 our +X), turned a half turn (column x, row r = our column N-1-x, row N-1-r).
 // - Images: 4-channel PNG, RGBD (iblbake/baker/rgbd.h) of value / intensity. `intensity` (the extension's
 //   brightness multiplier, applied by loaders to images and coefficients alike) is chosen so that the
 //   brightest exported channel encodes to RGBD's maximum 255: intensity x decoded = the bake's value
 //   (the stored texel over the KTX2's storage scale).
-// - irradianceCoefficients: 9 x [r, g, b] in DESIGN.md order, E_lm / intensity with E_lm = A_l L_lm, the
-//   SH coefficients of the irradiance E(n) = sum E_lm Y_lm(n) in the basis of Ramamoorthi & Hanrahan
-//   2001 eq. 3 (which the extension cites; our basis, no Condon-Shortley phase). From our pre-scaled
-//   `sh.irradiance` c_i = A_l k_i L_i: E_i = c_i / k_i.
+// - irradianceCoefficients: 9 x [r, g, b] in DESIGN.md order, s_i E_i / intensity with E_i = A_l L_i, the
+//   SH coefficients of the irradiance E(n) = sum E_i Y_i(n) (our basis, no Condon-Shortley phase), and
+//   s_i = -1 for i = 1 (y), 4 (xy), 5 (yz), +1 otherwise: Babylon reads them in its basis (Condon-Shortley
+//   signs on i = 1, 3, 5, 7) at the normal in its left-handed frame (x -> -x flips i = 3, 4, 7). From our
+//   pre-scaled `sh.irradiance` c_i = A_l k_i L_i: E_i = c_i / k_i.
 // - The sun: a KHR_lights_punctual directional light on a node whose rotation turns -Z (the light's
 //   direction of travel) to -direction; color = our colour / its largest component (the schema caps
 //   color at 1), intensity = illuminance x that component, so intensity x color is our RGB illuminance.
+//   The loader maps it through the same root transform as the environment, so both agree in Babylon.
 #pragma once
 
 #include "iblbake/baker/sh.h"
@@ -45,9 +50,9 @@ struct GltfIblScene {
     std::map<std::string, std::string> extras; // provenance, written as the light's "extras"
 };
 
-// E_i = c_i / k_i: the extension's coefficients (before dividing by the intensity).
+// s_i c_i / k_i: the coefficients as written (before dividing by the intensity).
 ShRgb gltfIrradianceCoefficients(const ShRgb& prescaledIrradiance);
-// E(n) = sum_i E_i Y_i(n), the extension's irradiance from its coefficients (Ramamoorthi & Hanrahan eq. 3).
+// E(n) from the written coefficients (glTF direction n): sum_i s_i coefficient_i Y_i(n), our irradiance.
 glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n);
 // The light's intensity: the brightest channel of every exported level / 255 (1 when that is 0), over
 // the chain's storage scale.

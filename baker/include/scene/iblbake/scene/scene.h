@@ -69,6 +69,7 @@ struct SceneMaterials {
 struct SceneOutputs {
     std::filesystem::path directory;
     std::string ktx2Format = "rgba16f";   // rgba16f, rgba32f, b10g11r11, e5b9g9r9
+    std::string profile = "standard";     // cube layout for the engine (iblbake/ktx2/cube_profile.h)
     std::string quality = "production";   // draft, production, reference
     int faceSize = 256;                   // distant LD level 0 and source cube (power of two)
     int probeFaceSize = 0;                // local probes' LD level 0; 0 = faceSize

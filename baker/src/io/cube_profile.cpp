@@ -1,0 +1,33 @@
+// Cube profiles (iblbake/ktx2/cube_profile.h).
+#include "iblbake/ktx2/cube_profile.h"
+#include "iblbake/core/error.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace ibl {
+
+CubeProfile parseCubeProfile(const std::string& name) {
+    if (name == "standard") return CubeProfile::Standard;
+    if (name == "three") return CubeProfile::Three;
+    throw Error("'" + name + "' is not one of standard, three");
+}
+
+const char* cubeProfileName(CubeProfile profile) {
+    return profile == CubeProfile::Three ? "three" : "standard";
+}
+
+// Direction (x, y, z) -> (-x, y, z) in the OpenGL face table: +X (1, -t, -s) and -X (-1, -t, s) trade
+// places with s reversed; on +-Y (s, +-1, ...) and +-Z (s, -t, 1), (-s, -t, -1) s changes sign. So every
+// face's columns reverse and +X, -X swap.
+void mirrorCubeFacesX(std::span<ImageRGBA> faces) {
+    if (faces.size() != 6) throw Error("a cube has 6 faces, not " + std::to_string(faces.size()));
+    std::swap(faces[0], faces[1]);
+    for (ImageRGBA& face : faces)
+        for (int y = 0; y < face.height; ++y) {
+            auto row = face.pixels.begin() + std::ptrdiff_t(y) * face.width;
+            std::reverse(row, row + face.width);
+        }
+}
+
+} // namespace ibl
