@@ -60,6 +60,7 @@ BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, Pro
     summary.manifest = scene.outputs.directory / "manifest.json";
     summary.upToDate = true;
     summary.ok = true;
+    addManifestReport(summary);
     summary.seconds = secondsSince(start);
     progress.done(summary);
     return summary;
@@ -79,17 +80,31 @@ nlohmann::json bakeSummaryJson(const BakeSummary& s) {
         skipped.push_back({{"id", k.id}, {"kind", k.kind}, {"reason", k.reason}});
     for (const fs::path& p : s.products)
         products.push_back(p.string());
-    return {{"ok", s.ok},
-            {"error", s.error},
-            {"backend", s.backend},
-            {"seconds", s.seconds},
-            {"upToDate", s.upToDate},
-            {"ran", s.ran()},
-            {"cached", s.cached()},
-            {"stages", stages},
-            {"skipped", skipped},
-            {"products", products},
-            {"manifest", s.manifest.string()}};
+    nlohmann::json report = nlohmann::json::array();
+    for (const ProductReport& r : s.report)
+        report.push_back({{"name", r.name},
+                          {"path", r.path.string()},
+                          {"bytes", r.bytes},
+                          {"files", r.files},
+                          {"description", r.description}});
+    nlohmann::json out = {{"ok", s.ok},
+                          {"error", s.error},
+                          {"backend", s.backend},
+                          {"seconds", s.seconds},
+                          {"upToDate", s.upToDate},
+                          {"ran", s.ran()},
+                          {"cached", s.cached()},
+                          {"stages", stages},
+                          {"skipped", skipped},
+                          {"products", products},
+                          {"manifest", s.manifest.string()},
+                          {"report", report},
+                          {"calibration", s.calibration}};
+    if (s.previewError)
+        out["previewError"] = {{"roughness", s.previewError->roughness},
+                               {"dielectric", s.previewError->dielectric},
+                               {"metal", s.previewError->metal}};
+    return out;
 }
 
 } // namespace ibl
