@@ -1,9 +1,9 @@
 // iblbake export-sh BAKE_DIR --profile filament -o sh.txt: the bake's diffuse SH in an engine's own
 // convention (iblbake/baker/filament_sh.h).
-#include "bake_dir.h"
 #include "commands.h"
 
 #include <iblbake/baker/filament_sh.h>
+#include <iblbake/baker/gltf_export.h>
 #include <iblbake/core/error.h>
 #include <iblbake/ktx2/atomic_file.h>
 

@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <unistd.h>
@@ -56,6 +58,45 @@ void ConsoleProgress::stageEnd(const StageResult& stage, int index, int count) {
     }
 }
 
+namespace {
+
+std::string sizeText(std::uintmax_t bytes) {
+    char text[32];
+    if (bytes >= 1024 * 1024)
+        std::snprintf(text, sizeof text, "%.1f MiB", double(bytes) / (1024.0 * 1024.0));
+    else
+        std::snprintf(text, sizeof text, "%.0f KiB", std::ceil(double(bytes) / 1024.0));
+    return text;
+}
+
+// The bake's report (bake_state.h BakeSummary::report): one line per product, the calibration, the
+// preview's error per roughness column; one screen.
+void printReport(const BakeSummary& summary) {
+    std::size_t pathWidth = 4;
+    for (const ProductReport& r : summary.report)
+        pathWidth = std::max(pathWidth, r.path.string().size());
+    for (const ProductReport& r : summary.report) {
+        const std::string files = r.files > 1 ? " (" + std::to_string(r.files) + " files)" : "";
+        std::printf("  %-16s %-*s %9s  %s%s\n", r.name.c_str(), int(pathWidth), r.path.string().c_str(),
+                    sizeText(r.bytes).c_str(), r.description.c_str(), files.c_str());
+    }
+    if (!summary.calibration.empty()) std::printf("calibration %s\n", summary.calibration.c_str());
+    if (!summary.previewError) return;
+    const PreviewErrorReport& e = *summary.previewError;
+    std::printf("error       runtime vs brute-force reference (relative mean luminance), per roughness:\n");
+    const auto row = [](const char* name, const std::vector<double>& values, double scale, const char* unit) {
+        std::printf("  %-10s", name);
+        for (double v : values)
+            std::printf(" %5.1f%s", scale * v, unit);
+        std::printf("\n");
+    };
+    row("roughness", e.roughness, 1.0, " ");
+    row("dielectric", e.dielectric, 100.0, "%");
+    row("metal", e.metal, 100.0, "%");
+}
+
+} // namespace
+
 void ConsoleProgress::done(const BakeSummary& summary) {
     if (barDrawn_) std::fprintf(stderr, "\r\033[K");
     if (mode_ == ProgressMode::Json) {
@@ -65,6 +106,7 @@ void ConsoleProgress::done(const BakeSummary& summary) {
         std::printf("baked %zu stages (%d ran, %d cached, %zu skipped) in %.2f s (%s) -> %s\n",
                     summary.stages.size(), summary.ran(), summary.cached(), summary.skipped.size(),
                     summary.seconds, summary.backend.c_str(), summary.manifest.string().c_str());
+        printReport(summary);
         // Products stored scaled or clamped on request (DESIGN.md "Float storage"); unscaled ones say
         // nothing.
         for (const StoredProduct& p : summary.storage)

@@ -21,7 +21,8 @@ std::string flagOf(const std::string& setting) {
                                                              {"windowParameter", "--window-param"},
                                                              {"dfgSize", "--size"},
                                                              {"dfgSamples", "--samples"},
-                                                             {"backend", "--backend"}};
+                                                             {"backend", "--backend"},
+                                                             {"minFaceSize", "--min-face-size"}};
     const auto it = flags.find(setting);
     return it == flags.end() ? std::string() : it->second;
 }

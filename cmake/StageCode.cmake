@@ -20,7 +20,7 @@
 # in IBLBAKE_CODE_NOT_IN_STAGES; configure fails otherwise, and for a listed path that does not exist.
 
 set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include/core baker/include/opencl baker/include/ktx2
-    baker/include/scene baker/include/bake_state baker/include/baker baker/src/opencl)
+    baker/include/scene baker/include/bake_state baker/include/baker baker/src/opencl baker/runtime/include)
 
 # Groups shared by several kinds.
 set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files (products), the entry layout
@@ -40,7 +40,7 @@ set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, 
 # computation throw. "manifest" is no stage: manifest.json is written by every bake that is not up to date,
 # and records this identity so that the up-to-date check does not keep one written by other code.
 set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract specular-ld diffuse-sh irradiance-cube probe-ld
-    manifest)
+    gltf-export material-preview manifest)
 set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp)
 set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
 set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration baker/src/environment)
@@ -49,21 +49,25 @@ set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cp
 set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradiance.cl
     baker/src/stages/irradiance.cpp baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp)
 set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
+# The engine outputs (outputs.gltf, outputs.preview): the flows of `iblbake gltf` (the residual of a level 0
+# that kept the sun, the re-filter to the extension's mapping, the RGBD PNG writer) and `iblbake preview`
+# (the runtime module and its kernels, the brute-force reference, the labelled grid, PNG and EXR writers).
+set(IBLBAKE_STAGE_CODE_gltf-export stage_runner kernel_host ld_chain baker/src/scene/engine_output_stages.cpp
+    baker/src/export baker/src/calibration baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp)
+set(IBLBAKE_STAGE_CODE_material-preview stage_runner kernel_host baker/src/scene/engine_output_stages.cpp
+    baker/src/preview baker/runtime/src kernels/runtime.cl baker/src/io/preview.cpp baker/src/io/exr_output.cpp)
 set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp
     baker/src/products)
 
 # Sources that decide no stage's bytes: planning and keys (their effect is in the key's settings and
-# dependency chain), the bake's bookkeeping, exporters, batch, accuracy, and the runtime's kernels.
+# dependency chain), the bake's bookkeeping, the Filament SH exporter, batch, accuracy, the dispatch test kernel.
 set(IBLBAKE_CODE_NOT_IN_STAGES
-    baker/src/scene/bake_summary.cpp baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
+    baker/src/scene/bake_summary.cpp baker/src/scene/bake_report.cpp baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
     baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
     baker/src/scene/up_to_date.cpp
     baker/src/batch baker/src/accuracy
-    baker/src/io/atomic_file.cpp baker/src/io/exr_output.cpp baker/src/io/preview.cpp
-    baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp baker/src/io/filament_sh.cpp
-    baker/src/io/muted_stderr.h
+    baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/stages/specular_reference.cpp
-    kernels/runtime.cl kernels/probe.h kernels/parallax.h kernels/shade_points.h
     kernels/dispatch_check.cl kernels/dispatch_check.h) # dispatch_check: the dispatch helper's test kernel
 
 # _iblbake_code_files(<root> <out-var> <entry>...): the files (relative to <root>, sorted) that the

@@ -6,6 +6,7 @@
 #include "scene_test_support.h"
 
 #include <iblbake/baker/bake_scene.h>
+#include <iblbake/baker/material_preview.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/ktx2/ktx2.h>
 #include <iblbake/ktx2/storage_scale.h>
@@ -605,4 +606,93 @@ TEST(SceneBake, IrradianceCubeWhenAskedIsPlannedBakedAndLoaded) {
         differsFromSh += a[i] != c[i];
     }
     EXPECT_GT(differsFromSh, 0); // the cube, not the SH, lit the loaded set
+}
+
+// outputs.gltf and outputs.preview: planned only when asked, made by the flows of `iblbake gltf` and
+// `iblbake preview`, listed in the manifest with every file they write, in the bake's report, and up to
+// date on a re-run (answered by the front end, with the same report).
+TEST(SceneBake, EngineOutputsOnlyWhenAskedListedAndReported) {
+    SceneDir d("scene_engine_outputs");
+    const auto has = [](const std::vector<std::string>& ids, const std::string& id) {
+        return std::find(ids.begin(), ids.end(), id) != ids.end();
+    };
+    const std::vector<std::string> without = plannedIds(d.write());
+    EXPECT_FALSE(has(without, "gltf"));
+    EXPECT_FALSE(has(without, "preview"));
+    const json plan = json::parse(runCli("plan " + d.write().string() + " --json").out);
+    std::set<std::string> skipped;
+    for (const json& s : plan["skipped"])
+        skipped.insert(s["id"]);
+    EXPECT_TRUE(skipped.count("gltf") && skipped.count("preview")) << plan["skipped"].dump();
+
+    d.scene["environment"] = {
+        {"file", kSample}, {"calibration", {{"sunIlluminance", 100000}}}, {"extractSun", true}};
+    d.scene["outputs"]["gltf"] = {{"file", "park.gltf"}, {"minFaceSize", 4}};
+    d.scene["outputs"]["preview"] = {{"sphereSize", 8}};
+    const std::vector<std::string> with = plannedIds(d.write());
+    ASSERT_GE(with.size(), 2u);
+    EXPECT_EQ(with[with.size() - 2], "gltf");
+    EXPECT_EQ(with.back(), "preview");
+
+    const JsonRun r = bakeJson(d.write());
+    ASSERT_EQ(r.run.exitCode, 0) << r.run.err;
+    const json manifest = json::parse(readBytes(d.out() / "manifest.json"));
+    const json& gltf = manifest["products"]["gltf"];
+    EXPECT_EQ(gltf["file"], "park.gltf");
+    EXPECT_EQ(gltf["levels"], 3); // 16, 8, 4 px: re-filtered to the extension's linear mapping
+    EXPECT_EQ(gltf["files"].size(), 3u * 6u);
+    for (const json& f : gltf["files"])
+        EXPECT_TRUE(fs::exists(d.out() / f["file"].get<std::string>())) << f;
+    const json& preview = manifest["products"]["preview"];
+    EXPECT_EQ(preview["file"], "preview.png");
+    EXPECT_EQ(preview["files"][0]["file"], "preview.exr");
+    EXPECT_TRUE(fs::exists(d.out() / "preview.exr"));
+    const ibl::PreviewLayout layout = ibl::previewLayout(8, true);
+    EXPECT_EQ(preview["width"], layout.width);
+    EXPECT_EQ(preview["height"], layout.height);
+    auto png = OIIO::ImageInput::open((d.out() / "preview.png").string());
+    ASSERT_TRUE(png);
+    EXPECT_EQ(png->spec().width, layout.width);
+    EXPECT_EQ(png->spec().height, layout.height);
+    for (const char* row : {"dielectric", "metal", "both"}) {
+        ASSERT_EQ(preview["error"][row].size(), std::size_t(ibl::kPreviewColumns)) << row;
+        for (const json& e : preview["error"][row])
+            EXPECT_TRUE(e.get<double>() >= 0.0 && e.get<double>() < 0.5) << row << " " << e;
+    }
+
+    // The same glTF, byte for byte, as `iblbake gltf` exports from the bake directory.
+    const fs::path separate = d.dir / "separate";
+    fs::create_directories(separate);
+    CliRun exported = runCli("gltf " + d.out().string() + " --min-face-size 4 --quality draft -o " +
+                             (separate / "park.gltf").string());
+    ASSERT_EQ(exported.exitCode, 0) << exported.err;
+    EXPECT_EQ(readBytes(separate / "park.gltf"), readBytes(d.out() / "park.gltf"));
+    for (const json& f : gltf["files"])
+        EXPECT_EQ(readBytes(separate / f["file"].get<std::string>()),
+                  readBytes(d.out() / f["file"].get<std::string>()))
+            << f;
+
+    // The report: every product, the calibration, the preview's error; the same from an up-to-date re-run.
+    std::set<std::string> reported;
+    for (const json& p : r.summary["report"])
+        reported.insert(p["name"]);
+    EXPECT_EQ(reported,
+              (std::set<std::string>{"dfg", "specular", "diffuse", "sun", "gltf", "preview", "manifest"}));
+    EXPECT_FALSE(r.summary["calibration"].get<std::string>().empty());
+    EXPECT_EQ(r.summary["previewError"]["metal"], preview["error"]["metal"]);
+    const JsonRun again = bakeJson(d.write());
+    ASSERT_EQ(again.run.exitCode, 0) << again.run.err;
+    EXPECT_TRUE(again.summary["upToDate"].get<bool>());
+    EXPECT_EQ(again.summary["report"], r.summary["report"]);
+    EXPECT_EQ(again.summary["previewError"], r.summary["previewError"]);
+    CliRun text = runCli("bake " + d.write().string());
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_LE(lineCount(text.out), 25) << text.out;
+    EXPECT_NE(text.out.find("out/park.gltf"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("dielectric"), std::string::npos) << text.out;
+
+    d.scene["outputs"]["gltf"] = {{"file", "park.png"}};
+    CliRun bad = runCli("plan " + d.write().string());
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.err.find("outputs.gltf.file"), std::string::npos) << bad.err;
 }

@@ -37,7 +37,10 @@ ibl::Plan everyKindPlan() {
     const fs::path scenes = fs::path(IBLBAKE_SOURCE_DIR) / "data" / "scenes";
     std::ifstream in(scenes / "park.json");
     nlohmann::json scene = nlohmann::json::parse(in);
+    // Every kind, whatever park.json asks for.
     scene["outputs"]["irradianceCube"] = true;
+    scene["outputs"]["gltf"] = true;
+    scene["outputs"]["preview"] = true;
     return ibl::planScene(ibl::parseScene(scene.dump(), "park.json", scenes));
 }
 
@@ -131,7 +134,8 @@ class SourceCopy {
   public:
     SourceCopy() : root_(fs::temp_directory_path() / ("iblbake-stage-code-" + std::to_string(getpid()))) {
         fs::remove_all(root_);
-        for (const char* folder : {"baker/src", "baker/include", "kernels", "cmake"}) {
+        for (const char* folder : {"baker/src", "baker/include", "baker/runtime/src", "baker/runtime/include",
+                                   "kernels", "cmake"}) {
             fs::create_directories(root_ / folder);
             fs::copy(fs::path(IBLBAKE_SOURCE_DIR) / folder, root_ / folder, fs::copy_options::recursive);
         }
@@ -182,13 +186,15 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     const ibl::StageCodeIdentity unchanged = sources.identity();
     EXPECT_EQ(unchanged, ibl::builtInStageCodeIdentity());
 
-    const std::set<std::string> stages = {"dfg-lut",    "environment",     "sun-extract", "specular-ld",
-                                          "diffuse-sh", "irradiance-cube", "probe-ld"};
+    const std::set<std::string> stages = {"dfg-lut",     "environment", "sun-extract",
+                                          "specular-ld", "diffuse-sh",  "irradiance-cube",
+                                          "probe-ld",    "gltf-export", "material-preview"};
     std::set<std::string> stagesAndManifest = stages;
     stagesAndManifest.insert("manifest");
     const std::map<std::string, std::set<std::string>> reached = {
         // The LD kernel: both LD chains, and the irradiance kernel that includes ld.h for its bright texels.
-        {"kernels/ld.h", {"specular-ld", "probe-ld", "irradiance-cube"}},
+        // The glTF export re-filters with the LD chain's code.
+        {"kernels/ld.h", {"specular-ld", "probe-ld", "irradiance-cube", "gltf-export"}},
         {"kernels/dfg.h", {"dfg-lut"}},
         {"kernels/cube.h", stagesAndManifest}, // the face convention: ingest, every kernel, the cube headers
         {"baker/src/stages/sh_projection.cpp", {"diffuse-sh"}},
@@ -210,7 +216,9 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     const std::set<std::string> changed =
         changedIds(ibl::planStageKeys(plan, inputs, "opencl", unchanged),
                    ibl::planStageKeys(plan, inputs, "opencl", sources.identity()));
-    EXPECT_EQ(changed, (std::set<std::string>{"specular", "irradiance", "probe:pavilion"}));
+    // (gltf and preview read the specular chain.)
+    EXPECT_EQ(changed,
+              (std::set<std::string>{"specular", "irradiance", "probe:pavilion", "gltf", "preview"}));
 }
 
 // manifest.json is written by every bake that is not up to date; it records its writer's code so that the

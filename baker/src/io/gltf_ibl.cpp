@@ -2,6 +2,7 @@
 #include "iblbake/baker/gltf_ibl.h"
 #include "iblbake/baker/rgbd.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/gltf_names.h"
 #include "iblbake/ktx2/atomic_file.h"
 
 #include <nlohmann/json.hpp>
@@ -18,7 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 constexpr double kPi = 3.14159265358979323846;
-constexpr const char* kFaceNames[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 // k_i of Y_i = k_i p_i (kernels/sh.h), in fp64.
 double basisConstant(int i) {
@@ -159,7 +159,7 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
     for (std::size_t m = 0; m < scene.specular.levels.size(); ++m) {
         nlohmann::json faces = nlohmann::json::array();
         for (int f = 0; f < 6; ++f) {
-            const std::string name = stem + "_specular_" + std::to_string(m) + "_" + kFaceNames[f] + ".png";
+            const std::string name = gltfSpecularImageName(stem, int(m), f);
             imageFiles.push_back(std::make_unique<AtomicFile>(path.parent_path() / name));
             writeRgbdPng(imageFiles.back()->tempPath(), exportedFaceImage(scene.specular.levels[m], f),
                          float(1.0 / (intensity * scene.storageScale)));

@@ -45,10 +45,8 @@ float encodeSrgb(float linear) {
 
 } // namespace
 
-namespace {
-
-void writePng(const std::filesystem::path& path, int width, int height,
-              const std::vector<unsigned char>& rgb) {
+void writeSrgb8Png(const std::filesystem::path& path, int width, int height,
+                   const std::vector<unsigned char>& rgb) {
     AtomicFile file(path);
     auto out = OIIO::ImageOutput::create(file.tempPath().string());
     if (!out) throw Error(path.string() + ": cannot create an image writer: " + OIIO::geterror());
@@ -59,19 +57,17 @@ void writePng(const std::filesystem::path& path, int width, int height,
     file.commit();
 }
 
-unsigned char tonemap(float linear, float scale) {
+unsigned char tonemapToSrgb8(float linear, float scale) {
     float v = std::max(linear * scale, 0.0f);
     return (unsigned char)std::lround(255.0f * encodeSrgb(v / (1.0f + v)));
 }
-
-} // namespace
 
 void writeTonemappedPng(const std::filesystem::path& path, const ImageRGBA& image, float scale) {
     std::vector<unsigned char> rgb(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c)
-            rgb[i * 3 + c] = tonemap(image.pixels[i][c], scale);
-    writePng(path, image.width, image.height, rgb);
+            rgb[i * 3 + c] = tonemapToSrgb8(image.pixels[i][c], scale);
+    writeSrgb8Png(path, image.width, image.height, rgb);
 }
 
 void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& chain, int tileSize,
@@ -92,10 +88,10 @@ void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& ch
                     std::size_t o =
                         (std::size_t(m * (tileSize + gap) + y) * width + f * (tileSize + gap) + x) * 3;
                     for (int c = 0; c < 3; ++c)
-                        pixels[o + c] = tonemap(texel[c], scale);
+                        pixels[o + c] = tonemapToSrgb8(texel[c], scale);
                 }
     }
-    writePng(path, width, height, pixels);
+    writeSrgb8Png(path, width, height, pixels);
 }
 
 } // namespace ibl

@@ -142,6 +142,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         summary.products.push_back(manifestPath);
         summary.manifest = manifestPath;
         summary.ok = true;
+        addManifestReport(summary);
     } catch (const std::exception& e) { // ibl::Error, and anything a library throws: one line, no crash
         summary.ok = false;
         summary.error = e.what();

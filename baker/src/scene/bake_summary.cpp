@@ -64,6 +64,7 @@ BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, Pro
     summary.manifest = scene.outputs.directory / "manifest.json";
     summary.upToDate = true;
     summary.ok = true;
+    addManifestReport(summary);
     summary.seconds = secondsSince(start);
     progress.done(summary);
     return summary;
@@ -129,18 +130,32 @@ nlohmann::json bakeSummaryJson(const BakeSummary& s) {
                            {"clamped", p.clamped}});
         if (p.clamped) storage.back()["energyLostPercent"] = p.energyLostPercent;
     }
-    return {{"ok", s.ok},
-            {"error", s.error},
-            {"backend", s.backend},
-            {"seconds", s.seconds},
-            {"upToDate", s.upToDate},
-            {"ran", s.ran()},
-            {"cached", s.cached()},
-            {"stages", stages},
-            {"skipped", skipped},
-            {"products", products},
-            {"manifest", s.manifest.string()},
-            {"storage", storage}};
+    nlohmann::json report = nlohmann::json::array();
+    for (const ProductReport& r : s.report)
+        report.push_back({{"name", r.name},
+                          {"path", r.path.string()},
+                          {"bytes", r.bytes},
+                          {"files", r.files},
+                          {"description", r.description}});
+    nlohmann::json out = {{"ok", s.ok},
+                          {"error", s.error},
+                          {"backend", s.backend},
+                          {"seconds", s.seconds},
+                          {"upToDate", s.upToDate},
+                          {"ran", s.ran()},
+                          {"cached", s.cached()},
+                          {"stages", stages},
+                          {"skipped", skipped},
+                          {"products", products},
+                          {"manifest", s.manifest.string()},
+                          {"storage", storage},
+                          {"report", report},
+                          {"calibration", s.calibration}};
+    if (s.previewError)
+        out["previewError"] = {{"roughness", s.previewError->roughness},
+                               {"dielectric", s.previewError->dielectric},
+                               {"metal", s.previewError->metal}};
+    return out;
 }
 
 } // namespace ibl

@@ -2,6 +2,7 @@
 
 #include "iblbake/bake_state/code_identity.h"
 #include "iblbake/baker/irradiance.h"
+#include "iblbake/baker/material_preview.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/specular.h"
 #include "iblbake/baker/sun.h"
@@ -62,6 +63,49 @@ LdManifestFacts probeFacts(const PlanStage& stage, const std::string& file) {
     f.validRoughnessMax = s.at("roughnessMax").get<double>();
     f.quality = s.at("quality").get<std::string>();
     return f;
+}
+
+// The files of a stage after its first product, each with its hash: a glTF's images, a preview's EXR.
+json filesAfterTheFirst(const PlanStage& stage, const std::map<std::string, std::string>& hashes) {
+    json files = json::array();
+    for (std::size_t i = 1; i < stage.products.size(); ++i)
+        files.push_back({{"file", stage.products[i]}, {"contentHash", hashes.at(stage.products[i])}});
+    return files;
+}
+
+json gltfEntry(const PlanStage& stage, const json& facts, const std::map<std::string, std::string>& hashes) {
+    const std::string& file = stage.products.at(0);
+    return {
+        {"file", file},
+        {"format", "glTF 2.0 (JSON), EXT_lights_image_based with RGBD PNG faces beside it" +
+                       std::string(facts.at("sun").get<bool>() ? ", the sun as KHR_lights_punctual" : "")},
+        {"levels", facts.at("levels")},
+        {"faceSize", facts.at("faceSize")},
+        {"intensity", facts.at("intensity")},
+        {"contentHash", hashes.at(file)},
+        {"files", filesAfterTheFirst(stage, hashes)}};
+}
+
+json previewEntry(const PlanStage& stage, const json& facts,
+                  const std::map<std::string, std::string>& hashes) {
+    const std::string& file = stage.products.at(0);
+    return {
+        {"file", file},
+        {"format", "PNG, 8-bit sRGB: labelled grid; the linear panels (runtime | reference | error) as "
+                   "OpenEXR in files"},
+        {"width", facts.at("width")},
+        {"height", facts.at("height")},
+        {"rows", previewRowNames(true)},
+        {"roughness", facts.at("roughness")},
+        {"error",
+         {{"meaning", "relative mean luminance error per roughness column, sum |runtime - reference| / sum "
+                      "reference over the balls' pixels; reference: brute force against the full calibrated "
+                      "environment"},
+          {"dielectric", facts.at("error").at("dielectric")},
+          {"metal", facts.at("error").at("metal")},
+          {"both", facts.at("error").at("both")}}},
+        {"contentHash", hashes.at(file)},
+        {"files", filesAfterTheFirst(stage, hashes)}};
 }
 
 } // namespace
@@ -125,6 +169,12 @@ json buildManifest(const ManifestInputs& in) {
         probes.push_back(std::move(probe));
     }
     products["probes"] = probes;
+    if (stages.count("gltf"))
+        products["gltf"] =
+            gltfEntry(*stages["gltf"], readJsonFile(in.entries.at("gltf") / kGltfFacts), in.productHashes);
+    if (stages.count("preview"))
+        products["preview"] = previewEntry(
+            *stages["preview"], readJsonFile(in.entries.at("preview") / kPreviewFacts), in.productHashes);
 
     json stageKeys = json::array();
     for (const PlanStage& s : in.plan.stages)

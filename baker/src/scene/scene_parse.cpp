@@ -293,6 +293,32 @@ bool isPowerOfTwo(int n) {
     return n > 0 && (n & (n - 1)) == 0;
 }
 
+// An output file's name: a plain file name in outputs.directory with the given extension.
+std::string outputFileName(ObjectReader& r, const std::string& k, const std::string& fallback,
+                           const std::string& extension, const Fail& fail) {
+    const std::string name = r.string(k, fallback);
+    const fs::path path(name);
+    if (name.empty() || path.filename() != path || path.stem().empty() || path.stem() == "." ||
+        path.extension() != extension)
+        fail(r.key(k), valueForMessage(name) + " must be a file name ending in " + extension);
+    return name;
+}
+
+// true, false, or an object of settings: the output is made only when asked.
+template <class Output, class Read>
+std::optional<Output> optionalOutput(ObjectReader& outputs, const std::string& k, const Fail& fail,
+                                     Read read) {
+    const json* v = outputs.take(k);
+    if (!v || (v->is_boolean() && !v->get<bool>())) return std::nullopt;
+    if (v->is_boolean()) return Output{};
+    if (!v->is_object())
+        fail(outputs.key(k), std::string("must be true, false or an object, not ") + typeName(*v));
+    ObjectReader r(*v, outputs.key(k), fail);
+    Output out = read(r);
+    r.finish();
+    return out;
+}
+
 SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     ObjectReader r(v, "outputs", fail);
     SceneOutputs o;
@@ -313,6 +339,20 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     o.irradianceFaceSize = r.integer("irradianceFaceSize", 32, 1, 1024);
     if (!isPowerOfTwo(o.irradianceFaceSize)) fail(r.key("irradianceFaceSize"), "must be a power of two");
     o.clampToFormat = r.boolean("clampToFormat", false);
+    o.gltf = optionalOutput<SceneGltfOutput>(r, "gltf", fail, [&](ObjectReader& g) {
+        SceneGltfOutput out;
+        out.file = outputFileName(g, "file", out.file, ".gltf", fail);
+        out.minFaceSize = g.integer("minFaceSize", out.minFaceSize, 1, 4096);
+        if (!isPowerOfTwo(out.minFaceSize)) fail(g.key("minFaceSize"), "must be a power of two");
+        return out;
+    });
+    o.preview = optionalOutput<ScenePreviewOutput>(r, "preview", fail, [&](ObjectReader& p) {
+        ScenePreviewOutput out;
+        out.file = outputFileName(p, "file", out.file, ".png", fail);
+        out.sphereSize = p.integer("sphereSize", out.sphereSize, 8, 512);
+        out.exposure = p.number("exposure", out.exposure);
+        return out;
+    });
     r.finish();
     return o;
 }

@@ -1,6 +1,8 @@
 // The planner (scene_plan.h): what a scene's materials and probes need, and nothing else.
 #include "iblbake/scene/scene_plan.h"
 
+#include "iblbake/core/gltf_names.h"
+
 #include <cmath>
 
 namespace ibl {
@@ -43,6 +45,66 @@ json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
             {"ktx2Format", o.ktx2Format},
             {"clampToFormat", o.clampToFormat},
             {"profile", o.profile}};
+}
+
+// outputs.gltf and outputs.preview: made from the products above, after them, only when the scene asks.
+void planEngineOutputs(const Scene& scene, bool glossy, const std::string& lightSource, Plan& plan) {
+    const SceneOutputs& o = scene.outputs;
+    const bool sun = scene.environment.extractSun;
+    if (!o.gltf) {
+        plan.skipped.push_back({"gltf", "gltf-export", "outputs.gltf is not set"});
+    } else if (!glossy || o.faceSize < 2) {
+        plan.skipped.push_back({"gltf", "gltf-export",
+                                !glossy
+                                    ? "outputs.gltf: EXT_lights_image_based needs the specular chain, and no "
+                                      "material uses specular"
+                                    : "outputs.gltf: a 1-texel cube cannot hold roughness 0 and 1"});
+    } else {
+        // The extension maps its levels evenly to roughness 0..1: a chain baked with another mapping is
+        // re-filtered from level 0 (kernels: the backend).
+        const bool linear = o.mipMapping == "linear";
+        const int levels =
+            linear ? mipLevelCount(o.faceSize) : gltfRefilteredLevels(o.faceSize, o.gltf->minFaceSize);
+        PlanStage s{"gltf", "gltf-export", {"specular", "diffuse"}, {}, {}, {o.gltf->file}, !linear, ""};
+        if (sun) s.dependsOn.push_back("sun");
+        const std::string stem = std::filesystem::path(o.gltf->file).stem().string();
+        for (int m = 0; m < levels; ++m)
+            for (int f = 0; f < 6; ++f)
+                s.products.push_back(gltfSpecularImageName(stem, m, f));
+        s.settings = {{"file", o.gltf->file}, {"levels", levels}};
+        if (!linear) s.settings.update({{"minFaceSize", o.gltf->minFaceSize}, {"quality", o.quality}});
+        s.reason = "outputs.gltf: glTF 2.0 with EXT_lights_image_based (" + std::to_string(levels) +
+                   " levels of RGBD PNG faces" + (linear ? "" : ", re-filtered to roughness m/(N-1)") + ")" +
+                   (sun ? " and the sun as KHR_lights_punctual" : "");
+        plan.stages.push_back(std::move(s));
+    }
+
+    if (!o.preview || !glossy) {
+        plan.skipped.push_back({"preview", "material-preview",
+                                !o.preview
+                                    ? "outputs.preview is not set"
+                                    : "outputs.preview: the preview renders through the specular chain, "
+                                      "and no material uses specular"});
+        return;
+    }
+    // The runtime's lighting (every distant product it reads) against the brute-force render of the full
+    // calibrated environment (the environment stage's cube, the sun still in it).
+    PlanStage s{"preview", "material-preview", {}, {}, {}, {}, true, ""};
+    for (const PlanStage& p : plan.stages)
+        if (p.id == "dfg" || p.id == "specular" || p.id == "diffuse" || p.id == "sun" ||
+            p.id == "irradiance" || p.id == "environment")
+            s.dependsOn.push_back(p.id);
+    const std::filesystem::path file(o.preview->file);
+    s.products = {file.string(), std::filesystem::path(file).replace_extension(".exr").string()};
+    const SceneMaterials& m = scene.materials;
+    s.settings = {{"sphereSize", o.preview->sphereSize},
+                  {"exposure", o.preview->exposure},
+                  {"diffuseModel", m.diffuseModel == SceneDiffuseModel::Disney ? "disney" : "lambert"},
+                  {"energyCompensation", m.energyCompensation}};
+    s.reason = "outputs.preview: material balls lit by the bake through the runtime beside the brute-force "
+               "reference, labelled, with the per-roughness error";
+    if (lightSource == "sun") s.reason += " (the sun as the runtime's disk light)";
+    plan.stages.push_back(std::move(s));
 }
 
 } // namespace
@@ -190,6 +252,7 @@ Plan planScene(const Scene& scene) {
             plan.stages.push_back(std::move(s));
         }
     }
+    planEngineOutputs(scene, glossy, lightSource, plan);
     return plan;
 }
 

@@ -25,22 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-void writeJson(const fs::path& file, const json& doc) {
-    std::ofstream out(file);
-    out << doc.dump(2) << '\n';
-    out.close();
-    if (!out) throw Error(file.string() + ": cannot write");
-}
-
-CubeMap readCube(const fs::path& file) {
-    Ktx2Image image = readKtx2(file);
-    if (image.faceCount != 6 || image.levels.empty()) throw Error(file.string() + ": not a cube map");
-    CubeMap cube(int(image.pixelWidth));
-    for (int f = 0; f < 6; ++f)
-        cube.faces[f] = image.levels[0][std::size_t(f)];
-    return cube;
-}
-
 void writeCube(const fs::path& file, const CubeMap& cube, const std::string& product) {
     CubeMapChain chain;
     chain.levels.push_back(cube);
@@ -181,13 +165,13 @@ void runEnvironment(const StageContext& c) {
                                  {"rotateDegrees", s.at("rotation")}};
         addLatLongPixels(calibration["source"], env.report.latLongPixels);
         writeCube(c.outputDirectory / kCubeFile, env.cube, "calibrated-environment");
-        writeJson(c.outputDirectory / kCalibrationFile, calibration);
+        writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
     });
 }
 
 void runSun(const StageContext& c) {
     const fs::path from = c.dependencies.at("environment");
-    CubeMap cube = readCube(from / kCubeFile);
+    CubeMap cube = readCubeFile(from / kCubeFile);
     json calibration = readJsonFile(from / kCalibrationFile);
     SunDetectSettings detection;
     detection.luminanceWeights = workingLuminanceWeights(calibration.at("colorSpace").get<std::string>());
@@ -200,7 +184,7 @@ void runSun(const StageContext& c) {
     const std::string lightJson = diskLightToJson(light, calibration.at("absolute").get<bool>());
     calibration["sunLight"] = json::parse(lightJson);
     writeCube(c.outputDirectory / kCubeFile, cube, "calibrated-environment-without-sun");
-    writeJson(c.outputDirectory / kCalibrationFile, calibration);
+    writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
     std::ofstream out(c.outputDirectory / "sun.json");
     out << lightJson << '\n';
     out.close();
@@ -252,19 +236,19 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
 
 void runSpecular(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    const CubeMap source = readCube(from / kCubeFile);
+    const CubeMap source = readCubeFile(from / kCubeFile);
     // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
     std::optional<CubeMap> withSun;
-    if (c.stage.dependsOn.size() > 1) withSun = readCube(c.dependencies.at("environment") / kCubeFile);
+    if (c.stage.dependsOn.size() > 1) withSun = readCubeFile(c.dependencies.at("environment") / kCubeFile);
     LdManifestFacts facts = writeLdChain(c, source, readCalibration(from), "specular-ld",
                                          c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
     facts.sunInLevel0 = facts.sunInLevel0.value_or(false);
-    writeJson(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
+    writeJsonFile(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
 }
 
 void runDiffuse(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    const CubeMap cube = readCube(from / kCubeFile);
+    const CubeMap cube = readCubeFile(from / kCubeFile);
     const CachedCalibration calibration = readCalibration(from);
     const ShWindowSettings window; // auto: the weakest window that keeps E >= 0
     DiffuseSource source;
@@ -279,9 +263,9 @@ void runDiffuse(const StageContext& c) {
         source.latLongPixels = latLongPixelsFromJson(in);
     }
     source.faceSize = cube.faceSize;
-    writeJson(c.outputDirectory / "diffuse.json",
-              diffuseDocument(bakeDiffuseSH(cube, window), "auto", calibration.colorSpace(), source,
-                              calibration.record, calibration.sun));
+    writeJsonFile(c.outputDirectory / "diffuse.json",
+                  diffuseDocument(bakeDiffuseSH(cube, window), "auto", calibration.colorSpace(), source,
+                                  calibration.record, calibration.sun));
 }
 
 // The same cube and key/values as `iblbake diffuse --irradiance-cube` (cli/diffuse_command.cpp).
@@ -294,7 +278,7 @@ void runIrradiance(const StageContext& c) {
     settings.quality = parseQuality(s.at("quality").get<std::string>());
     settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
     CubeMapChain chain;
-    chain.levels.push_back(bakeIrradianceCube(readCube(from / kCubeFile), settings, *c.executor));
+    chain.levels.push_back(bakeIrradianceCube(readCubeFile(from / kCubeFile), settings, *c.executor));
     const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
     const ProductStorage storage = chooseProductStorage(chain, format, s.at("clampToFormat").get<bool>());
     Ktx2KeyValues keyValues = irradianceKeyValues(
@@ -331,6 +315,22 @@ void runProbe(const StageContext& c) {
 
 } // namespace
 
+CubeMap readCubeFile(const fs::path& file) {
+    Ktx2Image image = readKtx2(file);
+    if (image.faceCount != 6 || image.levels.empty()) throw Error(file.string() + ": not a cube map");
+    CubeMap cube(int(image.pixelWidth));
+    for (int f = 0; f < 6; ++f)
+        cube.faces[f] = image.levels[0][std::size_t(f)];
+    return cube;
+}
+
+void writeJsonFile(const fs::path& file, const json& doc) {
+    std::ofstream out(file);
+    out << doc.dump(2) << '\n';
+    out.close();
+    if (!out) throw Error(file.string() + ": cannot write");
+}
+
 json readJsonFile(const fs::path& file) {
     std::ifstream in(file);
     if (!in) throw Error(file.string() + ": cannot read");
@@ -354,6 +354,8 @@ void runStage(const StageContext& c) {
     if (kind == "diffuse-sh") return runDiffuse(c);
     if (kind == "probe-ld") return runProbe(c);
     if (kind == "irradiance-cube") return runIrradiance(c);
+    if (kind == "gltf-export") return runGltfStage(c);
+    if (kind == "material-preview") return runPreviewStage(c);
     throw Error("scene: unknown stage kind '" + kind + "'");
 }
 

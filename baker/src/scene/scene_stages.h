@@ -2,6 +2,7 @@
 // files, writes its files into a staging directory (scene_plan.h lists the kinds).
 #pragma once
 
+#include "iblbake/core/cubemap.h"
 #include "iblbake/opencl/executor.h"
 #include "iblbake/scene/scene.h"
 #include "iblbake/scene/scene_plan.h"
@@ -42,5 +43,21 @@ inline constexpr const char* kLdManifestFacts = "manifest_facts.json";
 // Beside every KTX2 product of a stage (specular, irradiance, local probe): how it was stored
 // (products.h productStorageToJson), for the manifest and the bake summary.
 inline constexpr const char* kStorageFile = "storage.json";
+
+// Beside the engine outputs: what the manifest and the bake's report say about them
+// (engine_output_stages.cpp). gltf-export: {levels, faceSize, intensity, sun}; material-preview: {width,
+// height, roughness, error: {dielectric, metal, both}}.
+inline constexpr const char* kGltfFacts = "gltf_facts.json";
+inline constexpr const char* kPreviewFacts = "preview_facts.json";
+
+// The stages of outputs.gltf and outputs.preview (engine_output_stages.cpp).
+void runGltfStage(const StageContext& context);
+void runPreviewStage(const StageContext& context);
+
+// Level 0 of a cube KTX2 of a cache entry; throws ibl::Error naming the file.
+CubeMap readCubeFile(const std::filesystem::path& file);
+
+// Writes `doc` as indented JSON; throws ibl::Error naming the file.
+void writeJsonFile(const std::filesystem::path& file, const nlohmann::json& doc);
 
 } // namespace ibl

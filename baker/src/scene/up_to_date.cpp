@@ -19,10 +19,16 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// File -> contentHash of every product the manifest lists (products.* and products.probes[]).
+// File -> contentHash of every product the manifest lists (products.* and products.probes[], and the files[]
+// of a product made of several: a glTF's images, a preview's EXR).
 std::map<std::string, std::string> listedHashes(const json& products) {
     std::map<std::string, std::string> out;
-    auto add = [&](const json& p) { out[p.at("file")] = p.at("contentHash"); };
+    auto add = [&](const json& p) {
+        out[p.at("file")] = p.at("contentHash");
+        if (p.contains("files"))
+            for (const json& f : p["files"])
+                out[f.at("file")] = f.at("contentHash");
+    };
     for (const auto& [name, value] : products.items()) {
         if (name == "probes")
             for (const json& p : value)

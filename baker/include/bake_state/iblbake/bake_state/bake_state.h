@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,20 @@ std::vector<StoredProduct> storedProductsFromManifest(const nlohmann::json& mani
 // divide)", "<file>: fits <format> unscaled", or "<file>: clamped to <format> on request, energy lost per
 // level: a% b% ...".
 std::string storageLine(const StoredProduct& product);
+// One product of a finished bake as its report shows it (read back from manifest.json).
+struct ProductReport {
+    std::string name;           // the manifest's key: "dfg", "specular", ..., "probe:<name>", "manifest"
+    std::filesystem::path path; // its (first) file
+    std::uintmax_t bytes = 0;   // all its files together
+    int files = 1;              // a glTF's images and a preview's EXR count too
+    std::string description;    // what it holds: size, format, levels
+};
+
+// The preview's measured error (outputs.preview): relative mean luminance error of the runtime against the
+// brute-force reference, per perceptual-roughness column.
+struct PreviewErrorReport {
+    std::vector<double> roughness, dielectric, metal;
+};
 
 struct BakeSummary {
     bool ok = false;
@@ -63,6 +78,11 @@ struct BakeSummary {
     double seconds = 0.0;
     bool upToDate = false; // the output directory held this bake already: nothing was read from the cache
     std::vector<StoredProduct> storage; // from the manifest, when ok
+    // When ok, from manifest.json: what was made and where, the calibration in one line, the preview's
+    // measured error (when the scene asked for a preview).
+    std::vector<ProductReport> report;
+    std::string calibration;
+    std::optional<PreviewErrorReport> previewError;
     int ran() const;
     int cached() const;
 };
@@ -101,9 +121,14 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
 BakeSummary reportUpToDateBake(const Scene& scene, const UpToDate& upToDate, ProgressSink& progress,
                                std::chrono::steady_clock::time_point start);
 
+// Fills summary.report, calibration and previewError from summary.manifest (left empty when it cannot be
+// read: the report is a courtesy, the bake's outcome is the manifest itself).
+void addManifestReport(BakeSummary& summary);
+
 // The summary as JSON: {ok, error, backend, seconds, upToDate, ran, cached, stages: [{id, kind, status, key,
 // seconds, products}], skipped: [...], products: [...], manifest, storage: [{file, format, storageScale,
-// clamped, energyLostPercent (with clamped)}]}.
+// clamped, energyLostPercent (with clamped)}], report: [{name, path, bytes, files, description}],
+// calibration, previewError?: {roughness, dielectric, metal}}.
 nlohmann::json bakeSummaryJson(const BakeSummary& summary);
 
 } // namespace ibl

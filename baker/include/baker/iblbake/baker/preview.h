@@ -4,6 +4,7 @@
 #include "iblbake/core/cubemap.h"
 
 #include <filesystem>
+#include <vector>
 
 namespace ibl {
 
@@ -17,5 +18,13 @@ void writeChainPreview(const std::filesystem::path& path, const CubeMapChain& ch
 // A linear image as an 8-bit sRGB PNG: each channel times `scale`, Reinhard x / (1 + x), sRGB curve.
 // Written atomically; throws ibl::Error naming the file.
 void writeTonemappedPng(const std::filesystem::path& path, const ImageRGBA& image, float scale);
+
+// The tone curve of writeTonemappedPng for one channel: linear x scale, Reinhard, sRGB curve, 8 bits.
+unsigned char tonemapToSrgb8(float linear, float scale);
+
+// 8-bit sRGB pixels (row-major, R, G, B per pixel) as a PNG. Written atomically; throws ibl::Error naming
+// the file.
+void writeSrgb8Png(const std::filesystem::path& path, int width, int height,
+                   const std::vector<unsigned char>& rgb);
 
 } // namespace ibl

@@ -66,6 +66,22 @@ struct SceneMaterials {
     bool clearCoat = false;
 };
 
+// outputs.gltf: the bake as glTF 2.0, as `iblbake gltf` exports it (EXT_lights_image_based with RGBD PNG
+// faces beside the .gltf, the sun as KHR_lights_punctual).
+struct SceneGltfOutput {
+    std::string file = "scene.gltf"; // a file name in outputs.directory, ending in .gltf
+    int minFaceSize = 16;            // the roughness-1 level's face size when re-filtered (power of two)
+};
+
+// outputs.preview: the labelled material-ball grid of `iblbake preview --reference` against the full
+// calibrated environment, and its linear panels beside it (<stem>.exr); the per-column error goes into the
+// manifest and the bake's report.
+struct ScenePreviewOutput {
+    std::string file = "preview.png"; // a file name in outputs.directory, ending in .png
+    int sphereSize = 64;              // pixels per ball (the reference render's cost grows with its square)
+    double exposure = 0.0;            // stops
+};
+
 struct SceneOutputs {
     std::filesystem::path directory;
     std::string ktx2Format = "rgba16f";   // rgba16f, rgba32f, b10g11r11, e5b9g9r9
@@ -83,6 +99,8 @@ struct SceneOutputs {
     // Clamp the KTX2 products to their format's range instead of storing them with a storage scale
     // (DESIGN.md "Float storage"); the energy lost is reported.
     bool clampToFormat = false;
+    std::optional<SceneGltfOutput> gltf;       // only when asked (true or an object)
+    std::optional<ScenePreviewOutput> preview; // only when asked (true or an object)
 };
 
 struct Scene {

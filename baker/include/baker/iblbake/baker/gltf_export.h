@@ -1,0 +1,47 @@
+// A bake's files as the glTF export (gltf_ibl.h) of `iblbake gltf` and of a scene's outputs.gltf: the
+// specular chain with the sun taken out of level 0 again where the bake kept it there, re-filtered to the
+// extension's roughness mapping when baked with another, the SH and the sun light.
+#pragma once
+
+#include "iblbake/baker/gltf_ibl.h"
+#include "iblbake/baker/sh.h"
+#include "iblbake/baker/specular.h"
+#include "iblbake/core/gltf_names.h"
+#include "iblbake/opencl/executor.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace ibl {
+
+struct GltfExportSource {
+    std::filesystem::path specular;           // specular.ktx2
+    std::filesystem::path diffuse;            // diffuse.json
+    std::optional<std::filesystem::path> sun; // sun.json, when the bake extracted the sun
+};
+
+struct GltfExportSettings {
+    int minFaceSize = 16;               // face size of the roughness-1 level of a re-filtered chain
+    std::string quality = "production"; // sample preset of a re-filtered chain (specular.h parseQuality)
+};
+
+struct GltfExport {
+    GltfIblScene scene;
+    // Set when the chain must be re-filtered (any mapping but linear): from level 0 with these settings.
+    std::optional<SpecularSettings> refilter;
+    int baseFaceSize = 0, lowestFaceSize = 0; // of the re-filtered chain
+};
+
+// Reads the bake's files. Throws ibl::Error naming the file; SettingError("minFaceSize") when the lowest
+// face size min(minFaceSize, level-0 size / 2) is not a power of two.
+GltfExport readBakeForGltf(const GltfExportSource& source, const GltfExportSettings& settings);
+
+// Re-filters export.scene.specular when export.refilter is set (else nothing to do).
+void refilterForGltf(GltfExport& gltfExport, const Executor& executor);
+
+// diffuse.json's sh.irradiance (A_l k_i L_i): 9 finite RGB triples; throws ibl::Error naming the file and
+// the key path.
+ShRgb readPrescaledIrradiance(const std::filesystem::path& diffuseJson);
+
+} // namespace ibl

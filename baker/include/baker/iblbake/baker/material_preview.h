@@ -1,0 +1,98 @@
+// The material preview (`iblbake preview` and a scene's outputs.preview): balls of perceptual roughness
+// 0, 0.1, ..., 1 (columns), dielectric and metal, lit by a bake through the runtime module; with a
+// reference environment, the brute-force render of the same balls against it and the relative error.
+// Written as a labelled PNG grid (rows named, columns labelled with their roughness, the error colour
+// scale with its values) and the linear panels as OpenEXR.
+#pragma once
+
+#include "iblbake/baker/latlong_pixels.h"
+#include "iblbake/core/cubemap.h"
+#include "iblbake/opencl/executor.h"
+#include "iblbake/runtime/runtime.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace ibl {
+
+inline constexpr int kPreviewColumns = 11; // perceptual roughness c / 10
+
+// ---------------------------------------------------------------------------------------------------
+// Loading what the preview renders.
+
+struct PreviewBake {
+    ProbeSet set;
+    RuntimeOptions options;
+    double calibrationFactor = 1.0; // what the bake multiplied its input by (the reference gets the same)
+};
+
+// The distant lighting of a bake's files: the LD chain, the DFG LUT (.ktx2 as a scene bake writes it, or
+// .exr as `iblbake dfg`), diffuse.json's SH, and the sun and irradiance cube when given.
+struct PreviewBakeFiles {
+    std::filesystem::path specular, dfg, diffuse;
+    std::optional<std::filesystem::path> sun, irradiance;
+};
+ProbeSet loadPreviewProbeSet(const PreviewBakeFiles& files);
+
+// A scene bake directory through its manifest.json, else the loose files of `iblbake dfg/specular/diffuse`
+// (specular.ktx2, dfg_lut.exr, diffuse.json [, sun.json] [, irradiance.ktx2]), whose calibration factor
+// is recorded in specular.ktx2. Throws ibl::Error naming the file.
+PreviewBake loadPreviewBake(const std::filesystem::path& directory);
+
+// The reference environment: `file` ingested at the bake's mirror resolution (at least 128, so that a
+// coarser reference does not blur what the runtime's level 0 shows sharply and count it as the runtime's
+// error) with the lat-long pixel placement the bake used, and calibrated by `calibrationFactor`, the sun
+// included.
+CubeMap previewReferenceCube(const std::filesystem::path& file, double calibrationFactor, int baseFaceSize,
+                             LatLongPixels latLongPixels);
+
+// ---------------------------------------------------------------------------------------------------
+// Rendering and writing.
+
+struct MaterialPreviewSettings {
+    int sphereSize = 96;     // pixels per ball
+    float exposureEV = 0.0f; // exposure compensation in stops
+    // A picture, not a measurement (tests use 2048): the reference's samples per strategy and per albedo.
+    std::uint32_t referenceSamples = 256;
+    std::uint32_t albedoSamples = 1024;
+};
+
+struct MaterialPreview {
+    std::vector<float> roughness; // per column
+    // Relative mean luminance error per column, sum |runtime - reference| / sum reference over the balls'
+    // pixels: each row's and both rows'. Empty without a reference.
+    std::vector<double> dielectricError, metalError, error;
+    int width = 0, height = 0; // of the PNG grid
+};
+
+// The grid's geometry (all in pixels), from the ball size and whether reference and error rows are shown.
+struct PreviewLayout {
+    int sphereSize = 0, fontSize = 0, margin = 0;
+    int columnWidth = 0;  // the ball, or wider for small balls: room for a column's labels
+    int labelWidth = 0;   // the row names' column at the left
+    int headerHeight = 0; // the caption and the roughness labels above the balls
+    int rowCount = 0; // 2 (runtime dielectric, runtime metal) or 6 (runtime, reference, error; each twice)
+    int groupGap = 0; // between the dielectric and the metal rows
+    int legendHeight = 0; // the error colour scale below (0 without a reference)
+    int width = 0, height = 0;
+    int cellX(int column) const; // left edge of a column's balls (centred in the column)
+    int cellY(int row) const;    // top edge of a row's balls
+};
+PreviewLayout previewLayout(int sphereSize, bool withReference);
+// The row names, top to bottom.
+std::vector<std::string> previewRowNames(bool withReference);
+
+// 0 black, 5% blue, 10% yellow, 20% and more red (display-referred).
+glm::vec3 previewErrorColor(float relativeError);
+
+// Renders and writes `png` (the labelled grid, 8-bit sRGB) and `exr` (runtime | reference | error panels
+// side by side, linear). `reference`: the full calibrated environment, or nullptr for the runtime alone.
+// Throws ibl::Error naming the file; the labels need DejaVu Sans (Debian fonts-dejavu-core).
+MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
+                                      const CubeMap* reference, const Executor& executor,
+                                      const MaterialPreviewSettings& settings,
+                                      const std::filesystem::path& png, const std::filesystem::path& exr);
+
+} // namespace ibl

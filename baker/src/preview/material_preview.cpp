@@ -1,0 +1,146 @@
+// The material preview's render (iblbake/baker/material_preview.h): the balls' shading points, the runtime
+// and brute-force renders, the per-column error, and the linear panels as OpenEXR.
+#include "iblbake/baker/material_preview.h"
+
+#include "iblbake/baker/exr_output.h"
+#include "iblbake/runtime/runtime_reference.h"
+#include "preview_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ibl {
+
+namespace {
+
+constexpr int kRows = 2; // dielectric, metal
+
+// One shading point per ball pixel (orthographic camera on +Z looking down -Z, +Y up) of a panel
+// kPreviewColumns x kRows balls; pixels off the balls are left out and marked in `owner` with -1.
+std::vector<ShadingPoint> spherePoints(int size, std::vector<int>& owner) {
+    const int width = kPreviewColumns * size, height = kRows * size;
+    owner.assign(std::size_t(width) * height, -1);
+    std::vector<ShadingPoint> points;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            int column = x / size, row = y / size;
+            float u = (float(x % size) + 0.5f) / float(size) * 2.0f - 1.0f;
+            float v = 1.0f - (float(y % size) + 0.5f) / float(size) * 2.0f;
+            float rr = (u * u + v * v) / 0.81f; // radius 0.9 of the cell
+            if (rr >= 1.0f) continue;
+            ShadingPoint p{};
+            p.normal = glm::vec3(u / 0.9f, v / 0.9f, std::sqrt(1.0f - rr));
+            p.view = glm::vec3(0.0f, 0.0f, 1.0f);
+            p.baseColor = row == 0 ? glm::vec3(0.8f) : glm::vec3(0.95f, 0.93f, 0.88f);
+            p.metallic = row == 0 ? 0.0f : 1.0f;
+            p.perceptualRoughness = float(column) / float(kPreviewColumns - 1);
+            p.ao = 1.0f;
+            owner[std::size_t(y) * width + x] = int(points.size());
+            points.push_back(p);
+        }
+    return points;
+}
+
+float luminance(const glm::vec3& c) {
+    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
+
+std::vector<double> ratios(const std::vector<double>& error, const std::vector<double>& reference) {
+    std::vector<double> out(error.size());
+    for (std::size_t i = 0; i < error.size(); ++i)
+        out[i] = error[i] / std::max(reference[i], 1e-30);
+    return out;
+}
+
+} // namespace
+
+glm::vec3 previewErrorColor(float relativeError) {
+    float t = std::clamp(relativeError / 0.2f, 0.0f, 1.0f);
+    if (t < 0.25f) return glm::mix(glm::vec3(0.0f), glm::vec3(0.1f, 0.2f, 1.0f), t / 0.25f);
+    if (t < 0.5f)
+        return glm::mix(glm::vec3(0.1f, 0.2f, 1.0f), glm::vec3(1.0f, 1.0f, 0.1f), (t - 0.25f) / 0.25f);
+    return glm::mix(glm::vec3(1.0f, 1.0f, 0.1f), glm::vec3(1.0f, 0.05f, 0.05f), (t - 0.5f) / 0.5f);
+}
+
+MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
+                                      const CubeMap* referenceCube, const Executor& executor,
+                                      const MaterialPreviewSettings& settings,
+                                      const std::filesystem::path& png, const std::filesystem::path& exr) {
+    const int size = settings.sphereSize;
+    std::vector<int> owner;
+    const std::vector<ShadingPoint> points = spherePoints(size, owner);
+    std::vector<glm::vec4> shaded;
+    if (executor.usesOpenCL()) {
+        OpenCLProbeEvaluator evaluator(executor.cl(), set);
+        shaded = evaluator.evaluate(points, options);
+    } else {
+        shaded = evaluateCpu(set, points, options);
+    }
+    std::vector<glm::vec3> reference;
+    if (referenceCube) {
+        ReferenceSettings rs;
+        rs.samplesPerStrategy = settings.referenceSamples;
+        rs.albedoSamples = settings.albedoSamples;
+        for (const ReferenceResult& r :
+             renderReference(ReferenceLighting::distant(*referenceCube), points, options, rs))
+            reference.push_back(glm::vec3(r.total()));
+    }
+
+    // The panels: runtime | reference | error (each kPreviewColumns x kRows balls).
+    const int width = kPreviewColumns * size, height = kRows * size;
+    const int panels = reference.empty() ? 1 : 3;
+    ImageRGBA image(panels * width, height);
+    double sumLuminance = 0.0;
+    for (const glm::vec4& c : shaded)
+        sumLuminance += luminance(glm::vec3(c));
+    const float scale =
+        float(0.18 * points.size() / std::max(sumLuminance, 1e-12)) * std::exp2(settings.exposureEV);
+    std::vector<double> error[kRows], referenceSum[kRows];
+    for (int r = 0; r < kRows; ++r)
+        error[r].assign(kPreviewColumns, 0.0), referenceSum[r].assign(kPreviewColumns, 0.0);
+    std::vector<glm::vec3> errorColor(points.size(), glm::vec3(0.0f));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            int k = owner[std::size_t(y) * width + x];
+            if (k < 0) continue;
+            glm::vec3 c(shaded[std::size_t(k)]);
+            image.at(x, y) = glm::vec4(c, 1.0f);
+            if (reference.empty()) continue;
+            glm::vec3 r = reference[std::size_t(k)];
+            image.at(width + x, y) = glm::vec4(r, 1.0f);
+            float relative = std::abs(luminance(c) - luminance(r)) / std::max(luminance(r), 1e-12f);
+            errorColor[std::size_t(k)] = previewErrorColor(relative);
+            // The heat map is display-referred: divide by the tone scale so it shows as drawn.
+            image.at(2 * width + x, y) = glm::vec4(errorColor[std::size_t(k)] / scale, 1.0f);
+            error[y / size][std::size_t(x / size)] += std::abs(luminance(c) - luminance(r));
+            referenceSum[y / size][std::size_t(x / size)] += luminance(r);
+        }
+
+    MaterialPreview out;
+    for (int c = 0; c < kPreviewColumns; ++c)
+        out.roughness.push_back(float(c) / float(kPreviewColumns - 1));
+    if (!reference.empty()) {
+        out.dielectricError = ratios(error[0], referenceSum[0]);
+        out.metalError = ratios(error[1], referenceSum[1]);
+        std::vector<double> both(kPreviewColumns), bothReference(kPreviewColumns);
+        for (int c = 0; c < kPreviewColumns; ++c) {
+            both[std::size_t(c)] = error[0][std::size_t(c)] + error[1][std::size_t(c)];
+            bothReference[std::size_t(c)] = referenceSum[0][std::size_t(c)] + referenceSum[1][std::size_t(c)];
+        }
+        out.error = ratios(both, bothReference);
+    }
+
+    const PreviewLayout layout = previewLayout(size, !reference.empty());
+    writePreviewGrid(png, layout, image, errorColor, owner, scale, out);
+    out.width = layout.width;
+    out.height = layout.height;
+
+    ExrOutputOptions exrOptions;
+    exrOptions.channels = 3;
+    exrOptions.attributes = {
+        {"iblbake:preview", reference.empty() ? "runtime" : "runtime | reference | error heat map"}};
+    writeExr(exr, image, exrOptions);
+    return out;
+}
+
+} // namespace ibl

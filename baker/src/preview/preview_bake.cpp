@@ -1,0 +1,98 @@
+// What the material preview renders (iblbake/baker/material_preview.h): a bake's probe set and the
+// reference environment.
+#include "iblbake/baker/calibration.h"
+#include "iblbake/baker/ingest.h"
+#include "iblbake/baker/material_preview.h"
+#include "iblbake/baker/products.h"
+#include "iblbake/baker/sun.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/ktx2.h"
+#include "iblbake/runtime/runtime_manifest.h"
+
+#include <OpenImageIO/imageio.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace ibl {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+ImageRGBA readDfgExr(const fs::path& path) {
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) throw Error(path.string() + ": " + OIIO::geterror());
+    const OIIO::ImageSpec& spec = in->spec();
+    ImageRGBA lut(spec.width, spec.height);
+    std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
+    if (spec.nchannels < 3 || !in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+        throw Error(path.string() + ": not a DFG LUT (needs R, G, B)");
+    for (std::size_t i = 0; i < lut.pixels.size(); ++i)
+        lut.pixels[i] = glm::vec4(pixels[i * spec.nchannels], pixels[i * spec.nchannels + 1],
+                                  pixels[i * spec.nchannels + 2], 1.0f);
+    return lut;
+}
+
+// The "iblbake.calibration.factor" value of a bake's KTX2: a finite, positive number and nothing else.
+double calibrationFactorFrom(const std::string& text, const fs::path& file) {
+    double factor = 0.0;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), factor);
+    if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(factor) || factor <= 0.0)
+        throw Error(file.string() + ": iblbake.calibration.factor " + quotedForMessage(text) +
+                    " is not a positive number");
+    return factor;
+}
+
+} // namespace
+
+ProbeSet loadPreviewProbeSet(const PreviewBakeFiles& files) {
+    LdPyramid ld = loadLdKtx2(files.specular);
+    DfgTable dfg =
+        files.dfg.extension() == ".ktx2" ? loadDfgKtx2(files.dfg) : dfgTableFromImage(readDfgExr(files.dfg));
+    nlohmann::json diffuse;
+    try {
+        diffuse = nlohmann::json::parse(readText(files.diffuse));
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(files.diffuse.string() + ": " + e.what());
+    }
+    std::array<glm::vec3, 9> irradiance{};
+    const auto& coefficients = diffuse.at("sh").at("irradiance");
+    if (coefficients.size() != 9) throw Error(files.diffuse.string() + ": sh.irradiance needs 9 entries");
+    for (int i = 0; i < 9; ++i)
+        irradiance[i] = glm::vec3(coefficients[i][0].get<float>(), coefficients[i][1].get<float>(),
+                                  coefficients[i][2].get<float>());
+    ProbeSet set(std::move(ld), std::move(dfg), shCoefficientsFrom(irradiance, false));
+    if (files.sun) set.setSun(sunDiskFrom(diskLightFromJson(readText(*files.sun))));
+    if (files.irradiance) set.setIrradianceCube(loadIrradianceKtx2(*files.irradiance));
+    return set;
+}
+
+PreviewBake loadPreviewBake(const fs::path& dir) {
+    if (fs::exists(dir / "manifest.json")) {
+        ManifestProbeSet m = loadProbeSetFromManifest(dir / "manifest.json");
+        return {std::move(m.set), m.options, m.calibrationFactor};
+    }
+    PreviewBakeFiles files{dir / "specular.ktx2", dir / "dfg_lut.exr", dir / "diffuse.json", {}, {}};
+    if (fs::exists(dir / "sun.json")) files.sun = dir / "sun.json";
+    if (fs::exists(dir / "irradiance.ktx2")) files.irradiance = dir / "irradiance.ktx2";
+    PreviewBake bake{loadPreviewProbeSet(files), RuntimeOptions{}, 1.0};
+    const Ktx2Image ktx = readKtx2(files.specular);
+    if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())
+        bake.calibrationFactor = calibrationFactorFrom(it->second, files.specular);
+    return bake;
+}
+
+CubeMap previewReferenceCube(const fs::path& file, double calibrationFactor, int baseFaceSize,
+                             LatLongPixels latLongPixels) {
+    IngestSettings ingest;
+    ingest.sourceFaceSize = std::max(128, baseFaceSize);
+    ingest.latLongPixels = latLongPixels;
+    SourceEnvironment env = ingestEnvironment({file}, ingest);
+    applyCalibration(env.cube, calibrationFactor);
+    return std::move(env.cube);
+}
+
+} // namespace ibl

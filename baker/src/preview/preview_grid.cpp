@@ -1,0 +1,163 @@
+// The material preview's labelled grid (preview_grid.h). Text is drawn by OpenImageIO's render_text
+// (FreeType) in DejaVu Sans from Debian's fonts-dejavu-core.
+#include "preview_grid.h"
+
+#include "iblbake/baker/preview.h"
+#include "iblbake/core/error.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <cstdio>
+
+namespace ibl {
+
+namespace {
+
+constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+constexpr float kBackground = 0.14f; // the grid's dark grey; the balls' cells are black
+constexpr float kText[3] = {0.92f, 0.92f, 0.92f};
+constexpr float kErrorScaleMax = 0.2f; // previewErrorColor saturates at 20%
+
+std::string percent(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f%%", 100.0 * value);
+    return text;
+}
+
+class Canvas {
+  public:
+    Canvas(const std::filesystem::path& png, int width, int height)
+        : png_(png), buffer_(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)) {
+        const float grey[3] = {kBackground, kBackground, kBackground};
+        OIIO::ImageBufAlgo::fill(buffer_, grey);
+    }
+    void set(int x, int y, const glm::vec3& display) { buffer_.setpixel(x, y, &display.x, 3); }
+    void fill(int x, int y, int width, int height, const glm::vec3& display) {
+        OIIO::ImageBufAlgo::fill(buffer_, {&display.x, 3},
+                                 OIIO::ROI(x, x + width, y, y + height, 0, 1, 0, 3));
+    }
+    void text(int x, int y, const std::string& text, int fontSize,
+              OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left) {
+        if (!OIIO::ImageBufAlgo::render_text(buffer_, x, y, text, fontSize, kFont, kText, align,
+                                             OIIO::ImageBufAlgo::TextAlignY::Center))
+            throw Error(png_.string() + ": cannot draw the labels (" + buffer_.geterror() +
+                        "): they need DejaVu Sans, " + kFont + " (Debian fonts-dejavu-core)");
+    }
+    void write() const {
+        const OIIO::ImageSpec& spec = buffer_.spec();
+        std::vector<unsigned char> rgb(std::size_t(spec.width) * spec.height * 3);
+        buffer_.get_pixels(buffer_.roi(), OIIO::TypeDesc::UINT8, rgb.data());
+        writeSrgb8Png(png_, spec.width, spec.height, rgb);
+    }
+
+  private:
+    std::filesystem::path png_;
+    OIIO::ImageBuf buffer_;
+};
+
+} // namespace
+
+int PreviewLayout::cellX(int column) const {
+    return margin + labelWidth + column * columnWidth + (columnWidth - sphereSize) / 2;
+}
+
+int PreviewLayout::cellY(int row) const {
+    // Rows come in groups (runtime [, reference, error] of one material); an error row is followed by a
+    // line of its per-column values, and the groups by a gap.
+    const int perGroup = rowCount / 2, group = row / perGroup;
+    const int valueLines = rowCount == 6 ? group : 0;
+    return headerHeight + row * sphereSize + group * groupGap + valueLines * 2 * fontSize;
+}
+
+PreviewLayout previewLayout(int sphereSize, bool withReference) {
+    PreviewLayout l;
+    l.sphereSize = sphereSize;
+    l.fontSize = std::max(12, sphereSize / 7);
+    l.margin = l.fontSize;
+    l.columnWidth = std::max(sphereSize, 4 * l.fontSize); // "10.0%" fits
+    l.labelWidth = 13 * l.fontSize;                       // "reference dielectric" in DejaVu Sans is ~11 em
+    l.headerHeight = 4 * l.fontSize;
+    l.rowCount = withReference ? 6 : 2;
+    l.groupGap = l.fontSize;
+    l.legendHeight = withReference ? 5 * l.fontSize : 0;
+    l.width = 2 * l.margin + l.labelWidth + kPreviewColumns * l.columnWidth;
+    const int valueLine = withReference ? 2 * l.fontSize : 0;
+    l.height = l.cellY(l.rowCount - 1) + sphereSize + valueLine + l.legendHeight + l.margin;
+    return l;
+}
+
+std::vector<std::string> previewRowNames(bool withReference) {
+    if (!withReference) return {"runtime dielectric", "runtime metal"};
+    return {"runtime dielectric", "reference dielectric", "error dielectric",
+            "runtime metal",      "reference metal",      "error metal"};
+}
+
+void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, const ImageRGBA& panels,
+                      const std::vector<glm::vec3>& errorColor, const std::vector<int>& owner, float scale,
+                      const MaterialPreview& preview) {
+    using OIIO::ImageBufAlgo::TextAlignX;
+    const bool withReference = l.rowCount == 6;
+    const int size = l.sphereSize, panelWidth = kPreviewColumns * size;
+    Canvas canvas(png, l.width, l.height);
+    const int fs = l.fontSize;
+
+    // Header: the caption, then each column's roughness.
+    canvas.text(l.cellX(0), fs, "perceptual roughness (GGX alpha = roughness^2)", fs);
+    for (int c = 0; c < kPreviewColumns; ++c) {
+        char value[16];
+        std::snprintf(value, sizeof value, "%.1f", preview.roughness[std::size_t(c)]);
+        canvas.text(l.cellX(c) + size / 2, l.headerHeight - fs, value, fs, TextAlignX::Center);
+    }
+
+    const std::vector<std::string> names = previewRowNames(withReference);
+    for (int row = 0; row < l.rowCount; ++row) {
+        const int perGroup = l.rowCount / 2, material = row / perGroup, kind = row % perGroup; // 0 runtime
+        const int top = l.cellY(row);
+        canvas.text(l.margin, top + size / 2, names[std::size_t(row)], fs);
+        for (int c = 0; c < kPreviewColumns; ++c)
+            canvas.fill(l.cellX(c), top, size, size, glm::vec3(0.0f));
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < panelWidth; ++x) {
+                const int panelY = material * size + y;
+                const int k = owner[std::size_t(panelY) * panelWidth + x];
+                if (k < 0) continue;
+                glm::vec3 display;
+                if (kind == 2) {
+                    display = errorColor[std::size_t(k)];
+                } else {
+                    const glm::vec4& linear = panels.at(kind * panelWidth + x, panelY);
+                    for (int ch = 0; ch < 3; ++ch)
+                        display[ch] = float(tonemapToSrgb8(linear[ch], scale)) / 255.0f;
+                }
+                canvas.set(l.cellX(x / size) + x % size, top + y, display);
+            }
+        if (kind == 2) { // the row's per-column error
+            const std::vector<double>& error = material == 0 ? preview.dielectricError : preview.metalError;
+            canvas.text(l.margin, top + size + fs, "mean error", fs);
+            for (int c = 0; c < kPreviewColumns; ++c)
+                canvas.text(l.cellX(c) + size / 2, top + size + fs, percent(error[std::size_t(c)]), fs,
+                            TextAlignX::Center);
+        }
+    }
+
+    if (withReference) { // the error colour scale: a bar from 0 to 20% and more, with its values
+        const int top = l.height - l.margin - l.legendHeight + fs;
+        const int barWidth = kPreviewColumns * l.columnWidth / 2, barHeight = fs;
+        canvas.text(l.margin, top + barHeight / 2, "error scale", fs);
+        for (int x = 0; x < barWidth; ++x)
+            canvas.fill(l.cellX(0) + x, top, 1, barHeight,
+                        previewErrorColor(kErrorScaleMax * float(x) / float(barWidth - 1)));
+        const char* ticks[5] = {"0", "5%", "10%", "15%", ">= 20%"};
+        for (int t = 0; t < 5; ++t)
+            canvas.text(l.cellX(0) + t * (barWidth - 1) / 4, top + barHeight + fs, ticks[t], fs,
+                        t == 0   ? TextAlignX::Left
+                        : t == 4 ? TextAlignX::Right
+                                 : TextAlignX::Center);
+        canvas.text(l.cellX(0) + barWidth + fs, top + barHeight / 2,
+                    "|runtime - reference| / reference, luminance", fs);
+    }
+    canvas.write();
+}
+
+} // namespace ibl

@@ -1,0 +1,61 @@
+// The stages of a scene's engine outputs (scene_stages.h): the glTF export and the material preview, by
+// the library flows of `iblbake gltf` and `iblbake preview --reference`.
+#include "iblbake/baker/gltf_export.h"
+#include "iblbake/baker/material_preview.h"
+#include "scene_stages.h"
+
+namespace ibl {
+
+using nlohmann::json;
+
+void runGltfStage(const StageContext& c) {
+    const json& s = c.stage.settings;
+    GltfExportSource source{c.dependencies.at("specular") / "specular.ktx2",
+                            c.dependencies.at("diffuse") / "diffuse.json", std::nullopt};
+    if (c.dependencies.count("sun")) source.sun = c.dependencies.at("sun") / "sun.json";
+    GltfExportSettings settings;
+    settings.minFaceSize = s.value("minFaceSize", settings.minFaceSize);
+    settings.quality = s.value("quality", settings.quality);
+    GltfExport gltf;
+    try {
+        gltf = readBakeForGltf(source, settings);
+    } catch (const SettingError& e) {
+        throw Error(c.scene.name + ": outputs.gltf.minFaceSize: " + e.what());
+    }
+    if (gltf.refilter) refilterForGltf(gltf, *c.executor);
+    writeGltfIbl(c.outputDirectory / s.at("file").get<std::string>(), gltf.scene);
+    writeJsonFile(c.outputDirectory / kGltfFacts, {{"levels", gltf.scene.specular.levels.size()},
+                                                   {"faceSize", gltf.scene.specular.levels.front().faceSize},
+                                                   {"intensity", gltfIblIntensity(gltf.scene.specular)},
+                                                   {"sun", gltf.scene.sun.has_value()}});
+}
+
+void runPreviewStage(const StageContext& c) {
+    const json& s = c.stage.settings;
+    const auto entry = [&](const char* id) { return c.dependencies.at(id); };
+    PreviewBakeFiles files{entry("specular") / "specular.ktx2", entry("dfg") / "dfg_lut.ktx2",
+                           entry("diffuse") / "diffuse.json", std::nullopt, std::nullopt};
+    if (c.dependencies.count("sun")) files.sun = entry("sun") / "sun.json";
+    if (c.dependencies.count("irradiance")) files.irradiance = entry("irradiance") / "irradiance.ktx2";
+    const ProbeSet set = loadPreviewProbeSet(files);
+    RuntimeOptions options;
+    options.energyCompensation = s.at("energyCompensation").get<bool>();
+    options.diffuseModel = s.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
+    // The full calibrated environment (before any sun extraction), at the bake's face size.
+    const CubeMap reference = readCubeFile(entry("environment") / kCubeFile);
+    MaterialPreviewSettings settings;
+    settings.sphereSize = s.at("sphereSize").get<int>();
+    settings.exposureEV = s.at("exposure").get<float>();
+    const MaterialPreview preview = renderMaterialPreview(set, options, &reference, *c.executor, settings,
+                                                          c.outputDirectory / c.stage.products.at(0),
+                                                          c.outputDirectory / c.stage.products.at(1));
+    writeJsonFile(c.outputDirectory / kPreviewFacts, {{"width", preview.width},
+                                                      {"height", preview.height},
+                                                      {"roughness", preview.roughness},
+                                                      {"error",
+                                                       {{"dielectric", preview.dielectricError},
+                                                        {"metal", preview.metalError},
+                                                        {"both", preview.error}}}});
+}
+
+} // namespace ibl
