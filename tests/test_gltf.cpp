@@ -3,8 +3,8 @@
 // input.
 #include "bake_dir_support.h"
 
-#include <iblbake/baker/calibration.h>
 #include <cube.h>
+#include <iblbake/baker/calibration.h>
 #include <iblbake/baker/sh.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/ktx2/ktx2.h>

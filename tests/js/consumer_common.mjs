@@ -158,7 +158,8 @@ function halfToFloat(h) {
   return sign * (1 + mantissa / 1024) * 2 ** (exponent - 15);
 }
 
-// A cube KTX2 of ours (RGBA16F or RGBA32F) as { size, levels: [[6 Float32Array RGBA]], keyValues }.
+// A cube KTX2 of ours (RGBA16F or RGBA32F) as { size, levels: [[6 Float32Array RGBA]], keyValues, storageScale },
+// the texels in radiance: stored RGB / iblbake.storageScale (DESIGN.md "Float storage"; absent means 1).
 export function readKtx2Cube(file) {
   const ktx = read(new Uint8Array(readFileSync(file)));
   if (ktx.faceCount !== 6) throw new Error(`${file}: not a cube (${ktx.faceCount} faces)`);
@@ -177,7 +178,13 @@ export function readKtx2Cube(file) {
   const keyValues = {};
   for (const [k, v] of Object.entries(ktx.keyValue))
     keyValues[k] = typeof v === 'string' ? v.replace(/\0$/, '') : new TextDecoder().decode(v).replace(/\0$/, '');
-  return { size: ktx.pixelWidth, levels, keyValues };
+  const storageScale = Number(keyValues['iblbake.storageScale'] ?? 1);
+  if (!(storageScale > 0)) throw new Error(`${file}: iblbake.storageScale ${keyValues['iblbake.storageScale']} is not a positive number`);
+  for (const level of levels)
+    for (const face of level)
+      for (let i = 0; i < face.length; i += 4)
+        for (let c = 0; c < 3; ++c) face[i + c] /= storageScale;
+  return { size: ktx.pixelWidth, levels, keyValues, storageScale };
 }
 
 // Our SH irradiance E(n) from diffuse.json's pre-scaled `sh.irradiance` c_i = A_l k_i L_i (DESIGN.md

@@ -220,7 +220,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
     keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
     writeProductCube(file, chain, format, keyValues, storage);
-    writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
+    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();
     facts.format = s.at("ktx2Format").get<std::string>();
@@ -286,7 +286,7 @@ void runIrradiance(const StageContext& c) {
         calibration.sourceFile(), calibration.latLongPixels(), calibration.record, calibration.sun);
     keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
     writeProductCube(c.outputDirectory / "irradiance.ktx2", chain, format, keyValues, storage);
-    writeJson(c.outputDirectory / kStorageFile, productStorageToJson(storage));
+    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(storage));
 }
 
 void runProbe(const StageContext& c) {
