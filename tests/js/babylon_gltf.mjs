@@ -96,7 +96,7 @@ for (let py = 0; py < b.mirrorView.size; ++py)
 const median = (values) => values.sort((p, q) => p - q)[values.length >> 1];
 const [up, down] = hemisphere.map((h) => h.map(median));
 const blueness = (rgb) => rgb[2] / rgb[0];
-console.log(`mirror: reflections above the horizon ${up.map((v) => v.toFixed(3)).join(' ')}, below ${down.map((v) => v.toFixed(3)).join(' ')} (mean rendered RGB)`);
+console.log(`mirror: reflections above the horizon ${up.map((v) => v.toFixed(3)).join(' ')}, below ${down.map((v) => v.toFixed(3)).join(' ')} (median rendered RGB per channel)`);
 check(luminance(...up) > luminance(...down) && blueness(up) > blueness(down),
       `mirror sphere: sky above the horizon (luminance up/down ${(luminance(...up) / luminance(...down)).toFixed(2)}, ` +
       `blue/red up ${blueness(up).toFixed(2)} vs down ${blueness(down).toFixed(2)})`);

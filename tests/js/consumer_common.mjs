@@ -90,7 +90,10 @@ export const luminance = (r, g, b) => 0.2126 * r + 0.7152 * g + 0.0722 * b;
 // enough: an RGBA16F level clamps a patch around the sun to 65504, and the residual a glTF carries has a
 // ring around the removed disk.)
 export function brightestSpot(samples) {
+  const nonFinite = samples.filter((s) => !Number.isFinite(s.value)).length;
+  if (nonFinite > 0) throw new Error(`brightestSpot: ${nonFinite} of ${samples.length} samples are not finite`);
   const peak = samples.reduce((m, s) => Math.max(m, s.value), -Infinity);
+  if (!(peak > 0)) throw new Error(`brightestSpot: all ${samples.length} samples are black (nothing was drawn)`);
   const sum = [0, 0, 0];
   let count = 0;
   for (const s of samples)
