@@ -107,7 +107,7 @@ LdTexelReference referenceSpecularTexels(const CubeMap& source, int outputFaceSi
         isBright[k] = 1;
     // GGX sampling of h around the normal: cos theta_h from the CDF variable xi.
     auto cosHalf = [&](double xi) { return std::sqrt((1.0 - xi) / (1.0 + (a2 - 1.0) * xi)); };
-    constexpr std::uint32_t kHalf = 512; // samples per half
+    constexpr std::uint32_t kHalf = 2048; // samples per half
     LdTexelReference out;
     out.value.resize(texels.size());
     out.errorEstimate.resize(texels.size());

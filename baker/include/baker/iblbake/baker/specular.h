@@ -71,9 +71,10 @@ CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float 
 
 // The same integral at chosen texels of an output level, fast enough for production sizes (the accuracy
 // report at 256 px): the source's bright texels (runtime_reference.h brightTexels) weighted exactly as
-// referenceSpecularLevel weights them, the dim rest by 2 x 512 stratified GGX samples (two independent
-// halves), normalized like it by the weights' sum (the bright ones' plus the dim samples' share). errorEstimate (per texel and channel):
-// half the halves' difference plus the bright weights' change at half the grid.
+// referenceSpecularLevel weights them, the dim rest by 2 x 2048 stratified GGX samples (two independent
+// halves), normalized like it by the weights' sum (the bright ones' plus the dim samples' share).
+// errorEstimate (per texel and channel): half the halves' difference plus the bright weights' change at half
+// the grid.
 struct CubeTexel {
     int face, x, y;
 };
