@@ -26,11 +26,15 @@
 //                  "solidAngleSr": num,                 // of the measured region
 //                  "color": [r, g, b],                  // luminance 1
 //                  "contrast": num},                    // E_perp / (6.8e-5 sr * surroundings)
+//   "sunInProbe": {"warning": str,                      // with a sun: one line (accuracy.h
+//   sunInProbeWarning)
+//                  "roughness": [num], "keptError": [num], "extractedError": [num]},  // per column, 64 px
 //   "noSunReason": str                                  // present when "sun" is null
 // }
 #include "commands.h"
 #include "input_options.h"
 
+#include <iblbake/accuracy/accuracy.h>
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/environment_stats.h>
 #include <iblbake/baker/ingest.h>
@@ -97,6 +101,12 @@ Action addInspectCommand(CLI::App& app) {
             if (k == "iblbake:units") units = v;
         const bool absolute = units == "cd/m2";
         constexpr double kDeg = 180.0 / std::numbers::pi;
+        // What a bake that keeps the detected sun in the probe costs at runtime, measured on a 64 px cube.
+        SunInProbe sunInProbe;
+        if (sun.found) {
+            ingest.sourceFaceSize = 64;
+            sunInProbe = measureSunInProbe(ingestEnvironment({o->input}, ingest).cube, Executor::cpu());
+        }
 
         if (o->json) {
             nlohmann::ordered_json j;
@@ -138,6 +148,10 @@ Action addInspectCommand(CLI::App& app) {
                             {"solidAngleSr", l.solidAngle},
                             {"color", {l.color.x, l.color.y, l.color.z}},
                             {"contrast", sun.contrast}};
+                j["sunInProbe"] = {{"warning", sunInProbe.warning},
+                                   {"roughness", sunInProbe.roughness},
+                                   {"keptError", sunInProbe.keptError},
+                                   {"extractedError", sunInProbe.extractedError}};
             } else {
                 j["sun"] = nullptr;
                 j["noSunReason"] = sun.reason;
@@ -176,6 +190,7 @@ Action addInspectCommand(CLI::App& app) {
             std::printf("             E_perp %.6g %s, solid angle %.4g sr, colour (%.3f, %.3f, %.3f), "
                         "contrast %.4g\n",
                         l.illuminance, lux, l.solidAngle, l.color.x, l.color.y, l.color.z, sun.contrast);
+            std::printf("warning      %s\n", sunInProbe.warning.c_str());
         } else {
             std::printf("sun          no sun: %s\n", sun.reason.c_str());
         }

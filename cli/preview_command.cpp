@@ -73,6 +73,11 @@ Action addPreviewCommand(CLI::App& app) {
             std::printf("error   relative mean per roughness column (luminance, both rows):");
             for (double e : preview.error)
                 std::printf(" %.1f%%", 100.0 * e);
+            std::printf(
+                "\nreference's own estimated error per column (%zu bright texels integrated exactly):",
+                preview.referenceBrightTexels);
+            for (double e : preview.referenceError)
+                std::printf(" %.2f%%", 100.0 * e);
             std::printf("\n");
         }
         std::printf("time    %.1f ms\n", millisecondsSince(start));

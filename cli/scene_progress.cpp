@@ -93,6 +93,7 @@ void printReport(const BakeSummary& summary) {
     row("roughness", e.roughness, 1.0, " ");
     row("dielectric", e.dielectric, 100.0, "%");
     row("metal", e.metal, 100.0, "%");
+    row("reference", e.referenceError, 100.0, "%"); // its own estimated error
 }
 
 } // namespace

@@ -92,7 +92,7 @@ TEST_F(QuickReport, EveryStageHasFiniteNonNegativeErrorsAndPositiveTimes) {
             EXPECT_EQ(setting["timesMs"].size(), 3u) << setting["label"];
         }
     }
-    EXPECT_EQ(names, (std::set<std::string>{"dfg", "specular", "specular-converged", "sh", "irradiance",
+    EXPECT_EQ(names, (std::set<std::string>{"dfg", "specular", "specular-production", "sh", "irradiance",
                                             "runtime"}));
     // Every level of the specular chain and every roughness column of the runtime is reported.
     for (const nlohmann::json& setting : stage("specular")["settings"])
@@ -154,13 +154,13 @@ void expectFallingWithSamples(const nlohmann::json& stage) {
 
 TEST_F(QuickReport, SpecularDfgAndIrradianceErrorsFallAsSamplesIncrease) {
     expectFallingWithSamples(stage("specular"));
-    expectFallingWithSamples(stage("specular-converged"));
+    expectFallingWithSamples(stage("specular-production"));
     expectFallingWithSamples(stage("dfg"));
     expectFallingWithSamples(stage("irradiance"));
 }
 
 TEST_F(QuickReport, PresetsAndParetoFrontAreMarked) {
-    for (const char* name : {"specular", "specular-converged", "irradiance", "runtime"}) {
+    for (const char* name : {"specular", "specular-production", "irradiance", "runtime"}) {
         std::set<std::string> presets;
         for (const nlohmann::json& setting : stage(name)["settings"])
             if (!setting["preset"].is_null()) presets.insert(setting["preset"].get<std::string>());

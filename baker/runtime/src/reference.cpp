@@ -6,6 +6,7 @@
 // define the environment as a continuous function.
 #include "iblbake/core/error.h"
 #include "iblbake/runtime/runtime_reference.h"
+#include "reference_math.h"
 
 #include <tbb/parallel_for.h>
 
@@ -16,67 +17,10 @@ namespace ibl {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
-double radicalInverse(uint32_t bits) {
-    bits = (bits << 16u) | (bits >> 16u);
-    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-    return double(bits) * 2.3283064365386963e-10;
-}
-
-// Hammersley point i of n, Cranley-Patterson rotated by `shift` (one shift per strategy decorrelates them).
-glm::dvec2 samplePoint(uint32_t i, uint32_t n, glm::dvec2 shift) {
-    glm::dvec2 u((double(i) + 0.5) / double(n) + shift.x, radicalInverse(i) + shift.y);
-    return u - glm::floor(u);
-}
-
-struct Basis {
-    glm::dvec3 t, b, n;
-    glm::dvec3 toWorld(const glm::dvec3& v) const { return v.x * t + v.y * b + v.z * n; }
-    glm::dvec3 toLocal(const glm::dvec3& v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
-};
-
-Basis basisAround(const glm::dvec3& n) { // Duff et al. 2017
-    double s = std::copysign(1.0, n.z);
-    double a = -1.0 / (s + n.z);
-    double b = n.x * n.y * a;
-    return {{1.0 + s * n.x * n.x * a, s * b, -s * n.x}, {b, s + n.y * n.y * a, -n.y}, n};
-}
-
-double ggxD(double NoH, double a2) {
-    double f = NoH * NoH * (a2 - 1.0) + 1.0;
-    return a2 / (kPi * f * f);
-}
-double lambdaFactor(double c, double a2) {
-    return std::sqrt(a2 + (1.0 - a2) * c * c);
-}
-// Height-correlated Smith visibility G2 / (4 NoL NoV) and masking G1.
-double smithVisibility(double NoV, double NoL, double a2) {
-    return 0.5 / (NoL * lambdaFactor(NoV, a2) + NoV * lambdaFactor(NoL, a2));
-}
-double smithG1(double NoV, double a2) {
-    return 2.0 * NoV / (NoV + lambdaFactor(NoV, a2));
-}
-
-// Visible normal for a view in the local frame (Heitz 2018, listing 1).
-glm::dvec3 sampleVisibleNormal(const glm::dvec3& v, double alpha, glm::dvec2 u) {
-    glm::dvec3 vh = glm::normalize(glm::dvec3(alpha * v.x, alpha * v.y, v.z));
-    double lensq = vh.x * vh.x + vh.y * vh.y;
-    glm::dvec3 t1 = lensq > 0.0 ? glm::dvec3(-vh.y, vh.x, 0.0) / std::sqrt(lensq) : glm::dvec3(1.0, 0.0, 0.0);
-    glm::dvec3 t2 = glm::cross(vh, t1);
-    double r = std::sqrt(u.x), phi = 2.0 * kPi * u.y;
-    double p1 = r * std::cos(phi), p2 = r * std::sin(phi);
-    double s = 0.5 * (1.0 + vh.z);
-    p2 = (1.0 - s) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + s * p2;
-    glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-    return glm::normalize(glm::dvec3(alpha * nh.x, alpha * nh.y, std::max(1e-12, nh.z)));
-}
+using namespace reference;
 
 double luminance(const glm::vec4& c) {
-    return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+    return reference::luminance(glm::dvec3(c));
 }
 
 } // namespace
@@ -235,43 +179,13 @@ std::vector<ReferenceResult> renderReference(const ReferenceLighting& lighting,
     std::vector<ReferenceResult> out(points.size());
 
     tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t index) {
-        const ShadingPoint& sp = points[index];
-        auto safeUnit = [](glm::dvec3 v, glm::dvec3 fallback) {
-            double l = glm::length(v);
-            return l > 1e-30 ? v / l : fallback;
-        };
-        const glm::dvec3 N = safeUnit(glm::dvec3(sp.normal), {0.0, 1.0, 0.0});
-        const Basis frame = basisAround(N);
-        glm::dvec3 vLocal = frame.toLocal(safeUnit(glm::dvec3(sp.view), N));
-        // A view at or below the horizon is bent up to grazing (NoV = 1e-4), keeping its azimuth.
-        if (vLocal.z < 1e-4) {
-            double h = std::hypot(vLocal.x, vLocal.y);
-            vLocal = h > 0.0 ? glm::dvec3(vLocal.x / h * std::sqrt(1.0 - 1e-8),
-                                          vLocal.y / h * std::sqrt(1.0 - 1e-8), 1e-4)
-                             : glm::dvec3(0.0, 0.0, 1.0);
-        }
-        const glm::dvec3 V = frame.toWorld(vLocal);
-        const double NoV = vLocal.z;
-        const double r = std::clamp(double(sp.perceptualRoughness), 0.0, 1.0);
-        const double alpha = std::max(r * r, settings.minAlpha), a2 = alpha * alpha;
-        const double metallic = std::clamp(double(sp.metallic), 0.0, 1.0);
-        const glm::dvec3 base(sp.baseColor);
-        const glm::dvec3 diffuseColor = base * (1.0 - metallic);
-        const glm::dvec3 f0 = glm::dvec3(double(options.dielectricF0) * (1.0 - metallic)) + base * metallic;
-        const double f90 =
-            options.f90FromF0 ? std::clamp(50.0 * 0.33f * (f0.x + f0.y + f0.z), 0.0, 1.0) : 1.0;
-        glm::dvec3 compensation(1.0);
-        if (options.energyCompensation && options.specular)
-            compensation = 1.0 + f0 * (1.0 / directionalAlbedo(NoV, alpha, settings.albedoSamples) - 1.0);
-        const double g1 = smithG1(NoV, a2);
-        const bool disney = options.diffuseModel == DiffuseModel::Disney;
-        const double energyBias = 0.5 * r, energyFactor = 1.0 + (1.0 / 1.51 - 1.0) * r;
+        const PointMaterial m(points[index], options, settings.minAlpha, [&](double NoV, double alpha) {
+            return directionalAlbedo(NoV, alpha, settings.albedoSamples);
+        });
+        const glm::vec3 position = points[index].position;
 
         auto pdfSum = [&](const glm::dvec3& l, double NoL) {
-            glm::dvec3 h = glm::normalize(V + l);
-            double NoH = glm::dot(N, h), VoH = glm::dot(V, h);
-            double p = NoL / kPi; // cosine
-            if (NoH > 0.0 && VoH > 0.0) p += g1 * ggxD(NoH, a2) / (4.0 * NoV);
+            double p = NoL / kPi + m.visibleNormalPdf(l); // cosine, visible normals
             if (envSampling) p += d.environmentPdf(l);
             if (sunSampling && d.inSun(l)) p += 1.0 / d.sunSolidAngle;
             return p * double(n);
@@ -279,40 +193,21 @@ std::vector<ReferenceResult> renderReference(const ReferenceLighting& lighting,
 
         glm::dvec3 specular(0.0), diffuse(0.0);
         auto accumulate = [&](const glm::dvec3& l) {
-            double NoL = glm::dot(N, l);
+            double NoL = glm::dot(m.N, l);
             if (!(NoL > 0.0)) return;
-            glm::dvec3 Li = lighting.radiance(sp.position, l);
+            glm::dvec3 Li = lighting.radiance(position, l);
             double p = pdfSum(l, NoL);
             if (!(p > 0.0)) return;
-            glm::dvec3 h = glm::normalize(V + l);
-            double NoH = std::max(glm::dot(N, h), 0.0), LoH = std::clamp(glm::dot(l, h), 0.0, 1.0);
-            if (options.specular) {
-                double fc = std::pow(1.0 - LoH, 5.0);
-                glm::dvec3 F = f0 + (f90 - f0) * fc;
-                double dv = ggxD(NoH, a2) * smithVisibility(NoV, NoL, a2);
-                specular += Li * F * compensation * (dv * NoL / p);
-            }
-            if (options.diffuse) {
-                double fd = 1.0;
-                if (disney) {
-                    double fd90 = energyBias + 2.0 * LoH * LoH * r;
-                    double lightScatter = 1.0 + (fd90 - 1.0) * std::pow(1.0 - NoL, 5.0);
-                    double viewScatter = 1.0 + (fd90 - 1.0) * std::pow(1.0 - NoV, 5.0);
-                    fd = lightScatter * viewScatter * energyFactor;
-                }
-                diffuse += Li * diffuseColor * (fd / kPi * NoL / p);
-            }
+            glm::dvec3 s, dd;
+            m.evaluate(l, NoL, s, dd);
+            specular += Li * s / p;
+            diffuse += Li * dd / p;
         };
 
         for (uint32_t i = 0; i < n; ++i) {
             // GGX visible normals.
-            glm::dvec3 hl = sampleVisibleNormal(vLocal, alpha, samplePoint(i, n, {0.0, 0.0}));
-            accumulate(frame.toWorld(2.0 * glm::dot(vLocal, hl) * hl - vLocal));
-            // Cosine lobe (Malley).
-            glm::dvec2 u = samplePoint(i, n, {0.5, 0.25});
-            double rr = std::sqrt(u.x), phi = 2.0 * kPi * u.y;
-            accumulate(
-                frame.toWorld({rr * std::cos(phi), rr * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u.x))}));
+            accumulate(m.sampleVisibleNormalDirection(samplePoint(i, n, {0.0, 0.0})));
+            accumulate(m.sampleCosineDirection(samplePoint(i, n, {0.5, 0.25}))); // cosine lobe
             if (envSampling) accumulate(d.sampleEnvironment(samplePoint(i, n, {0.25, 0.5})));
             if (sunSampling) {
                 glm::dvec2 w = samplePoint(i, n, {0.75, 0.75});

@@ -53,7 +53,12 @@ std::string accuracyJson(const AccuracyRun& run) {
                                 {"partErrors", parts},
                                 {"pareto", s.pareto}});
         }
+        nlohmann::json own = nlohmann::json::array();
+        for (const auto& [name, error] : stage.referenceErrors)
+            own.push_back({{"part", name}, {"error", error}});
         stages.push_back({{"name", stage.name},
+                          {"referenceErrorEstimate", own},
+                          {"warnings", stage.warnings},
                           {"title", stage.title},
                           {"knobs", stage.knobs},
                           {"reference", stage.reference},
@@ -69,6 +74,7 @@ std::string accuracyJson(const AccuracyRun& run) {
                           {"generator", "iblbake " IBLBAKE_VERSION},
                           {"input", run.input},
                           {"sourceFaceSize", run.sourceFaceSize},
+                          {"productionFaceSize", run.productionFaceSize},
                           {"quick", run.quick},
                           {"repeats", run.repeats},
                           {"backend", run.backend},
@@ -82,7 +88,9 @@ std::string accuracyJson(const AccuracyRun& run) {
 std::string accuracyMarkdown(const AccuracyRun& run) {
     std::ostringstream md;
     md << "## What accuracy costs in time\n\n"
-       << "Input `" << run.input << "` (" << run.sourceFaceSize << " px source faces), " << run.backend
+       << "Input `" << run.input << "` (" << run.sourceFaceSize << " px source faces for the specular sweep, "
+       << run.productionFaceSize
+       << " px for the production LD chain, the SH, the irradiance cube and the runtime), " << run.backend
        << ", " << run.hardwareThreads << " hardware threads, load average (1/5/15 min) " << run.load
        << "; time = median of " << run.repeats
        << " runs. Rows: each stage's Pareto front (no other setting is both faster and more "
@@ -97,9 +105,19 @@ std::string accuracyMarkdown(const AccuracyRun& run) {
             md << "| " << stage.title << " | " << setting << " | " << milliseconds(s.timeMs) << " | "
                << percent(s.error) << " |\n";
         }
-    md << "\nError vs reference, per stage:\n\n";
     for (const AccuracyStage& stage : run.stages)
-        md << "- " << stage.title << ": " << stage.errorMetric << "; reference: " << stage.reference << ".\n";
+        for (const std::string& warning : stage.warnings)
+            md << "\n**Warning** (" << stage.title << "): " << warning << "\n";
+    md << "\nError vs reference, per stage:\n\n";
+    for (const AccuracyStage& stage : run.stages) {
+        md << "- " << stage.title << ": " << stage.errorMetric << "; reference: " << stage.reference << ".";
+        if (!stage.referenceErrors.empty()) {
+            md << " The reference's own estimated error:";
+            for (const auto& [name, error] : stage.referenceErrors)
+                md << " " << name << " " << percent(error) << ";";
+        }
+        md << "\n";
+    }
     return md.str();
 }
 

@@ -31,6 +31,7 @@ AccuracyRun runAccuracySweep(const SweepPlan& plan, const AccuracyInput& input, 
     run.quick = plan.isQuick;
     run.repeats = repeats;
     run.sourceFaceSize = plan.sourceFaceSize;
+    run.productionFaceSize = plan.productionFaceSize;
     run.hardwareThreads = std::thread::hardware_concurrency();
     run.backend = executor.description();
     const std::string loadAtStart = loadAverage();
@@ -40,10 +41,11 @@ AccuracyRun runAccuracySweep(const SweepPlan& plan, const AccuracyInput& input, 
     };
     add(measureDfg(plan, repeats, executor));
     add(measureSpecular(plan, input.load, repeats, executor));
-    add(measureSpecularConvergence(plan, input.load, repeats, executor));
-    for (AccuracyStage& stage : measureDiffuse(plan, input.source, repeats, executor))
+    const CubeMap production = input.load(plan.productionFaceSize);
+    add(measureSpecularProduction(plan, production, repeats, executor));
+    for (AccuracyStage& stage : measureDiffuse(plan, production, repeats, executor))
         add(std::move(stage));
-    add(measureRuntime(plan, input.source, repeats, executor));
+    add(measureRuntime(plan, production, repeats, executor));
     run.load = "start " + loadAtStart + ", end " + loadAverage();
     run.totalSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return run;

@@ -26,14 +26,13 @@ SweepPlan SweepPlan::quick() {
     p.specularSizes = {16};
     p.specularSamples = {16, 64, 256, 1024};
     p.specularBiases = {-0.5f, 0.0f};
-    p.convergenceFaceSize = 32;
-    p.convergedSamples = 4096;
-    p.convergenceSamples = {32, 128, 512};
+    p.productionFaceSize = 32;
+    p.productionTexelsPerLevel = 256;
+    p.productionSamples = {32, 128, 512};
     p.irradianceFaceSize = 8;
     p.irradianceSamples = {32, 128, 512};
     p.runtimeRoughness = {0.0f, 0.5f, 1.0f};
     p.runtimeGrid = 3;
-    p.runtimeReferenceSamples = 32;
     return p;
 }
 
@@ -231,31 +230,69 @@ AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int
     return stage;
 }
 
-AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader& load, int repeats,
-                                         const Executor& executor) {
-    const int size = plan.convergenceFaceSize;
+namespace {
+
+// Up to `count` texels of an n-texel cube, spread over it (all when it has no more).
+std::vector<CubeTexel> texelSubset(int n, int count) {
+    const std::size_t total = 6 * std::size_t(n) * n;
+    std::vector<CubeTexel> out;
+    auto texel = [&](std::size_t i) {
+        return CubeTexel{int(i / (std::size_t(n) * n)), int(i % n), int(i / n % n)};
+    };
+    if (total <= std::size_t(count)) {
+        for (std::size_t i = 0; i < total; ++i)
+            out.push_back(texel(i));
+        return out;
+    }
+    std::set<std::size_t> chosen; // golden-ratio steps: spread, deterministic
+    for (std::size_t i = 0; chosen.size() < std::size_t(count); ++i)
+        chosen.insert(std::size_t(std::fmod(double(i) * 0.6180339887498949, 1.0) * double(total)));
+    for (std::size_t i : chosen)
+        out.push_back(texel(i));
+    return out;
+}
+
+} // namespace
+
+AccuracyStage measureSpecularProduction(const SweepPlan& plan, const CubeMap& source, int repeats,
+                                        const Executor& executor) {
+    const int size = source.faceSize;
     AccuracyStage stage;
-    stage.name = "specular-converged";
-    stage.title = format("Specular LD chain at %d px (vs converged)", size);
+    stage.name = "specular-production";
+    stage.title = format("Specular LD chain at %d px", size);
     stage.knobs = {"faceSize", "samples"};
     stage.reference =
-        format("the same chain baked with %u samples per texel (self-convergence: the brute force "
-               "is not affordable at %d px; what it shows is the sampling error, not the bias of "
-               "the pre-filtered lookups)",
-               plan.convergedSamples, size);
-    stage.errorMetric =
-        "worst level's relative mean absolute error against the converged chain, levels m >= 1";
-    stage.maxErrorMetric = "largest |level - converged| of any texel and channel over that channel's mean, "
-                           "worst level";
+        format("referenceSpecularTexels (referenceSpecularLevel's integral: the source's bright "
+               "texels weighted exactly, the rest by 2 x 2048 stratified GGX samples) at up to %d "
+               "texels of every level; its own estimated error per level in "
+               "referenceErrorEstimate",
+               plan.productionTexelsPerLevel);
+    stage.errorMetric = "worst level's relative mean absolute error: max over levels m >= 1 of sum |level - "
+                        "reference| / sum |reference| over the level's measured texels and RGB";
+    stage.maxErrorMetric =
+        "largest |level - reference| of any measured texel and channel over that channel's "
+        "mean reference value, worst level";
     stage.energyErrorMetric =
-        "|sum (level - converged) solid angle| / sum converged solid angle, worst level";
+        "|sum (level - reference)| / sum reference over the measured texels, worst level";
     stage.timeMeaning = "bakeSpecular (every level)";
-    const CubeMap source = load(size);
-    SpecularSettings converged;
-    converged.samples = plan.convergedSamples;
-    const CubeMapChain reference = bakeSpecular(source, converged, executor);
+    SpecularSettings base;
+    const int levelCount = levelCountFor(size, base);
+    std::vector<std::vector<CubeTexel>> texels(static_cast<std::size_t>(levelCount));
+    std::vector<LdTexelReference> references(static_cast<std::size_t>(levelCount));
+    for (int m = 1; m < levelCount; ++m) {
+        const float r = perceptualRoughnessForLevel(m, levelCount, base.mapping);
+        texels[std::size_t(m)] = texelSubset(size >> m, plan.productionTexelsPerLevel);
+        references[std::size_t(m)] = referenceSpecularTexels(source, size >> m, r, texels[std::size_t(m)]);
+        double estimate = 0.0, sum = 0.0;
+        for (std::size_t k = 0; k < texels[std::size_t(m)].size(); ++k)
+            for (int c = 0; c < 3; ++c)
+                estimate += references[std::size_t(m)].errorEstimate[k][c],
+                    sum += std::abs(references[std::size_t(m)].value[k][c]);
+        stage.referenceErrors.emplace_back(format("L%d r=%.2f", m, r), sum > 0.0 ? estimate / sum : estimate);
+    }
     const auto presets = specularPresets();
-    for (std::uint32_t samples : withPresets(plan.convergenceSamples, presets)) {
+    bakeSpecular(source, base, executor); // program build, untimed
+    for (std::uint32_t samples : withPresets(plan.productionSamples, presets)) {
         SpecularSettings settings;
         settings.samples = samples;
         CubeMapChain chain;
@@ -264,8 +301,30 @@ AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader
         s.label = format("%d px, %u spp", size, samples);
         s.knobs = {{"faceSize", std::to_string(size)}, {"samples", std::to_string(samples)}};
         s.preset = presetOf(samples, presets);
-        addLevelErrors(s, chain, settings.mapping,
-                       [&](int m) -> const CubeMap& { return reference.levels[std::size_t(m)]; });
+        for (int m = 1; m < levelCount; ++m) {
+            const std::vector<CubeTexel>& at = texels[std::size_t(m)];
+            const LdTexelReference& want = references[std::size_t(m)];
+            double absError = 0.0, absRef = 0.0, signedError = 0.0, sumRef = 0.0, channelRef[3] = {0, 0, 0},
+                   channelMax[3] = {0, 0, 0};
+            for (std::size_t k = 0; k < at.size(); ++k) {
+                const glm::vec4 got = chain.levels[std::size_t(m)].faces[at[k].face].at(at[k].x, at[k].y);
+                for (int c = 0; c < 3; ++c) {
+                    const double d = double(got[c]) - want.value[k][c];
+                    absError += std::abs(d), absRef += std::abs(want.value[k][c]);
+                    signedError += d, sumRef += want.value[k][c];
+                    channelRef[c] += std::abs(want.value[k][c]);
+                    channelMax[c] = std::max(channelMax[c], std::abs(d));
+                }
+            }
+            const double error = absRef > 0.0 ? absError / absRef : absError;
+            s.partErrors.emplace_back(
+                format("L%d r=%.2f", m, perceptualRoughnessForLevel(m, levelCount, base.mapping)), error);
+            s.error = std::max(s.error, error);
+            for (int c = 0; c < 3; ++c)
+                if (channelRef[c] > 0.0)
+                    s.maxError = std::max(s.maxError, channelMax[c] / (channelRef[c] / double(at.size())));
+            s.energyError = std::max(s.energyError, sumRef > 0.0 ? std::abs(signedError) / sumRef : 0.0);
+        }
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);

@@ -11,8 +11,8 @@ namespace ibl {
 AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& executor);
 AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int repeats,
                               const Executor& executor);
-AccuracyStage measureSpecularConvergence(const SweepPlan& plan, const CubeLoader& load, int repeats,
-                                         const Executor& executor);
+AccuracyStage measureSpecularProduction(const SweepPlan& plan, const CubeMap& source, int repeats,
+                                        const Executor& executor);
 // The SH and the irradiance cube share their reference (referenceIrradianceCube).
 std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& source, int repeats,
                                           const Executor& executor);

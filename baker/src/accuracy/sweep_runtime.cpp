@@ -11,6 +11,7 @@
 #include <iblbake/runtime/runtime.h>
 #include <iblbake/runtime/runtime_reference.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -46,14 +47,110 @@ std::vector<ShadingPoint> spherePoints(float perceptualRoughness, int grid) {
     return points;
 }
 
+// The probe the product ships, from `probeSource` (the residual of an extraction, or the full map when the
+// sun stays in), at a specular quality: LD chain, DFG, SH, irradiance cube, and the disk light.
+ProbeSet runtimeProbe(const CubeMap& probeSource, const CubeMap& full, const std::optional<SunDisk>& sun,
+                      const SpecularSettings& settings, const Executor& executor,
+                      CubeMapChain* chainOut = nullptr) {
+    CubeMapChain chain = bakeSpecular(probeSource, settings, executor);
+    const bool sunInLevel0 = sun && keepSunInLevel0(chain, full, Ktx2Format::RGBA32F);
+    LdPyramid ld = ldPyramidFromChain(chain, MipMapping::Frostbite);
+    ld.sunInLevel0 = sunInLevel0;
+    ProbeSet set(std::move(ld), dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor)),
+                 shCoefficientsFrom(bakeDiffuseSH(probeSource, {}).irradiance, false));
+    set.setIrradianceCube(bakeIrradianceCube(probeSource, IrradianceSettings{}, executor));
+    if (sun) set.setSun(*sun);
+    if (chainOut) *chainOut = std::move(chain);
+    return set;
+}
+
+struct SphereColumns {
+    std::vector<ShadingPoint> points;
+    std::vector<std::size_t> start; // of each column, and the end
+};
+
+SphereColumns sphereColumns(const std::vector<float>& roughness, int grid) {
+    SphereColumns c;
+    for (float r : roughness) {
+        c.start.push_back(c.points.size());
+        std::vector<ShadingPoint> column = spherePoints(r, grid);
+        c.points.insert(c.points.end(), column.begin(), column.end());
+    }
+    c.start.push_back(c.points.size());
+    return c;
+}
+
+// Per column: sum |runtime - reference| / sum |reference| over its points and RGB (or, with `estimate`,
+// sum estimate / sum |reference|: the reference's own error in the same measure).
+std::vector<double> columnErrors(const SphereColumns& c, const ConvergedReference& reference,
+                                 const std::vector<glm::vec4>* shaded) {
+    std::vector<double> out;
+    for (std::size_t k = 0; k + 1 < c.start.size(); ++k) {
+        double err = 0.0, sum = 0.0;
+        for (std::size_t i = c.start[k]; i < c.start[k + 1]; ++i) {
+            const glm::dvec3 want = reference.results[i].total();
+            for (int ch = 0; ch < 3; ++ch) {
+                err +=
+                    shaded ? std::abs(double((*shaded)[i][ch]) - want[ch]) : reference.errorEstimate[i][ch];
+                sum += std::abs(want[ch]);
+            }
+        }
+        out.push_back(sum > 0.0 ? err / sum : err);
+    }
+    return out;
+}
+
+std::string roughnessName(float r) {
+    char name[32];
+    std::snprintf(name, sizeof name, "r=%.1f", r);
+    return name;
+}
+
 } // namespace
+
+std::string sunInProbeWarning(double keptError, double perceptualRoughness, double extractedError) {
+    char text[400];
+    std::snprintf(
+        text, sizeof text,
+        "sun detected and left in the probe: runtime error %.1f%% at roughness %.1f on the sphere grid "
+        "(%.1f%% with the sun extracted); extract it: iblbake --extract-sun, scene key extractSun",
+        100.0 * keptError, perceptualRoughness, 100.0 * extractedError);
+    return text;
+}
+
+SunInProbe measureSunInProbe(const CubeMap& source, const Executor& executor, int grid) {
+    SunInProbe out;
+    CubeMap residual = source;
+    std::optional<SunDisk> sun;
+    if (auto light = takeSunOut(residual, SunExtraction::IfDetected, SunDetectSettings{}))
+        sun = sunDiskFrom(*light);
+    if (!sun) return out;
+    out.detected = true;
+    for (int k = 0; k <= 10; ++k)
+        out.roughness.push_back(float(k) / 10.0f);
+    const SphereColumns c = sphereColumns(out.roughness, grid);
+    const RuntimeOptions options;
+    const ConvergedReference reference = renderConvergedReference(source, c.points, options);
+    const SpecularSettings production;
+    const std::vector<glm::vec4> kept =
+        evaluateCpu(runtimeProbe(source, source, {}, production, executor), c.points, options);
+    const std::vector<glm::vec4> extracted =
+        evaluateCpu(runtimeProbe(residual, source, sun, production, executor), c.points, options);
+    out.keptError = columnErrors(c, reference, &kept);
+    out.extractedError = columnErrors(c, reference, &extracted);
+    const std::size_t worst =
+        std::size_t(std::max_element(out.keptError.begin(), out.keptError.end()) - out.keptError.begin());
+    out.warning = sunInProbeWarning(out.keptError[worst], out.roughness[worst], out.extractedError[worst]);
+    return out;
+}
 
 AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int repeats,
                              const Executor& executor) {
+    const int size = source.faceSize;
     AccuracyStage stage;
     stage.name = "runtime";
     stage.title = "Runtime shading (per roughness)";
-    stage.knobs = {"specularQuality"};
+    stage.knobs = {"specularQuality", "sun"};
     stage.errorMetric = "mean over the roughness columns of the relative mean absolute error: sum |runtime - "
                         "reference| / sum |reference| over a column's points and RGB";
     stage.maxErrorMetric = "worst roughness column's relative mean absolute error";
@@ -68,71 +165,67 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     std::optional<SunDisk> sun;
     if (auto light = takeSunOut(residual, SunExtraction::IfDetected, SunDetectSettings{}))
         sun = sunDiskFrom(*light);
-    const ReferenceLighting lighting = ReferenceLighting::distant(source);
-
-    std::vector<ShadingPoint> points;
-    std::vector<std::size_t> columnStart;
-    for (float r : plan.runtimeRoughness) {
-        columnStart.push_back(points.size());
-        std::vector<ShadingPoint> column = spherePoints(r, plan.runtimeGrid);
-        points.insert(points.end(), column.begin(), column.end());
-    }
-    columnStart.push_back(points.size());
+    const SphereColumns c = sphereColumns(plan.runtimeRoughness, plan.runtimeGrid);
     const RuntimeOptions options;
-    ReferenceSettings referenceSettings;
-    referenceSettings.samplesPerStrategy = plan.runtimeReferenceSamples;
-    const std::vector<ReferenceResult> reference =
-        renderReference(lighting, points, options, referenceSettings);
-    stage.reference = "renderReference (Frostbite Appendix A, multiple importance sampling, " +
-                      std::to_string(plan.runtimeReferenceSamples) + " samples per strategy) of " +
-                      std::to_string(points.size()) + " points on dielectric and metal spheres, lit by the " +
-                      "full environment; the probe: " +
-                      (sun ? "the residual (LD chain from level 1, irradiance cube) with the sun's pixels in "
-                             "level 0 and the extracted sun as a disk light"
-                           : "LD chain and irradiance cube (no sun detected)");
+    ConvergedReferenceSettings referenceSettings;
+    referenceSettings.samples = 4096; // a few thousand points: affordable, and the estimate under 0.5%
+    const ConvergedReference reference =
+        renderConvergedReference(source, c.points, options, referenceSettings);
+    const std::vector<double> own = columnErrors(c, reference, nullptr);
+    for (std::size_t k = 0; k < own.size(); ++k)
+        stage.referenceErrors.emplace_back(roughnessName(plan.runtimeRoughness[k]), own[k]);
+    stage.reference =
+        "renderConvergedReference (Frostbite Appendix A's integral; the " +
+        std::to_string(reference.brightTexels) +
+        " bright texels on an adaptive sub-texel grid, the rest by 2 x 2048 stratified samples per "
+        "strategy; its own estimated error per column in referenceErrorEstimate) of " +
+        std::to_string(c.points.size()) + " points on dielectric and metal spheres, lit by the full " +
+        std::to_string(size) + " px environment; the probe: " +
+        (sun ? "the residual (LD chain from level 1, irradiance cube) with the sun's pixels in "
+               "level 0 and the extracted sun as a disk light"
+             : "LD chain and irradiance cube (no sun detected)");
 
-    const DfgTable dfg = dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor));
-    const ShCoefficients sh = shCoefficientsFrom(bakeDiffuseSH(residual, {}).irradiance, false);
-    const CubeMap irradiance = bakeIrradianceCube(residual, IrradianceSettings{}, executor);
+    auto measure = [&](MeasuredSetting& s, const std::vector<glm::vec4>& shaded) {
+        const std::vector<double> columns = columnErrors(c, reference, &shaded);
+        double signedError = 0.0, total = 0.0;
+        for (std::size_t i = 0; i < c.points.size(); ++i)
+            for (int ch = 0; ch < 3; ++ch) {
+                signedError += double(shaded[i][ch]) - reference.results[i].total()[ch];
+                total += reference.results[i].total()[ch];
+            }
+        for (std::size_t k = 0; k < columns.size(); ++k) {
+            s.partErrors.emplace_back(roughnessName(plan.runtimeRoughness[k]), columns[k]);
+            s.maxError = std::max(s.maxError, columns[k]);
+            s.error += columns[k] / double(columns.size());
+        }
+        s.energyError = total > 0.0 ? std::abs(signedError) / total : std::abs(signedError);
+    };
     for (Quality quality : {Quality::Draft, Quality::Production, Quality::Reference}) {
         SpecularSettings settings;
         settings.quality = quality;
-        CubeMapChain chain;
         MeasuredSetting s;
         bakeSpecular(residual, settings, executor); // program build, untimed
-        s.timesMs = timeRuns(repeats, [&] { chain = bakeSpecular(residual, settings, executor); });
+        s.timesMs = timeRuns(repeats, [&] { bakeSpecular(residual, settings, executor); });
         s.timeMs = median(s.timesMs);
         s.label = std::string(qualityName(quality)) + " LD chain";
-        s.knobs = {{"specularQuality", qualityName(quality)}};
+        s.knobs = {{"specularQuality", qualityName(quality)}, {"sun", sun ? "extracted" : "none"}};
         s.preset = qualityName(quality);
-        const bool sunInLevel0 = sun && keepSunInLevel0(chain, source, Ktx2Format::RGBA32F);
-        LdPyramid ld = ldPyramidFromChain(chain, MipMapping::Frostbite);
-        ld.sunInLevel0 = sunInLevel0;
-        ProbeSet set(std::move(ld), dfg, sh);
-        set.setIrradianceCube(irradiance);
-        if (sun) set.setSun(*sun);
-        const std::vector<glm::vec4> shaded = evaluateCpu(set, points, options);
-        double signedError = 0.0, total = 0.0, columnSum = 0.0;
-        for (std::size_t k = 0; k + 1 < columnStart.size(); ++k) {
-            double err = 0.0, sum = 0.0;
-            for (std::size_t i = columnStart[k]; i < columnStart[k + 1]; ++i) {
-                const glm::dvec3 want = reference[i].total();
-                for (int c = 0; c < 3; ++c) {
-                    err += std::abs(double(shaded[i][c]) - want[c]);
-                    sum += std::abs(want[c]);
-                    signedError += double(shaded[i][c]) - want[c];
-                    total += want[c];
-                }
-            }
-            const double columnError = sum > 0.0 ? err / sum : err;
-            char name[32];
-            std::snprintf(name, sizeof name, "r=%.1f", plan.runtimeRoughness[k]);
-            s.partErrors.emplace_back(name, columnError);
-            columnSum += columnError;
-            s.maxError = std::max(s.maxError, columnError);
-        }
-        s.error = columnSum / double(plan.runtimeRoughness.size());
-        s.energyError = total > 0.0 ? std::abs(signedError) / total : std::abs(signedError);
+        measure(s, evaluateCpu(runtimeProbe(residual, source, sun, settings, executor), c.points, options));
+        stage.settings.push_back(std::move(s));
+    }
+    if (sun) { // the same production bake with the sun left in the probe: what the warning measures
+        const SpecularSettings production;
+        MeasuredSetting s;
+        s.timesMs = timeRuns(repeats, [&] { bakeSpecular(source, production, executor); });
+        s.timeMs = median(s.timesMs);
+        s.label = "production LD chain, sun left in the probe";
+        s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}};
+        measure(s, evaluateCpu(runtimeProbe(source, source, {}, production, executor), c.points, options));
+        const auto worst = std::max_element(s.partErrors.begin(), s.partErrors.end(),
+                                            [](const auto& a, const auto& b) { return a.second < b.second; });
+        const std::size_t k = std::size_t(worst - s.partErrors.begin());
+        stage.warnings.push_back(sunInProbeWarning(worst->second, plan.runtimeRoughness[k],
+                                                   stage.settings[1].partErrors[k].second));
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);

@@ -76,14 +76,17 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
     } else {
         shaded = evaluateCpu(set, points, options);
     }
-    std::vector<glm::vec3> reference;
+    std::vector<glm::vec3> reference, check; // check: the reference's error estimate
+    MaterialPreview out;
     if (referenceCube) {
-        ReferenceSettings rs;
-        rs.samplesPerStrategy = settings.referenceSamples;
-        rs.albedoSamples = settings.albedoSamples;
-        for (const ReferenceResult& r :
-             renderReference(ReferenceLighting::distant(*referenceCube), points, options, rs))
-            reference.push_back(glm::vec3(r.total()));
+        ConvergedReferenceSettings rs;
+        rs.samples = settings.referenceSamples;
+        const ConvergedReference converged = renderConvergedReference(*referenceCube, points, options, rs);
+        for (std::size_t k = 0; k < points.size(); ++k) {
+            reference.push_back(glm::vec3(converged.results[k].total()));
+            check.push_back(glm::vec3(converged.errorEstimate[k]));
+        }
+        out.referenceBrightTexels = converged.brightTexels;
     }
 
     // The panels: runtime | reference | error (each kPreviewColumns x kRows balls).
@@ -95,9 +98,10 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
         sumLuminance += luminance(glm::vec3(c));
     const float scale =
         float(0.18 * points.size() / std::max(sumLuminance, 1e-12)) * std::exp2(settings.exposureEV);
-    std::vector<double> error[kRows], referenceSum[kRows];
+    std::vector<double> error[kRows], referenceSum[kRows], referenceError[kRows];
     for (int r = 0; r < kRows; ++r)
-        error[r].assign(kPreviewColumns, 0.0), referenceSum[r].assign(kPreviewColumns, 0.0);
+        error[r].assign(kPreviewColumns, 0.0), referenceSum[r].assign(kPreviewColumns, 0.0),
+            referenceError[r].assign(kPreviewColumns, 0.0);
     std::vector<glm::vec3> errorColor(points.size(), glm::vec3(0.0f));
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
@@ -114,20 +118,24 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
             image.at(2 * width + x, y) = glm::vec4(errorColor[std::size_t(k)] / scale, 1.0f);
             error[y / size][std::size_t(x / size)] += std::abs(luminance(c) - luminance(r));
             referenceSum[y / size][std::size_t(x / size)] += luminance(r);
+            referenceError[y / size][std::size_t(x / size)] += luminance(check[std::size_t(k)]);
         }
 
-    MaterialPreview out;
     for (int c = 0; c < kPreviewColumns; ++c)
         out.roughness.push_back(float(c) / float(kPreviewColumns - 1));
     if (!reference.empty()) {
         out.dielectricError = ratios(error[0], referenceSum[0]);
         out.metalError = ratios(error[1], referenceSum[1]);
-        std::vector<double> both(kPreviewColumns), bothReference(kPreviewColumns);
-        for (int c = 0; c < kPreviewColumns; ++c) {
-            both[std::size_t(c)] = error[0][std::size_t(c)] + error[1][std::size_t(c)];
-            bothReference[std::size_t(c)] = referenceSum[0][std::size_t(c)] + referenceSum[1][std::size_t(c)];
+        out.dielectricReferenceError = ratios(referenceError[0], referenceSum[0]);
+        out.metalReferenceError = ratios(referenceError[1], referenceSum[1]);
+        std::vector<double> both(kPreviewColumns), bothReference(kPreviewColumns), bothCheck(kPreviewColumns);
+        for (std::size_t c = 0; c < std::size_t(kPreviewColumns); ++c) {
+            both[c] = error[0][c] + error[1][c];
+            bothReference[c] = referenceSum[0][c] + referenceSum[1][c];
+            bothCheck[c] = referenceError[0][c] + referenceError[1][c];
         }
         out.error = ratios(both, bothReference);
+        out.referenceError = ratios(bothCheck, bothReference);
     }
 
     const PreviewLayout layout = previewLayout(size, !reference.empty());

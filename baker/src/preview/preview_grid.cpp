@@ -63,11 +63,11 @@ int PreviewLayout::cellX(int column) const {
 }
 
 int PreviewLayout::cellY(int row) const {
-    // Rows come in groups (runtime [, reference, error] of one material); an error row is followed by a
-    // line of its per-column values, and the groups by a gap.
+    // Rows come in groups (runtime [, reference, error] of one material); an error row is followed by two
+    // lines of per-column values (the error, the reference's own estimated error), and the groups by a gap.
     const int perGroup = rowCount / 2, group = row / perGroup;
     const int valueLines = rowCount == 6 ? group : 0;
-    return headerHeight + row * sphereSize + group * groupGap + valueLines * 2 * fontSize;
+    return headerHeight + row * sphereSize + group * groupGap + valueLines * 3 * fontSize;
 }
 
 PreviewLayout previewLayout(int sphereSize, bool withReference) {
@@ -82,7 +82,7 @@ PreviewLayout previewLayout(int sphereSize, bool withReference) {
     l.groupGap = l.fontSize;
     l.legendHeight = withReference ? 5 * l.fontSize : 0;
     l.width = 2 * l.margin + l.labelWidth + kPreviewColumns * l.columnWidth;
-    const int valueLine = withReference ? 2 * l.fontSize : 0;
+    const int valueLine = withReference ? 3 * l.fontSize : 0;
     l.height = l.cellY(l.rowCount - 1) + sphereSize + valueLine + l.legendHeight + l.margin;
     return l;
 }
@@ -134,10 +134,16 @@ void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, 
             }
         if (kind == 2) { // the row's per-column error
             const std::vector<double>& error = material == 0 ? preview.dielectricError : preview.metalError;
+            const std::vector<double>& own =
+                material == 0 ? preview.dielectricReferenceError : preview.metalReferenceError;
             canvas.text(l.margin, top + size + fs, "mean error", fs);
-            for (int c = 0; c < kPreviewColumns; ++c)
+            canvas.text(l.margin, top + size + 2 * fs, "reference's own", fs);
+            for (int c = 0; c < kPreviewColumns; ++c) {
                 canvas.text(l.cellX(c) + size / 2, top + size + fs, percent(error[std::size_t(c)]), fs,
                             TextAlignX::Center);
+                canvas.text(l.cellX(c) + size / 2, top + size + 2 * fs, percent(own[std::size_t(c)]), fs,
+                            TextAlignX::Center);
+            }
         }
     }
 

@@ -113,7 +113,8 @@ void addManifestReport(BakeSummary& summary) {
             summary.previewError =
                 PreviewErrorReport{p.at("roughness").get<std::vector<double>>(),
                                    p.at("error").at("dielectric").get<std::vector<double>>(),
-                                   p.at("error").at("metal").get<std::vector<double>>()};
+                                   p.at("error").at("metal").get<std::vector<double>>(),
+                                   p.at("referenceErrorEstimate").at("both").get<std::vector<double>>()};
         }
     } catch (const std::exception&) { // json or filesystem errors: no report, the bake itself stands
         summary.report.clear();

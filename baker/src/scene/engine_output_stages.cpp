@@ -49,13 +49,17 @@ void runPreviewStage(const StageContext& c) {
     const MaterialPreview preview = renderMaterialPreview(set, options, &reference, *c.executor, settings,
                                                           c.outputDirectory / c.stage.products.at(0),
                                                           c.outputDirectory / c.stage.products.at(1));
-    writeJsonFile(c.outputDirectory / kPreviewFacts, {{"width", preview.width},
-                                                      {"height", preview.height},
-                                                      {"roughness", preview.roughness},
-                                                      {"error",
-                                                       {{"dielectric", preview.dielectricError},
-                                                        {"metal", preview.metalError},
-                                                        {"both", preview.error}}}});
+    writeJsonFile(
+        c.outputDirectory / kPreviewFacts,
+        {{"width", preview.width},
+         {"height", preview.height},
+         {"roughness", preview.roughness},
+         {"error",
+          {{"dielectric", preview.dielectricError}, {"metal", preview.metalError}, {"both", preview.error}}},
+         {"referenceErrorEstimate",
+          {{"dielectric", preview.dielectricReferenceError},
+           {"metal", preview.metalReferenceError},
+           {"both", preview.referenceError}}}});
 }
 
 } // namespace ibl

@@ -98,12 +98,21 @@ json previewEntry(const PlanStage& stage, const json& facts,
         {"rows", previewRowNames(true)},
         {"roughness", facts.at("roughness")},
         {"error",
-         {{"meaning", "relative mean luminance error per roughness column, sum |runtime - reference| / sum "
-                      "reference over the balls' pixels; reference: brute force against the full calibrated "
-                      "environment"},
+         {{"meaning",
+           "relative mean luminance error per roughness column, sum |runtime - reference| / sum "
+           "reference over the balls' pixels; reference: the converged reference (bright texels "
+           "integrated "
+           "deterministically, stratified samples for the rest) of the full calibrated environment"},
           {"dielectric", facts.at("error").at("dielectric")},
           {"metal", facts.at("error").at("metal")},
           {"both", facts.at("error").at("both")}}},
+        {"referenceErrorEstimate",
+         {{"meaning", "the reference's own estimated error per roughness column: sum of its points' error "
+                      "estimates (two independent sample halves, its bright-texel grid at half the step) / "
+                      "sum reference; how far the error above may be off"},
+          {"dielectric", facts.at("referenceErrorEstimate").at("dielectric")},
+          {"metal", facts.at("referenceErrorEstimate").at("metal")},
+          {"both", facts.at("referenceErrorEstimate").at("both")}}},
         {"contentHash", hashes.at(file)},
         {"files", filesAfterTheFirst(stage, hashes)}};
 }

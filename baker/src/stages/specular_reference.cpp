@@ -2,7 +2,10 @@
 // Used by tests and the accuracy report, never by a production path.
 #include "iblbake/baker/specular.h"
 
+#include "iblbake/runtime/runtime_reference.h" // brightTexels
+
 #include <ld.h>
+#include <sampling.h>
 
 #include <tbb/parallel_for.h>
 
@@ -11,53 +14,64 @@
 
 namespace ibl {
 
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+glm::dvec3 texelCentre(int face, int x, int y, int w) {
+    return glm::normalize(glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / w, (y + 0.5f) / w)));
+}
+
+// The LD weight of one source texel of constant radiance for the lobe around `nrm` (N = V = R): the
+// integral of pi D(h) NoL over the texel (Listing 19's estimator's expectation, up to normalization),
+// on an S x S grid of exact sub-texel solid angles. S grows as the lobe gets narrow compared with the
+// texel and the texel near the lobe: D's relative change across a sub-texel is about 4 (size /
+// max(angle, alpha)), kept under ~0.1 (gridFactor 40; the accuracy check halves it).
+double texelWeight(const glm::dvec3& nrm, int f, int x, int y, int w, double alpha, double angle,
+                   double gridFactor = 40.0) {
+    const double a2 = alpha * alpha;
+    const double texelAngle = std::sqrt(4.0 * kPi / (6.0 * double(w) * w)); // typical, in radians
+    const float texelSize = 2.0f / float(w);
+    // Within three texels of a lobe under a quarter texel wide, D is too peaked for any grid: the
+    // closed-form small-angle integral (kernels/ld.h, checked against quadrature in tests) is exact
+    // to O(texel angle^2).
+    // narrowLobeTexelWeight integrates D NoL, the grid below pi D NoL (a^2 / d^2 NoL): the same measure.
+    if (4.0 * alpha < texelSize && angle < 3.0 * texelSize)
+        return kPi * double(narrowLobeTexelWeight(frameFromNormal(vec3(nrm)), f, -1.0f + x * texelSize,
+                                                  -1.0f + y * texelSize, texelSize, float(alpha)));
+    int S = int(std::clamp(std::ceil(gridFactor * texelAngle / std::max(angle, alpha)), 1.0, 256.0));
+    double weight = 0.0, step = 2.0 / (double(w) * S);
+    for (int j = 0; j < S; ++j)
+        for (int i = 0; i < S; ++i) {
+            double u0 = -1.0 + (x * S + i) * step, v0 = -1.0 + (y * S + j) * step;
+            double omega = cubeAreaElement(float(u0), float(v0)) -
+                           cubeAreaElement(float(u0), float(v0 + step)) -
+                           cubeAreaElement(float(u0 + step), float(v0)) +
+                           cubeAreaElement(float(u0 + step), float(v0 + step));
+            if (S == 1) omega = cubeTexelSolidAngle(x, y, w);
+            float s = float((x * S + i + 0.5) / (double(w) * S)),
+                  t = float((y * S + j + 0.5) / (double(w) * S));
+            glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(f, s, t)));
+            double NoL = glm::dot(nrm, l);
+            if (NoL <= 0.0) continue;
+            double NoH = glm::dot(nrm, glm::normalize(nrm + l));
+            double d = NoH * NoH * (a2 - 1.0) + 1.0;
+            weight += a2 / (d * d) * NoL * std::abs(omega);
+        }
+    return weight;
+}
+
+} // namespace
+
 CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness) {
     const int w = source.faceSize, n = outputFaceSize;
     const double alpha = std::max(double(perceptualRoughness) * perceptualRoughness, 1e-6);
-    const double a2 = alpha * alpha;
     const std::size_t faceTexels = std::size_t(w) * w;
     std::vector<glm::dvec3> centres(6 * faceTexels);
     for (int f = 0; f < 6; ++f)
         for (int y = 0; y < w; ++y)
             for (int x = 0; x < w; ++x)
-                centres[f * faceTexels + std::size_t(y) * w + x] =
-                    glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / w, (y + 0.5f) / w)));
-    const double texelAngle =
-        std::sqrt(4.0 * 3.14159265358979323846 / (6.0 * faceTexels)); // typical, in radians
-
-    // D(h) NoL over one texel of constant radiance, integrated on an S x S grid of exact sub-texel solid
-    // angles. S grows as the lobe gets narrow compared with the texel and the texel near the lobe: D's
-    // relative change across a sub-texel is about 4 (size / max(angle, alpha)), kept under ~0.1.
-    const float texelSize = 2.0f / float(w);
-    auto texelWeight = [&](const glm::dvec3& nrm, int f, int x, int y, double angle) {
-        // Within three texels of a lobe under a quarter texel wide, D is too peaked for any grid: the
-        // closed-form small-angle integral (kernels/ld.h, checked against quadrature in tests) is exact
-        // to O(texel angle^2).
-        if (4.0 * alpha < texelSize && angle < 3.0 * texelSize)
-            return double(narrowLobeTexelWeight(frameFromNormal(vec3(nrm)), f, -1.0f + x * texelSize,
-                                                -1.0f + y * texelSize, texelSize, float(alpha)));
-        int S = int(std::clamp(std::ceil(40.0 * texelAngle / std::max(angle, alpha)), 1.0, 256.0));
-        double weight = 0.0, step = 2.0 / (double(w) * S);
-        for (int j = 0; j < S; ++j)
-            for (int i = 0; i < S; ++i) {
-                double u0 = -1.0 + (x * S + i) * step, v0 = -1.0 + (y * S + j) * step;
-                double omega = cubeAreaElement(float(u0), float(v0)) -
-                               cubeAreaElement(float(u0), float(v0 + step)) -
-                               cubeAreaElement(float(u0 + step), float(v0)) +
-                               cubeAreaElement(float(u0 + step), float(v0 + step));
-                if (S == 1) omega = cubeTexelSolidAngle(x, y, w);
-                float s = float((x * S + i + 0.5) / (double(w) * S)),
-                      t = float((y * S + j + 0.5) / (double(w) * S));
-                glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(f, s, t)));
-                double NoL = glm::dot(nrm, l);
-                if (NoL <= 0.0) continue;
-                // Expectation of Listing 19's estimator: pdf D(h) / 4 (N = V), weighted by NoL.
-                double NoH = glm::dot(nrm, glm::normalize(nrm + l));
-                double d = NoH * NoH * (a2 - 1.0) + 1.0;
-                weight += a2 / (d * d) * NoL * std::abs(omega);
-            }
-        return weight;
-    };
+                centres[f * faceTexels + std::size_t(y) * w + x] = texelCentre(f, x, y, w);
 
     CubeMap out(n);
     tbb::parallel_for(0, 6 * n, [&](int row) {
@@ -72,12 +86,80 @@ CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float 
                 if (cosAngle <= -0.1) continue; // entirely below the horizon
                 double angle = std::acos(std::clamp(cosAngle, -1.0, 1.0));
                 int f = int(k / faceTexels), texel = int(k % faceTexels);
-                double weight = texelWeight(nrm, f, texel % w, texel / w, angle);
+                double weight = texelWeight(nrm, f, texel % w, texel / w, w, alpha, angle);
                 sum += weight * glm::dvec3(source.faces[f].pixels[std::size_t(texel)]);
                 weightSum += weight;
             }
             out.faces[face].at(x, y) = glm::vec4(glm::vec3(sum / weightSum), 1.0f);
         }
+    });
+    return out;
+}
+
+LdTexelReference referenceSpecularTexels(const CubeMap& source, int outputFaceSize, float perceptualRoughness,
+                                         std::span<const CubeTexel> texels) {
+    const int w = source.faceSize, n = outputFaceSize;
+    const double alpha = std::max(double(perceptualRoughness) * perceptualRoughness, 1e-6);
+    const double a2 = alpha * alpha;
+    const std::vector<std::size_t> bright = brightTexels(source);
+    std::vector<char> isBright(6 * std::size_t(w) * w, 0);
+    for (std::size_t k : bright)
+        isBright[k] = 1;
+    // GGX sampling of h around the normal: cos theta_h from the CDF variable xi.
+    auto cosHalf = [&](double xi) { return std::sqrt((1.0 - xi) / (1.0 + (a2 - 1.0) * xi)); };
+    constexpr std::uint32_t kHalf = 2048; // samples per half
+    LdTexelReference out;
+    out.value.resize(texels.size());
+    out.errorEstimate.resize(texels.size());
+    tbb::parallel_for(std::size_t(0), texels.size(), [&](std::size_t k) {
+        const CubeTexel& t = texels[k];
+        const glm::dvec3 nrm = texelCentre(t.face, t.x, t.y, n);
+        glm::dvec3 fine(0.0), coarse(0.0);
+        double brightWeight = 0.0; // normalized as referenceSpecularLevel: by the weights' own sum
+        for (std::size_t b : bright) {
+            const int f = int(b / (std::size_t(w) * w)), texel = int(b % (std::size_t(w) * w));
+            const glm::dvec3 c = texelCentre(f, texel % w, texel / w, w);
+            const double cosAngle = glm::dot(nrm, c);
+            if (cosAngle <= -0.1) continue;
+            const double angle = std::acos(std::clamp(cosAngle, -1.0, 1.0));
+            const glm::dvec3 radiance(source.faces[f].pixels[std::size_t(texel)]);
+            const double weight = texelWeight(nrm, f, texel % w, texel / w, w, alpha, angle);
+            fine += radiance * weight;
+            brightWeight += weight;
+            coarse += radiance * texelWeight(nrm, f, texel % w, texel / w, w, alpha, angle, 20.0);
+        }
+        // The dim rest: GGX samples of h around the normal, two halves under different rotations.
+        const glm::dvec3 up = std::abs(nrm.z) < 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+        const glm::dvec3 tx = glm::normalize(glm::cross(up, nrm)), ty = glm::cross(nrm, tx);
+        glm::dvec3 half[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
+        double halfWeight[2] = {0.0, 0.0}; // the dim texels' share of the lobe
+        const glm::dvec2 shifts[2] = {{0.0, 0.0}, {0.61803398875, 0.41421356237}};
+        for (int h = 0; h < 2; ++h)
+            for (std::uint32_t i = 0; i < kHalf; ++i) {
+                glm::dvec2 u = glm::dvec2((i + 0.5) / kHalf, double(radicalInverse2(i))) + shifts[h];
+                u -= glm::floor(u);
+                const double c = cosHalf(u.x), sn = std::sqrt(std::max(0.0, 1.0 - c * c));
+                const double phi = 2.0 * kPi * u.y;
+                const glm::dvec3 hv = sn * std::cos(phi) * tx + sn * std::sin(phi) * ty + c * nrm;
+                const glm::dvec3 l = 2.0 * c * hv - nrm;
+                const double NoL = 2.0 * c * c - 1.0;
+                if (NoL <= 0.0) continue;
+                const CubeCoord cc = cubeCoordFromDirection(vec3(l));
+                const int x = std::clamp(int(cc.s * float(w)), 0, w - 1),
+                          y = std::clamp(int(cc.t * float(w)), 0, w - 1);
+                const std::size_t index = (std::size_t(cc.face) * w + y) * w + x;
+                if (isBright[index]) continue;
+                half[h] += glm::dvec3(source.faces[cc.face].at(x, y)) * (4.0 * NoL / kHalf);
+                halfWeight[h] += 4.0 * NoL / kHalf;
+            }
+        // The integral of pi D NoL (the weights' measure) over the sphere, bright part exact, dim sampled.
+        const double lobe = brightWeight + kPi * 0.5 * (halfWeight[0] + halfWeight[1]);
+        const glm::dvec3 value = (fine + kPi * 0.5 * (half[0] + half[1])) / lobe;
+        out.value[k] = value;
+        // Each half's own estimate (self-normalized), and the bright weights at half the grid.
+        const glm::dvec3 first = (fine + kPi * half[0]) / (brightWeight + kPi * halfWeight[0]);
+        const glm::dvec3 second = (fine + kPi * half[1]) / (brightWeight + kPi * halfWeight[1]);
+        out.errorEstimate[k] = 0.5 * glm::abs(first - second) + glm::abs(fine - coarse) / lobe;
     });
     return out;
 }

@@ -41,11 +41,15 @@ struct AccuracyStage {
     std::string energyErrorMetric; // energyError
     std::string timeMeaning;       // what is timed
     std::vector<MeasuredSetting> settings;
+    // The reference's own estimated error per part, in the stage's error measure (converged references).
+    std::vector<std::pair<std::string, double>> referenceErrors;
+    std::vector<std::string> warnings; // one line each (sunInProbeWarning)
 };
 
 struct AccuracyRun {
     std::string input;
     int sourceFaceSize = 0;
+    int productionFaceSize = 0; // of the specular-production, SH, irradiance and runtime stages
     bool quick = false;
     int repeats = 0;
     std::string backend;
@@ -56,7 +60,7 @@ struct AccuracyRun {
 };
 
 struct SweepPlan {
-    int sourceFaceSize = 64; // source cube of the specular (largest size), SH, irradiance and runtime sweeps
+    int sourceFaceSize = 64; // source cube of the specular sweep's largest size
     // DFG: LUTs of every size x samples, read bilinearly (as the runtime does) at the centres of a
     // referenceSize^2 grid integrated in fp64 with referenceSamples samples. The grid size is odd so that
     // its points fall between the texel centres of every power-of-two LUT (an even grid would coincide with
@@ -68,19 +72,19 @@ struct SweepPlan {
     std::vector<int> specularSizes{32, 64};
     std::vector<std::uint32_t> specularSamples{16, 32, 64, 128, 256, 512, 1024, 2048};
     std::vector<float> specularBiases{-1.0f, -0.5f, 0.0f, 0.5f};
-    // Specular at the size bakes ship (iblbake specular's default --size), where the brute force is not
-    // affordable: against the same chain at convergedSamples (self-convergence, stated as such).
-    int convergenceFaceSize = 256;
-    std::uint32_t convergedSamples = 8192;
-    std::vector<std::uint32_t> convergenceSamples{32, 64, 128, 256, 512, 1024, 2048};
-    // Irradiance cube (and the SH's irradiance) at this face size.
+    // The size bakes ship (iblbake specular's default --size): the LD chain at each preset (and these sample
+    // counts) against referenceSpecularTexels at productionTexelsPerLevel texels of every level (all of a
+    // smaller level); the SH, the irradiance cube and the runtime from a source of this size.
+    int productionFaceSize = 256;
+    int productionTexelsPerLevel = 1536;
+    std::vector<std::uint32_t> productionSamples{};
+    // Irradiance cube (and the SH's irradiance) at this face size, from the productionFaceSize source.
     int irradianceFaceSize = 32;
     std::vector<std::uint32_t> irradianceSamples{32, 64, 128, 256, 512, 1024, 2048, 4096};
     // Runtime: sphere grids of these perceptual roughnesses (grid x grid pixels per camera, two cameras),
-    // against renderReference with this many samples per strategy.
+    // against renderConvergedReference.
     std::vector<float> runtimeRoughness{0.0f, 0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f, 0.9f, 1.0f};
     int runtimeGrid = 7;
-    std::uint32_t runtimeReferenceSamples = 256;
     bool isQuick = false; // quick(): the reports say "quick sweep"
 
     static SweepPlan full() { return {}; }
@@ -96,13 +100,27 @@ struct AccuracyInput {
     CubeLoader load;  // at the other face sizes the plan sweeps
 };
 
-// Every stage of the plan measured, in report order (dfg, specular, specular-converged, sh, irradiance,
+// Every stage of the plan measured, in report order (dfg, specular, specular-production, sh, irradiance,
 // runtime); `stageMeasured` (optional) sees each stage as soon as it is measured. totalSeconds counts from
 // `start` (the caller's start, so that reading the input counts).
 AccuracyRun runAccuracySweep(const SweepPlan& plan, const AccuracyInput& input, int repeats,
                              const Executor& executor,
                              const std::function<void(const AccuracyStage&)>& stageMeasured = {},
                              std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
+
+// A detected sun left in the probe (the bake kept it in the environment): the production probe's runtime
+// error per roughness column on a sphere grid (grid x grid pixels per camera) against the converged
+// reference, with the sun left in and extracted, and the warning line. Nothing when no sun is detected.
+struct SunInProbe {
+    bool detected = false;
+    std::vector<float> roughness;
+    std::vector<double> keptError, extractedError;
+    std::string warning; // sunInProbeWarning at the worst column
+};
+SunInProbe measureSunInProbe(const CubeMap& source, const Executor& executor, int grid = 5);
+// "sun detected and left in the probe: runtime error K% at roughness R on the sphere grid (E% with the sun
+// extracted); extract it: iblbake --extract-sun, scene key extractSun" (stable wording).
+std::string sunInProbeWarning(double keptError, double perceptualRoughness, double extractedError);
 
 std::string accuracyJson(const AccuracyRun& run);
 std::string accuracyMarkdown(const AccuracyRun& run);

@@ -65,6 +65,7 @@ struct ProductReport {
 // brute-force reference, per perceptual-roughness column.
 struct PreviewErrorReport {
     std::vector<double> roughness, dielectric, metal;
+    std::vector<double> referenceError; // the reference's own estimated error, both rows (may be empty)
 };
 
 struct BakeSummary {

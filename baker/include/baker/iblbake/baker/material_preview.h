@@ -54,9 +54,9 @@ CubeMap previewReferenceCube(const std::filesystem::path& file, double calibrati
 struct MaterialPreviewSettings {
     int sphereSize = 96;     // pixels per ball
     float exposureEV = 0.0f; // exposure compensation in stops
-    // A picture, not a measurement (tests use 2048): the reference's samples per strategy and per albedo.
-    std::uint32_t referenceSamples = 256;
-    std::uint32_t albedoSamples = 1024;
+    // The converged reference (runtime_reference.h renderConvergedReference): stratified samples per
+    // strategy over the environment's dim rest (its bright texels are integrated deterministically).
+    std::uint32_t referenceSamples = 1024;
 };
 
 struct MaterialPreview {
@@ -64,7 +64,12 @@ struct MaterialPreview {
     // Relative mean luminance error per column, sum |runtime - reference| / sum reference over the balls'
     // pixels: each row's and both rows'. Empty without a reference.
     std::vector<double> dielectricError, metalError, error;
-    int width = 0, height = 0; // of the PNG grid
+    // The reference's own estimated error per column (sum of the points' ConvergedReference::errorEstimate
+    // luminance / sum reference): how far the error above may be off. Each row's and both rows'; empty
+    // without a reference.
+    std::vector<double> dielectricReferenceError, metalReferenceError, referenceError;
+    std::size_t referenceBrightTexels = 0; // integrated deterministically by the reference
+    int width = 0, height = 0;             // of the PNG grid
 };
 
 // The grid's geometry (all in pixels), from the ball size and whether reference and error rows are shown.

@@ -10,8 +10,11 @@
 #include <mip_mapping.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
+
+#include <glm/vec3.hpp>
 
 namespace ibl {
 
@@ -65,5 +68,20 @@ bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Fo
 
 // Brute-force reference for one level: every source texel, solid-angle weighted, fp64 accumulation.
 CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness);
+
+// The same integral at chosen texels of an output level, fast enough for production sizes (the accuracy
+// report at 256 px): the source's bright texels (runtime_reference.h brightTexels) weighted exactly as
+// referenceSpecularLevel weights them, the dim rest by 2 x 2048 stratified GGX samples (two independent
+// halves), normalized like it by the weights' sum (the bright ones' plus the dim samples' share).
+// errorEstimate (per texel and channel): half the halves' difference plus the bright weights' change at half
+// the grid.
+struct CubeTexel {
+    int face, x, y;
+};
+struct LdTexelReference {
+    std::vector<glm::dvec3> value, errorEstimate;
+};
+LdTexelReference referenceSpecularTexels(const CubeMap& source, int outputFaceSize, float perceptualRoughness,
+                                         std::span<const CubeTexel> texels);
 
 } // namespace ibl

@@ -71,6 +71,40 @@ std::vector<ReferenceResult> renderReference(const ReferenceLighting& lighting,
                                              const RuntimeOptions& options,
                                              const ReferenceSettings& settings = {});
 
+// The converged reference of distant lighting (reference_converged.cpp has the method): the same integral
+// as renderReference's for ReferenceLighting::distant(environment), with the bright texels integrated
+// deterministically and the dim rest by a fixed stratified sample set, with its own error estimated per
+// point (errorEstimate, per channel): the samples come in two independent halves (Hammersley sets under
+// different rotations), whose half difference has the size of the results' sampling error, and the bright
+// texels' grid is also evaluated at half its resolution, whose difference bounds the results' quadrature
+// error (the midpoint rule's falls 4x per halved step; texels taken in one step add the rule's a-priori
+// bound). For a sum of points, the sum of their estimates bounds the change of the sum.
+// The bright texels of a cube (indices (face n + y) n + x): luminance above `factor` times the solid-angle
+// mean, at most `maxCount` (the brightest). What the converged references integrate deterministically.
+inline constexpr double kBrightFactor = 16.0;
+inline constexpr std::size_t kMaxBrightTexels = 4096;
+std::vector<std::size_t> brightTexels(const CubeMap& cube, double factor = kBrightFactor,
+                                      std::size_t maxCount = kMaxBrightTexels);
+
+struct ConvergedReferenceSettings {
+    std::uint32_t samples = 1024;       // per strategy (visible normals, cosine) over the dim rest
+    double stepsPerScale = 8.0;         // sub-texel steps per local angular scale of the BRDF (bright texels)
+    double brightFactor = 16.0;         // bright: luminance above this times the solid-angle mean
+    std::size_t maxBrightTexels = 4096; // the brightest ones when more pass
+    std::uint32_t albedoSamples = 4096; // as ReferenceSettings
+    double minAlpha = 1e-4;
+};
+
+struct ConvergedReference {
+    std::vector<ReferenceResult> results;
+    std::vector<glm::dvec3> errorEstimate; // per point and channel, >= 0
+    std::size_t brightTexels = 0;          // integrated deterministically
+};
+
+ConvergedReference renderConvergedReference(const CubeMap& environment, std::span<const ShadingPoint> points,
+                                            const RuntimeOptions& options,
+                                            const ConvergedReferenceSettings& settings = {});
+
 // E(NoV, alpha) = integral D V <n.l> dl for f0 = f90 = 1 (single scattering), by visible-normal sampling.
 double directionalAlbedo(double NoV, double alpha, std::uint32_t samples);
 

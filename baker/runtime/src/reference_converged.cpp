@@ -1,0 +1,293 @@
+// The converged reference (runtime_reference.h renderConvergedReference). The environment's bilinear
+// reconstruction is split, exactly (it is linear in the texels), into the bright texels and the dim rest:
+// - the bright texels (a sun, a lamp: what leaves Monte Carlo noisy) are integrated deterministically,
+//   over every texel footprint their bilinear spread reaches, on a sub-texel grid of exact fp64 solid
+//   angles whose step is a fraction of the BRDF's local angular scale there (the lobe width near the
+//   mirror direction, the distance from it further out);
+// - the dim rest, whose dynamic range is small, by a fixed stratified set (Hammersley) of GGX visible
+//   normal and cosine samples combined by the balance heuristic (Veach 1997).
+// A lobe narrower than an eighth of a texel sees a bilinear environment that is flat across it: there the
+// bright texels' specular part near the mirror direction is sampled with the visible normals as well
+// (every sample lands on the same smooth patch), and only the rest is integrated on the grid.
+#include "iblbake/core/error.h"
+#include "iblbake/runtime/runtime_reference.h"
+#include "reference_math.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace ibl {
+
+namespace {
+
+using namespace reference;
+
+// Solid angle of the face region [0, x] x [0, y] (kernels/cube.h cubeAreaElement) in fp64: sub-texel
+// cells are too small for float differences.
+double areaElement(double x, double y) {
+    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
+
+// The centre of texel (x, y) of an n-texel face, in fp64.
+glm::dvec3 footprintCentre(int face, int x, int y, int n) {
+    return glm::normalize(glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / float(n), (y + 0.5f) / float(n))));
+}
+
+// One texel footprint that the bilinear spread of a bright texel reaches.
+struct Cell {
+    int face, x, y;
+    glm::dvec3 centre;
+    double solidAngle, angle; // angle: the square root of the solid angle, radians
+};
+
+struct SplitEnvironment {
+    int faceSize = 0;
+    LdPyramid dim, bright; // level 0 only
+    std::vector<Cell> cells;
+    std::size_t brightTexels = 0;
+    double texelAngle = 0.0; // of a texel at the face centre
+
+    glm::dvec3 dimRadiance(const glm::dvec3& l) const {
+        return glm::dvec3(cubeSampleLevel(dim.data.data(), dim.layout, 0, cubeCoordFromDirection(vec3(l))));
+    }
+    glm::dvec3 brightRadiance(const glm::dvec3& l) const {
+        return glm::dvec3(
+            cubeSampleLevel(bright.data.data(), bright.layout, 0, cubeCoordFromDirection(vec3(l))));
+    }
+};
+
+LdPyramid levelZero(const CubeMap& cube) {
+    CubeMapChain chain;
+    chain.levels.push_back(cube);
+    return ldPyramidFromChain(chain);
+}
+
+} // namespace
+
+std::vector<std::size_t> brightTexels(const CubeMap& cube, double factor, std::size_t maxCount) {
+    const int n = cube.faceSize;
+    double weighted = 0.0, total = 0.0;
+    std::vector<std::pair<double, std::size_t>> candidates; // luminance, texel index
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const double omega = cubeTexelSolidAngle(x, y, n);
+                const double lum = std::max(0.0, luminance(glm::dvec3(cube.faces[f].at(x, y))));
+                weighted += lum * omega, total += omega;
+                candidates.emplace_back(lum, (std::size_t(f) * n + y) * n + x);
+            }
+    const double threshold = factor * weighted / total;
+    std::erase_if(candidates, [&](const auto& c) { return !(c.first > threshold); });
+    if (candidates.size() > maxCount) { // the brightest ones
+        std::nth_element(candidates.begin(), candidates.begin() + std::ptrdiff_t(maxCount), candidates.end(),
+                         [](const auto& a, const auto& b) { return a.first > b.first; });
+        candidates.resize(maxCount);
+    }
+    std::vector<std::size_t> out;
+    for (const auto& c : candidates)
+        out.push_back(c.second);
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+namespace {
+
+SplitEnvironment splitEnvironment(const CubeMap& environment, const ConvergedReferenceSettings& settings) {
+    const int n = environment.faceSize;
+    const std::vector<std::size_t> brightList =
+        brightTexels(environment, settings.brightFactor, settings.maxBrightTexels);
+    SplitEnvironment e;
+    e.faceSize = n;
+    e.brightTexels = brightList.size();
+    e.texelAngle = std::sqrt(double(cubeTexelSolidAngle(n / 2, n / 2, n)));
+    CubeMap dim = environment, bright(n);
+    std::set<std::size_t> reached;
+    for (std::size_t index : brightList) {
+        const int f = int(index / (std::size_t(n) * n)), y = int(index / n % n), x = int(index % n);
+        bright.faces[f].at(x, y) = environment.faces[f].at(x, y);
+        dim.faces[f].at(x, y) = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+        // The 3 x 3 footprints around it, across face edges by direction.
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                CubeCoord c = cubeCoordFromDirection(
+                    cubeFaceDirection(f, (x + dx + 0.5f) / float(n), (y + dy + 0.5f) / float(n)));
+                const int cx = std::clamp(int(c.s * float(n)), 0, n - 1),
+                          cy = std::clamp(int(c.t * float(n)), 0, n - 1);
+                reached.insert((std::size_t(c.face) * n + cy) * n + cx);
+            }
+    }
+    for (std::size_t index : reached) {
+        const int f = int(index / (std::size_t(n) * n)), y = int(index / n % n), x = int(index % n);
+        const double u0 = -1.0 + 2.0 * x / n, v0 = -1.0 + 2.0 * y / n, step = 2.0 / n;
+        const double omega = std::abs(areaElement(u0, v0) - areaElement(u0, v0 + step) -
+                                      areaElement(u0 + step, v0) + areaElement(u0 + step, v0 + step));
+        e.cells.push_back({f, x, y,
+                           glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n))),
+                           omega, std::sqrt(omega)});
+    }
+    e.dim = levelZero(dim);
+    e.bright = levelZero(bright);
+    return e;
+}
+
+struct Integral {
+    glm::dvec3 specular{0.0}, diffuse{0.0};
+    // For the grid: the midpoint rule's error bound on the texels taken in one step, which no coarser
+    // grid can show: h^2 / 24 |f''| with |f''| / f ~ (4 / scale)^2 for the specular part, (2/3) (angle /
+    // scale)^2 of it, and ~1 per square radian for the diffuse part.
+    glm::dvec3 singleStepBound{0.0};
+    glm::dvec3 total() const { return specular + diffuse; }
+};
+
+// A lobe narrower than an eighth of a texel: the bright texels' specular part in the lobe's core (the
+// footprints whose centre is within three texels of the mirror direction) is sampled, not gridded.
+bool isNarrow(const PointMaterial& m, const SplitEnvironment& e) {
+    return m.specular && 8.0 * m.alpha < e.texelAngle;
+}
+bool inCore(const glm::dvec3& footprintCentre, const glm::dvec3& R, const SplitEnvironment& e) {
+    return glm::dot(footprintCentre, R) > std::cos(3.0 * e.texelAngle);
+}
+
+void addSample(Integral& out, const PointMaterial& m, const glm::dvec3& radiance, const glm::dvec3& l,
+               double weight, bool specular, bool diffuse) {
+    const double NoL = glm::dot(m.N, l);
+    if (!(NoL > 0.0) || !(weight > 0.0)) return;
+    glm::dvec3 s, d;
+    m.evaluate(l, NoL, s, d);
+    if (specular) out.specular += radiance * s * weight;
+    if (diffuse) out.diffuse += radiance * d * weight;
+}
+
+// The sampled part at `samples` per strategy, the Hammersley sets rotated by `shift`: the dim rest by
+// visible normals and cosine (balance heuristic), and for a narrow lobe the bright texels' specular part
+// in the lobe's core by visible normals alone.
+Integral sampled(const PointMaterial& m, const SplitEnvironment& e, std::uint32_t samples, glm::dvec2 shift) {
+    Integral out;
+    const bool narrow = isNarrow(m, e);
+    const glm::dvec3 R = m.reflected();
+    auto misWeight = [&](const glm::dvec3& l) {
+        const double p = std::max(glm::dot(m.N, l), 0.0) / kPi + m.visibleNormalPdf(l);
+        return p > 0.0 ? 1.0 / (double(samples) * p) : 0.0;
+    };
+    for (std::uint32_t i = 0; i < samples; ++i) {
+        const glm::dvec3 a = m.sampleVisibleNormalDirection(samplePoint(i, samples, shift));
+        addSample(out, m, e.dimRadiance(a), a, misWeight(a), true, true);
+        const glm::dvec3 b = m.sampleCosineDirection(samplePoint(i, samples, shift + glm::dvec2(0.5, 0.25)));
+        addSample(out, m, e.dimRadiance(b), b, misWeight(b), true, true);
+        if (narrow) {
+            const glm::dvec3 c =
+                m.sampleVisibleNormalDirection(samplePoint(i, samples, shift + glm::dvec2(0.25, 0.5)));
+            const double p = m.visibleNormalPdf(c);
+            const CubeCoord t = cubeCoordFromDirection(vec3(c));
+            const int n = e.faceSize;
+            const glm::dvec3 footprint = footprintCentre(t.face, std::clamp(int(t.s * float(n)), 0, n - 1),
+                                                         std::clamp(int(t.t * float(n)), 0, n - 1), n);
+            if (inCore(footprint, R, e))
+                addSample(out, m, e.brightRadiance(c), c, p > 0.0 ? 1.0 / (double(samples) * p) : 0.0, true,
+                          false);
+        }
+    }
+    return out;
+}
+
+// The bright texels: every footprint they reach, on a sub-texel grid whose step is 1 / `stepsPerScale` of
+// the BRDF's local angular scale. GGX's D changes by about 4 dtheta / max(alpha, theta / 4) over dtheta
+// radians of l at theta from the mirror direction; the diffuse lobe's scale is a radian.
+Integral gridded(const PointMaterial& m, const SplitEnvironment& e, double stepsPerScale) {
+    Integral out;
+    const bool narrow = isNarrow(m, e);
+    const glm::dvec3 R = m.reflected();
+    const int n = e.faceSize;
+    for (const Cell& cell : e.cells) {
+        if (glm::dot(cell.centre, m.N) < -1.5 * cell.angle) continue; // wholly below the horizon
+        const double theta = std::acos(std::clamp(glm::dot(cell.centre, R), -1.0, 1.0));
+        const bool specular = m.specular && !(narrow && inCore(cell.centre, R, e));
+        const double scale = specular ? std::min(std::max(m.alpha, theta / 4.0), 1.0) : 1.0;
+        const int S = int(std::clamp(std::ceil(stepsPerScale * cell.angle / scale), 1.0, 64.0));
+        if (S == 1) {
+            const Integral before = out;
+            addSample(out, m, e.brightRadiance(cell.centre), cell.centre, cell.solidAngle, specular, true);
+            const double ratio = cell.angle / scale;
+            out.singleStepBound += (2.0 / 3.0) * ratio * ratio * glm::abs(out.specular - before.specular) +
+                                   cell.solidAngle / 24.0 * glm::abs(out.diffuse - before.diffuse);
+            continue;
+        }
+        const double step = 2.0 / (double(n) * S);
+        for (int j = 0; j < S; ++j)
+            for (int i = 0; i < S; ++i) {
+                const double u0 = -1.0 + (cell.x * S + i) * step, v0 = -1.0 + (cell.y * S + j) * step;
+                const double omega = std::abs(areaElement(u0, v0) - areaElement(u0, v0 + step) -
+                                              areaElement(u0 + step, v0) + areaElement(u0 + step, v0 + step));
+                const glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(
+                    cell.face, float((u0 + 0.5 * step + 1.0) / 2.0), float((v0 + 0.5 * step + 1.0) / 2.0))));
+                addSample(out, m, e.brightRadiance(l), l, omega, specular, true);
+            }
+    }
+    return out;
+}
+
+// E(NoV) of one alpha on 512 steps of NoV, linearly interpolated: the points of a roughness column share
+// their alpha, and E is smooth in NoV.
+class AlbedoTables {
+  public:
+    AlbedoTables(std::span<const ShadingPoint> points, double minAlpha, std::uint32_t samples)
+        : samples_(samples) {
+        std::set<double> alphas;
+        for (const ShadingPoint& p : points) {
+            const double r = std::clamp(double(p.perceptualRoughness), 0.0, 1.0);
+            alphas.insert(std::max(r * r, minAlpha));
+        }
+        if (alphas.size() > 64) return; // no shared columns: per point
+        for (double alpha : alphas) {
+            std::vector<double>& t = tables_[alpha];
+            for (int i = 0; i <= kSteps; ++i)
+                t.push_back(directionalAlbedo(std::max(double(i) / kSteps, 1e-4), alpha, samples));
+        }
+    }
+    double operator()(double NoV, double alpha) const {
+        auto it = tables_.find(alpha);
+        if (it == tables_.end()) return directionalAlbedo(NoV, alpha, samples_);
+        const double x = std::clamp(NoV, 0.0, 1.0) * kSteps;
+        const int i = std::min(int(x), kSteps - 1);
+        return it->second[std::size_t(i)] +
+               (x - i) * (it->second[std::size_t(i) + 1] - it->second[std::size_t(i)]);
+    }
+
+  private:
+    static constexpr int kSteps = 512;
+    std::uint32_t samples_;
+    std::map<double, std::vector<double>> tables_;
+};
+
+} // namespace
+
+ConvergedReference renderConvergedReference(const CubeMap& environment, std::span<const ShadingPoint> points,
+                                            const RuntimeOptions& options,
+                                            const ConvergedReferenceSettings& settings) {
+    if (settings.samples < 4) throw Error("converged reference: fewer than 4 samples per strategy");
+    const SplitEnvironment e = splitEnvironment(environment, settings);
+    const AlbedoTables albedo(points, settings.minAlpha, settings.albedoSamples);
+    ConvergedReference out;
+    out.brightTexels = e.brightTexels;
+    out.results.resize(points.size());
+    out.errorEstimate.resize(points.size());
+    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
+        const PointMaterial m(points[k], options, settings.minAlpha, albedo);
+        // Two independent halves of the samples (different rotations), and the grid at two steps.
+        const Integral first = sampled(m, e, settings.samples / 2, {0.0, 0.0});
+        const Integral second = sampled(m, e, settings.samples / 2, {0.61803398875, 0.41421356237});
+        const Integral grid = gridded(m, e, settings.stepsPerScale);
+        out.results[k] = {0.5 * (first.diffuse + second.diffuse) + grid.diffuse,
+                          0.5 * (first.specular + second.specular) + grid.specular};
+        out.errorEstimate[k] = glm::abs(0.5 * (second.total() - first.total())) +
+                               glm::abs(grid.total() - gridded(m, e, settings.stepsPerScale / 2.0).total()) +
+                               grid.singleStepBound;
+    });
+    return out;
+}
+
+} // namespace ibl
