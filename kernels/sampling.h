@@ -9,14 +9,18 @@
 
 IBL_BEGIN_NAMESPACE
 
-// Van der Corput radical inverse in base 2 by bit reversal.
-IBL_FN float radicalInverse2(uint bits) {
+// The 32 bits of `bits` in reverse order.
+IBL_FN uint reverseBits32(uint bits) {
     bits = (bits << 16u) | (bits >> 16u);
     bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
     bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
     bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-    return IBL_FLOAT(bits) * 2.3283064365386963e-10f;
+    return ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
+}
+
+// Van der Corput radical inverse in base 2 by bit reversal.
+IBL_FN float radicalInverse2(uint bits) {
+    return IBL_FLOAT(reverseBits32(bits)) * 2.3283064365386963e-10f;
 }
 
 // Hammersley point i of n in [0,1)^2 (first coordinate centred in its stratum).

@@ -1,9 +1,12 @@
 // What the two brute-force renderers of runtime_reference.h share, all in fp64 and independent of the
-// runtime's code: Hammersley points, GGX with height-correlated Smith visibility, visible-normal sampling,
-// and the material model of a shading point (Frostbite 2014, Appendix A; Heitz 2018).
+// runtime's shading code (only the bit reversal of kernels/sampling.h is shared): Hammersley points, GGX
+// with height-correlated Smith visibility, visible-normal sampling, and the material model of a shading
+// point (Frostbite 2014, Appendix A; Heitz 2018).
 #pragma once
 
 #include "iblbake/runtime/runtime_reference.h"
+
+#include <sampling.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,13 +18,9 @@ namespace ibl::reference {
 
 inline constexpr double kPi = 3.14159265358979323846;
 
+// The radical inverse of kernels/sampling.h in fp64.
 inline double radicalInverse(std::uint32_t bits) {
-    bits = (bits << 16u) | (bits >> 16u);
-    bits = ((bits & 0x55555555u) << 1u) | ((bits & 0xAAAAAAAAu) >> 1u);
-    bits = ((bits & 0x33333333u) << 2u) | ((bits & 0xCCCCCCCCu) >> 2u);
-    bits = ((bits & 0x0F0F0F0Fu) << 4u) | ((bits & 0xF0F0F0F0u) >> 4u);
-    bits = ((bits & 0x00FF00FFu) << 8u) | ((bits & 0xFF00FF00u) >> 8u);
-    return double(bits) * 2.3283064365386963e-10;
+    return double(reverseBits32(bits)) * 2.3283064365386963e-10;
 }
 
 // Hammersley point i of n, Cranley-Patterson rotated by `shift` (one shift per strategy decorrelates them).
