@@ -26,19 +26,18 @@
 //                  "solidAngleSr": num,                 // of the measured region
 //                  "color": [r, g, b],                  // luminance 1
 //                  "contrast": num},                    // E_perp / (6.8e-5 sr * surroundings)
-//   "sunInProbe": {"warning": str,                      // with a sun: one line (accuracy.h
-//   sunInProbeWarning)
+//   "sunInProbe": {"warning": str,                      // with a sun: one line (sun_in_probe.h)
 //                  "roughness": [num], "keptError": [num], "extractedError": [num]},  // per column, 64 px
 //   "noSunReason": str                                  // present when "sun" is null
 // }
 #include "commands.h"
 #include "input_options.h"
 
-#include <iblbake/accuracy/accuracy.h>
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/environment_stats.h>
 #include <iblbake/baker/ingest.h>
 #include <iblbake/baker/sun.h>
+#include <iblbake/baker/sun_in_probe.h>
 
 #include <nlohmann/json.hpp>
 
@@ -101,12 +100,9 @@ Action addInspectCommand(CLI::App& app) {
             if (k == "iblbake:units") units = v;
         const bool absolute = units == "cd/m2";
         constexpr double kDeg = 180.0 / std::numbers::pi;
-        // What a bake that keeps the detected sun in the probe costs at runtime, measured on a 64 px cube.
+        // What a bake that keeps the detected sun in the probe costs at runtime (measured on a 64 px copy).
         SunInProbe sunInProbe;
-        if (sun.found) {
-            ingest.sourceFaceSize = 64;
-            sunInProbe = measureSunInProbe(ingestEnvironment({o->input}, ingest).cube, Executor::cpu());
-        }
+        if (sun.found) sunInProbe = measureSunInProbe(env.cube, Executor::cpu());
 
         if (o->json) {
             nlohmann::ordered_json j;

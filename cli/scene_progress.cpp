@@ -70,7 +70,7 @@ std::string sizeText(std::uintmax_t bytes) {
 }
 
 // The bake's report (bake_state.h BakeSummary::report): one line per product, the calibration, the
-// preview's error per roughness column; one screen.
+// preview's error per roughness column, the manifest's warnings; one screen.
 void printReport(const BakeSummary& summary) {
     std::size_t pathWidth = 4;
     for (const ProductReport& r : summary.report)
@@ -81,6 +81,8 @@ void printReport(const BakeSummary& summary) {
                     sizeText(r.bytes).c_str(), r.description.c_str(), files.c_str());
     }
     if (!summary.calibration.empty()) std::printf("calibration %s\n", summary.calibration.c_str());
+    for (const std::string& w : summary.warnings)
+        std::printf("warning     %s\n", w.c_str());
     if (!summary.previewError) return;
     const PreviewErrorReport& e = *summary.previewError;
     std::printf("error       runtime vs brute-force reference (relative mean luminance), per roughness:\n");

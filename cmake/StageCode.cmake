@@ -39,11 +39,17 @@ set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, 
 # The stage kinds of the planner (baker/src/scene/scene_plan.cpp); a planned kind missing here makes key
 # computation throw. "manifest" is no stage: manifest.json is written by every bake that is not up to date,
 # and records this identity so that the up-to-date check does not keep one written by other code.
-set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract specular-ld diffuse-sh irradiance-cube probe-ld
+set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract sun-in-probe specular-ld diffuse-sh irradiance-cube probe-ld
     gltf-export material-preview manifest)
 set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp)
 set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
 set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration baker/src/environment)
+# The sun-in-probe check (its facts, which the manifest's warnings read): the shipped probe's bake and the
+# runtime module against the converged reference.
+set(IBLBAKE_STAGE_CODE_sun-in-probe stage_runner kernel_host ld_chain baker/src/runtime_check
+    baker/src/calibration baker/src/environment kernels/dfg.cl baker/src/stages/dfg_lut.cpp
+    baker/src/stages/sh_projection.cpp kernels/irradiance.cl baker/src/stages/irradiance.cpp
+    baker/runtime/src kernels/runtime.cl)
 set(IBLBAKE_STAGE_CODE_specular-ld stage_runner kernel_host ld_chain)
 set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cpp)
 set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradiance.cl

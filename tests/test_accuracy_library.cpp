@@ -7,6 +7,7 @@
 #include "test_support.h"
 
 #include <iblbake/accuracy/accuracy.h>
+#include <iblbake/baker/sun_in_probe.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -199,7 +200,7 @@ TEST(SunInProbe, WarnsWithTheErrorItCausesAndTheFix) {
     EXPECT_GT(kept, 2.0 * extracted);
     EXPECT_EQ(withSun.warning.rfind("sun detected and left in the probe: runtime error ", 0), 0u)
         << withSun.warning;
-    EXPECT_NE(withSun.warning.find("extract it: iblbake --extract-sun, scene key extractSun"),
+    EXPECT_NE(withSun.warning.find("extract it: iblbake --extract-sun, scene key environment.extractSun"),
               std::string::npos);
     const ibl::SunInProbe noSun =
         ibl::measureSunInProbe(ibl::test::makeCube(32, sky), ibl::Executor::cpu(), 4);

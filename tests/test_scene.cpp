@@ -185,15 +185,15 @@ TEST(ScenePlan, StageSetsFollowTheMaterialsAndProbes) {
     json diffuseOnly = minimalScene();
     diffuseOnly["materials"] = {{"specular", false}};
     const std::set<std::string> lambertDiffuse = stageIds(ibl::planScene(parse(diffuseOnly)));
-    EXPECT_EQ(lambertDiffuse, (std::set<std::string>{"environment", "diffuse"}));
+    EXPECT_EQ(lambertDiffuse, (std::set<std::string>{"environment", "sun-check", "diffuse"}));
 
     json disney = diffuseOnly;
     disney["materials"]["diffuseModel"] = "disney";
     EXPECT_EQ(stageIds(ibl::planScene(parse(disney))),
-              (std::set<std::string>{"dfg", "environment", "diffuse"}));
+              (std::set<std::string>{"dfg", "environment", "sun-check", "diffuse"}));
 
     const std::set<std::string> glossy = stageIds(ibl::planScene(parse(minimalScene())));
-    EXPECT_EQ(glossy, (std::set<std::string>{"dfg", "environment", "specular", "diffuse"}));
+    EXPECT_EQ(glossy, (std::set<std::string>{"dfg", "environment", "sun-check", "specular", "diffuse"}));
 
     json sun = minimalScene();
     sun["environment"]["extractSun"] = true;
@@ -203,8 +203,8 @@ TEST(ScenePlan, StageSetsFollowTheMaterialsAndProbes) {
     json probes = minimalScene();
     probes["probes"] = json::array({probe("a"), probe("b")});
     const ibl::Plan probePlan = ibl::planScene(parse(probes));
-    EXPECT_EQ(stageIds(probePlan),
-              (std::set<std::string>{"dfg", "environment", "specular", "diffuse", "probe:a", "probe:b"}));
+    EXPECT_EQ(stageIds(probePlan), (std::set<std::string>{"dfg", "environment", "sun-check", "specular",
+                                                          "diffuse", "probe:a", "probe:b"}));
     // Uncalibrated environment: the probes do not depend on it.
     for (const ibl::PlanStage& s : probePlan.stages)
         if (s.kind == "probe-ld") {
@@ -214,14 +214,14 @@ TEST(ScenePlan, StageSetsFollowTheMaterialsAndProbes) {
     json probesDiffuseOnly = probes;
     probesDiffuseOnly["materials"] = {{"specular", false}};
     const ibl::Plan skipped = ibl::planScene(parse(probesDiffuseOnly));
-    EXPECT_EQ(stageIds(skipped), (std::set<std::string>{"environment", "diffuse"}));
+    EXPECT_EQ(stageIds(skipped), (std::set<std::string>{"environment", "sun-check", "diffuse"}));
     EXPECT_TRUE(std::any_of(skipped.skipped.begin(), skipped.skipped.end(),
                             [](const ibl::SkippedStage& s) { return s.id == "probe:a"; }));
 
     json clearCoat = diffuseOnly;
     clearCoat["materials"]["clearCoat"] = true;
     EXPECT_EQ(stageIds(ibl::planScene(parse(clearCoat))),
-              (std::set<std::string>{"dfg", "environment", "specular", "diffuse"}));
+              (std::set<std::string>{"dfg", "environment", "sun-check", "specular", "diffuse"}));
 }
 
 TEST(ScenePlan, CalibratedEnvironmentMakesInheritingProbesDependOnIt) {

@@ -134,18 +134,18 @@ TEST(SceneBake, RunsExactlyThePlannedStagesForEachNeed) {
          [](json& s) {
              s["materials"] = {{"specular", false}};
          },
-         {"environment", "diffuse"}},
+         {"environment", "sun-check", "diffuse"}},
         {"diffuse-only-disney",
          [](json& s) {
              s["materials"] = {{"specular", false}, {"diffuseModel", "disney"}};
          },
-         {"dfg", "environment", "diffuse"}},
-        {"glossy", [](json&) {}, {"dfg", "environment", "specular", "diffuse"}},
+         {"dfg", "environment", "sun-check", "diffuse"}},
+        {"glossy", [](json&) {}, {"dfg", "environment", "sun-check", "specular", "diffuse"}},
         {"glossy-probes",
          [](json& s) {
              s["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});
          },
-         {"dfg", "environment", "specular", "diffuse", "probe:a"}},
+         {"dfg", "environment", "sun-check", "specular", "diffuse", "probe:a"}},
         {"sun",
          [](json& s) {
              s["environment"]["file"] = kSample;
@@ -179,6 +179,39 @@ TEST(SceneBake, RunsExactlyThePlannedStagesForEachNeed) {
     }
 }
 
+// A detected sun left in the probe (extractSun false): the sun-check stage measures what it costs and the
+// manifest, the summary and the report carry the warning; extracting the sun plans no check and warns of
+// nothing; a map without a sun runs the check and gets no warning.
+TEST(SceneBake, WarnsOfASunLeftInTheProbe) {
+    SceneDir d("scene_sun_warning");
+    d.scene["environment"]["file"] = kSample;
+    d.scene["outputs"]["faceSize"] = 64;
+    const std::string wording = "sun detected and left in the probe: runtime error ";
+    JsonRun kept = bakeJson(d.write());
+    ASSERT_EQ(kept.run.exitCode, 0) << kept.run.err;
+    EXPECT_NE(std::find(kept.started.begin(), kept.started.end(), "sun-check"), kept.started.end());
+    const json manifest = json::parse(readBytes(d.out() / "manifest.json"));
+    ASSERT_EQ(manifest["warnings"].size(), 1u) << manifest.dump();
+    EXPECT_EQ(manifest["warnings"][0].get<std::string>().rfind(wording, 0), 0u) << manifest["warnings"];
+    EXPECT_EQ(kept.summary["warnings"], manifest["warnings"]);
+    const CliRun text = runCli("bake " + (d.dir / "scene.json").string()); // up to date: the same report
+    ASSERT_EQ(text.exitCode, 0) << text.err;
+    EXPECT_NE(text.out.find("warning     " + wording), std::string::npos) << text.out;
+
+    d.scene["environment"]["extractSun"] = true;
+    JsonRun extracted = bakeJson(d.write());
+    ASSERT_EQ(extracted.run.exitCode, 0) << extracted.run.err;
+    EXPECT_EQ(std::find(extracted.started.begin(), extracted.started.end(), "sun-check"),
+              extracted.started.end());
+    EXPECT_TRUE(json::parse(readBytes(d.out() / "manifest.json"))["warnings"].empty());
+
+    d.scene["environment"] = {{"file", "env.hdr"}};
+    JsonRun noSun = bakeJson(d.write());
+    ASSERT_EQ(noSun.run.exitCode, 0) << noSun.run.err;
+    EXPECT_NE(std::find(noSun.started.begin(), noSun.started.end(), "sun-check"), noSun.started.end());
+    EXPECT_TRUE(noSun.summary["warnings"].empty()) << noSun.summary.dump();
+}
+
 TEST(ScenePlanCli, TextPlanGivesEveryStageAndEverySkipWithItsReason) {
     SceneDir d("scene_plan_text");
     d.scene["materials"] = {{"specular", false}};
@@ -207,13 +240,13 @@ TEST(SceneBake, RerunIsCachedAndTouchingOneCaptureRerunsOnlyItsProbe) {
     const fs::path scene = d.write();
     JsonRun first = bakeJson(scene);
     ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
-    EXPECT_EQ(first.summary["ran"], 6);
+    EXPECT_EQ(first.summary["ran"], 7);
     const auto before = snapshot(d.out());
 
     JsonRun second = bakeJson(scene);
     ASSERT_EQ(second.run.exitCode, 0) << second.run.err;
     EXPECT_EQ(second.summary["ran"], 0);
-    EXPECT_EQ(second.summary["cached"], 6);
+    EXPECT_EQ(second.summary["cached"], 7);
     EXPECT_EQ(snapshot(d.out()), before);
 
     writeLatLong(d.dir / "b.hdr", 3.0f);
@@ -229,7 +262,7 @@ TEST(SceneBake, RerunIsCachedAndTouchingOneCaptureRerunsOnlyItsProbe) {
 
     JsonRun forced = bakeJson(scene, " --force");
     ASSERT_EQ(forced.run.exitCode, 0) << forced.run.err;
-    EXPECT_EQ(forced.summary["ran"], 6);
+    EXPECT_EQ(forced.summary["ran"], 7);
     EXPECT_EQ(snapshot(d.out()), after); // recomputed, same bytes
 }
 
@@ -415,9 +448,9 @@ TEST(SceneBake, ProgressModes) {
     std::istringstream lines(plain.err);
     for (std::string line; std::getline(lines, line);)
         stageLines += line.rfind("[", 0) == 0;
-    EXPECT_EQ(stageLines, 4) << plain.err;
-    EXPECT_NE(plain.err.find("[3/4] specular"), std::string::npos) << plain.err;
-    EXPECT_NE(plain.out.find("4 ran, 0 cached"), std::string::npos) << plain.out;
+    EXPECT_EQ(stageLines, 5) << plain.err;
+    EXPECT_NE(plain.err.find("[4/5] specular"), std::string::npos) << plain.err;
+    EXPECT_NE(plain.out.find("5 ran, 0 cached"), std::string::npos) << plain.out;
     EXPECT_EQ(plain.err.find('\r'), std::string::npos); // no bar redraws when stderr is not a terminal
 }
 

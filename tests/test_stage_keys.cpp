@@ -186,18 +186,19 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     const ibl::StageCodeIdentity unchanged = sources.identity();
     EXPECT_EQ(unchanged, ibl::builtInStageCodeIdentity());
 
-    const std::set<std::string> stages = {"dfg-lut",     "environment", "sun-extract",
-                                          "specular-ld", "diffuse-sh",  "irradiance-cube",
-                                          "probe-ld",    "gltf-export", "material-preview"};
+    const std::set<std::string> stages = {"dfg-lut",     "environment",     "sun-extract",     "sun-in-probe",
+                                          "specular-ld", "diffuse-sh",      "irradiance-cube", "probe-ld",
+                                          "gltf-export", "material-preview"};
     std::set<std::string> stagesAndManifest = stages;
     stagesAndManifest.insert("manifest");
     const std::map<std::string, std::set<std::string>> reached = {
         // The LD kernel: both LD chains, and the irradiance kernel that includes ld.h for its bright texels.
-        // The glTF export re-filters with the LD chain's code.
-        {"kernels/ld.h", {"specular-ld", "probe-ld", "irradiance-cube", "gltf-export"}},
-        {"kernels/dfg.h", {"dfg-lut"}},
+        // The glTF export re-filters with the LD chain's code; the sun-in-probe check bakes the shipped
+        // probe.
+        {"kernels/ld.h", {"specular-ld", "probe-ld", "irradiance-cube", "gltf-export", "sun-in-probe"}},
+        {"kernels/dfg.h", {"dfg-lut", "sun-in-probe"}},
         {"kernels/cube.h", stagesAndManifest}, // the face convention: ingest, every kernel, the cube headers
-        {"baker/src/stages/sh_projection.cpp", {"diffuse-sh"}},
+        {"baker/src/stages/sh_projection.cpp", {"diffuse-sh", "sun-in-probe"}},
         {"baker/src/ingest/ingest.cpp", {"environment", "probe-ld"}},
         {"baker/src/scene/scene_stages.cpp", stages}, // the stage runner
         {"baker/src/scene/scene_manifest.cpp", {"manifest"}},

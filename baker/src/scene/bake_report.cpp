@@ -1,6 +1,6 @@
 // The bake's report (bake_state.h addManifestReport): each product of manifest.json with its path, size
-// and what it holds, the calibration in one line and the preview's measured error. Read back from the
-// manifest, so that a bake found up to date (cli/front_end.cpp) reports the same as one that ran.
+// and what it holds, the calibration in one line, the preview's measured error and the warnings. Read back
+// from the manifest, so that a bake found up to date (cli/front_end.cpp) reports the same as one that ran.
 #include "iblbake/bake_state/bake_state.h"
 
 #include <nlohmann/json.hpp>
@@ -108,6 +108,7 @@ void addManifestReport(BakeSummary& summary) {
         manifest.bytes = fs::file_size(summary.manifest, ec);
         summary.report.push_back(manifest);
         summary.calibration = calibrationLine(m);
+        summary.warnings = m.value("warnings", std::vector<std::string>{}); // absent in older manifests
         if (products.contains("preview")) {
             const json& p = products["preview"];
             summary.previewError =
@@ -120,6 +121,7 @@ void addManifestReport(BakeSummary& summary) {
         summary.report.clear();
         summary.calibration.clear();
         summary.previewError.reset();
+        summary.warnings.clear();
     }
 }
 

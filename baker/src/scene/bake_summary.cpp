@@ -150,7 +150,8 @@ nlohmann::json bakeSummaryJson(const BakeSummary& s) {
                           {"manifest", s.manifest.string()},
                           {"storage", storage},
                           {"report", report},
-                          {"calibration", s.calibration}};
+                          {"calibration", s.calibration},
+                          {"warnings", s.warnings}};
     if (s.previewError)
         out["previewError"] = {{"roughness", s.previewError->roughness},
                                {"dielectric", s.previewError->dielectric},

@@ -185,6 +185,13 @@ json buildManifest(const ManifestInputs& in) {
         products["preview"] = previewEntry(
             *stages["preview"], readJsonFile(in.entries.at("preview") / kPreviewFacts), in.productHashes);
 
+    // What the user should know about the bake, one line each: a sun left in the probe (the check's facts).
+    json warnings = json::array();
+    if (stages.count("sun-check")) {
+        const json check = readJsonFile(in.entries.at("sun-check") / kSunInProbeFacts);
+        if (check.at("detected").get<bool>()) warnings.push_back(check.at("warning"));
+    }
+
     json stageKeys = json::array();
     for (const PlanStage& s : in.plan.stages)
         stageKeys.push_back({{"id", s.id}, {"kind", s.kind}, {"key", in.keys.at(s.id)}});
@@ -212,6 +219,7 @@ json buildManifest(const ManifestInputs& in) {
           {"energyCompensation", m.energyCompensation},
           {"clearCoat", m.clearCoat}}},
         {"products", products},
+        {"warnings", warnings},
         {"stages", stageKeys}};
     addCalibrationToManifest(manifest, record, calibration.at("colorSpace").get<std::string>());
     if (calibration.contains("source"))

@@ -160,9 +160,16 @@ Plan planScene(const Scene& scene) {
         s.settings = json::object();
         s.reason = "environment.extractSun: the sun becomes an analytic disk light, bakes use the residual";
         plan.stages.push_back(std::move(s));
+        plan.skipped.push_back({"sun-check", "sun-in-probe", "environment.extractSun: the sun is extracted"});
         lightSource = "sun";
     } else {
         plan.skipped.push_back({"sun", "sun-extract", "environment.extractSun is false"});
+        // A sun left in the probe breaks the split sum: what it costs is measured and reported (a check
+        // that finds no sun costs a detection on a 64 px copy; a found one, a few seconds, once per input).
+        PlanStage s{"sun-check", "sun-in-probe", {"environment"}, {}, json::object(), {}, true, ""};
+        s.reason = "environment.extractSun is false: a detected sun left in the probe is measured on the "
+                   "sphere grid and reported as a warning";
+        plan.stages.push_back(std::move(s));
     }
 
     if (glossy) {

@@ -9,6 +9,7 @@
 #include "iblbake/baker/sh.h"
 #include "iblbake/baker/specular.h"
 #include "iblbake/baker/sun.h"
+#include "iblbake/baker/sun_in_probe.h"
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
@@ -191,6 +192,19 @@ void runSun(const StageContext& c) {
     if (!out) throw Error((c.outputDirectory / "sun.json").string() + ": cannot write");
 }
 
+// What a detected sun left in the probe costs at runtime (environment.extractSun is false).
+void runSunInProbe(const StageContext& c) {
+    const SunInProbe check =
+        measureSunInProbe(readCubeFile(c.dependencies.at("environment") / kCubeFile), *c.executor);
+    json facts = {{"detected", check.detected}};
+    if (check.detected)
+        facts.update({{"warning", check.warning},
+                      {"roughness", check.roughness},
+                      {"keptError", check.keptError},
+                      {"extractedError", check.extractedError}});
+    writeJsonFile(c.outputDirectory / kSunInProbeFacts, facts);
+}
+
 // Bakes and writes an LD chain (the distant environment's or a local probe's). With `withSun`, level 0 may
 // keep the sun's pixels (specular.h keepSunInLevel0); returns the chain's manifest facts.
 LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
@@ -350,6 +364,7 @@ void runStage(const StageContext& c) {
     if (kind == "dfg-lut") return runDfg(c);
     if (kind == "environment") return runEnvironment(c);
     if (kind == "sun-extract") return runSun(c);
+    if (kind == "sun-in-probe") return runSunInProbe(c);
     if (kind == "specular-ld") return runSpecular(c);
     if (kind == "diffuse-sh") return runDiffuse(c);
     if (kind == "probe-ld") return runProbe(c);

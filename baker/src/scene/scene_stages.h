@@ -50,6 +50,10 @@ inline constexpr const char* kStorageFile = "storage.json";
 inline constexpr const char* kGltfFacts = "gltf_facts.json";
 inline constexpr const char* kPreviewFacts = "preview_facts.json";
 
+// Beside the sun-in-probe check: {detected, and with a sun: warning, roughness, keptError,
+// extractedError} (sun_in_probe.h), which the manifest's warnings read.
+inline constexpr const char* kSunInProbeFacts = "sun_in_probe.json";
+
 // The stages of outputs.gltf and outputs.preview (engine_output_stages.cpp).
 void runGltfStage(const StageContext& context);
 void runPreviewStage(const StageContext& context);

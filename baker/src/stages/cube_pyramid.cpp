@@ -4,9 +4,8 @@
 #include <cmath>
 
 namespace ibl {
-namespace {
 
-CubeMap downsample(const CubeMap& above) {
+CubeMap downsampleCube(const CubeMap& above) {
     CubeMap below(std::max(1, above.faceSize / 2));
     const int ratio = above.faceSize / below.faceSize; // 2, or 1 for a 1x1 face
     for (int f = 0; f < 6; ++f)
@@ -21,8 +20,6 @@ CubeMap downsample(const CubeMap& above) {
     return below;
 }
 
-} // namespace
-
 CubePyramid buildCubePyramid(const CubeMap& base) {
     if (base.faceSize <= 0 || (base.faceSize & (base.faceSize - 1)) != 0 || base.faceSize > 8192)
         throw Error("cube pyramid: face size " + std::to_string(base.faceSize) +
@@ -30,7 +27,7 @@ CubePyramid buildCubePyramid(const CubeMap& base) {
     CubePyramid pyramid;
     std::vector<CubeMap> levels{base};
     while (levels.back().faceSize > 1 && levels.size() < IBL_MAX_CUBE_LEVELS)
-        levels.push_back(downsample(levels.back()));
+        levels.push_back(downsampleCube(levels.back()));
     pyramid.layout.baseFaceSize = uint32_t(base.faceSize);
     pyramid.layout.levelCount = uint32_t(levels.size());
     pyramid.data.assign(cubePyramidFloatCount(pyramid.layout), 0.0f);

@@ -108,20 +108,6 @@ AccuracyRun runAccuracySweep(const SweepPlan& plan, const AccuracyInput& input, 
                              const std::function<void(const AccuracyStage&)>& stageMeasured = {},
                              std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
 
-// A detected sun left in the probe (the bake kept it in the environment): the production probe's runtime
-// error per roughness column on a sphere grid (grid x grid pixels per camera) against the converged
-// reference, with the sun left in and extracted, and the warning line. Nothing when no sun is detected.
-struct SunInProbe {
-    bool detected = false;
-    std::vector<float> roughness;
-    std::vector<double> keptError, extractedError;
-    std::string warning; // sunInProbeWarning at the worst column
-};
-SunInProbe measureSunInProbe(const CubeMap& source, const Executor& executor, int grid = 5);
-// "sun detected and left in the probe: runtime error K% at roughness R on the sphere grid (E% with the sun
-// extracted); extract it: iblbake --extract-sun, scene key extractSun" (stable wording).
-std::string sunInProbeWarning(double keptError, double perceptualRoughness, double extractedError);
-
 std::string accuracyJson(const AccuracyRun& run);
 std::string accuracyMarkdown(const AccuracyRun& run);
 std::string accuracyHtml(const AccuracyRun& run);

@@ -84,6 +84,7 @@ struct BakeSummary {
     std::vector<ProductReport> report;
     std::string calibration;
     std::optional<PreviewErrorReport> previewError;
+    std::vector<std::string> warnings; // the manifest's, one line each (a sun left in the probe)
     int ran() const;
     int cached() const;
 };

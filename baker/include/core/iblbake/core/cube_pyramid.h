@@ -43,6 +43,9 @@ inline void storeBorderedLevel(const CubeMap& level, std::uint32_t index, const 
             }
 }
 
+// The next level of a box-filtered pyramid: each texel averages 2x2 texels of `above` (a 1x1 face stays).
+CubeMap downsampleCube(const CubeMap& above);
+
 // Levels down to 1x1 (at most IBL_MAX_CUBE_LEVELS); each level averages 2x2 texels of the one above.
 CubePyramid buildCubePyramid(const CubeMap& base);
 

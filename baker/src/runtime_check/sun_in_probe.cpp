@@ -1,0 +1,53 @@
+// What a sun left in the probe costs at runtime (sun_in_probe.h).
+#include "iblbake/baker/sun_in_probe.h"
+
+#include "iblbake/baker/environment.h"
+#include "iblbake/baker/sphere_columns.h"
+#include "iblbake/core/cube_pyramid.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace ibl {
+
+std::string sunInProbeWarning(double keptError, double perceptualRoughness, double extractedError) {
+    char text[400];
+    std::snprintf(
+        text, sizeof text,
+        "sun detected and left in the probe: runtime error %.1f%% at roughness %.1f on the sphere grid "
+        "(%.1f%% with the sun extracted); extract it: iblbake --extract-sun, scene key "
+        "environment.extractSun",
+        100.0 * keptError, perceptualRoughness, 100.0 * extractedError);
+    return text;
+}
+
+SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executor, int grid) {
+    SunInProbe out;
+    CubeMap source = environment;
+    while (source.faceSize > kSunInProbeFaceSize)
+        source = downsampleCube(source);
+    CubeMap residual = source;
+    std::optional<SunDisk> sun;
+    if (auto light = takeSunOut(residual, SunExtraction::IfDetected, SunDetectSettings{}))
+        sun = sunDiskFrom(*light);
+    if (!sun) return out;
+    out.detected = true;
+    for (int k = 0; k <= 10; ++k)
+        out.roughness.push_back(float(k) / 10.0f);
+    const SphereColumns c = sphereColumns(out.roughness, grid);
+    const RuntimeOptions options;
+    const ConvergedReference reference = renderConvergedReference(source, c.points, options);
+    const SpecularSettings production;
+    const std::vector<glm::vec4> kept =
+        evaluateCpu(shippedProbe(source, source, {}, production, executor), c.points, options);
+    const std::vector<glm::vec4> extracted =
+        evaluateCpu(shippedProbe(residual, source, sun, production, executor), c.points, options);
+    out.keptError = columnErrors(c, reference, &kept);
+    out.extractedError = columnErrors(c, reference, &extracted);
+    const std::size_t worst =
+        std::size_t(std::max_element(out.keptError.begin(), out.keptError.end()) - out.keptError.begin());
+    out.warning = sunInProbeWarning(out.keptError[worst], out.roughness[worst], out.extractedError[worst]);
+    return out;
+}
+
+} // namespace ibl
