@@ -130,7 +130,8 @@ IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, fl
 IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, float alpha, float texelSize) {
     // The midpoint rule over a texel of size a at angle theta from the lobe centre errs by about
     // (a / theta)^2 in GGX's theta^-4 tail, so texels nearer than 10 texels are integrated on an S x S
-    // grid, S = 10 a / max(theta, alpha) (error ~1%). Texels within three texels of a lobe under a
+    // grid, S = 10 a / max(theta, alpha) (error ~1%). Texels within three texels (and half a radian, so
+    // that on coarse faces every corner stays in front of the lobe's tangent plane) of a lobe under a
     // quarter texel wide use the closed form instead.
     vec3 d = v3(e[0], e[1], e[2]);
     float cosAngle = v3dot(n, d);
@@ -138,7 +139,7 @@ IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, f
     float subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
     int face = (int)e[7];
     float u0 = -1.0f + e[8] * texelSize, v0 = -1.0f + e[9] * texelSize;
-    if (4.0f * alpha < texelSize && angle < 3.0f * texelSize)
+    if (4.0f * alpha < texelSize && angle < fmin(3.0f * texelSize, 0.5f))
         return narrowLobeTexelWeight(frame, face, u0, v0, texelSize, alpha);
     if (subdivisions <= 1.0f || cosAngle < 0.0f) {
         vec3 h = v3normalize(v3add(n, d));

@@ -17,6 +17,10 @@
 //     IngestResample.OnePixelSunKeepsItsEnergy (within 1%), Sun.OneTexelSunOnFlatSkyIsRecoveredExactly.
 // - Black except one texel: HardCases.BlackExceptOneTexelStaysFiniteAndShKeepsItsEnergy,
 //     Irradiance.SingleBrightTexelIsExact, Sh.SingleBrightTexel.
+// - One bright texel at every face size 1..256: HardCases.OneBrightTexelAtEveryFaceSize (test_hard_cases_
+//     seams.cpp: every level finite and >= 0, its brightest texel the one nearest the source texel).
+// - A sun exactly on a cube edge and corner: HardCases.SunOnACubeEdgeAndCornerStaysSymmetric (the faces
+//     sharing it get equal energy within 1% at every level, OpenCL and CPU).
 // - All-zero environment: HardCases.AllZeroEnvironmentBakesToZero (every stage exactly 0, no sun).
 // - NaN/Inf/negative/denormal pixels: IngestFile.RepairsAndCountsBadPixels (repaired and counted, all
 //     finite and >= 0), HardCases.DenormalAndHugeValuesStayFinite, Ktx2Formats.NonFiniteValuesAreRepaired
