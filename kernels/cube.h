@@ -68,6 +68,20 @@ IBL_FN float cubeTexelSolidAngle(int i, int j, int n) {
            cubeAreaElement(x1, y1);
 }
 
+// Solid angle of the square [u0, u0 + step] x [v0, v0 + step] of a face (face-plane coordinates), in
+// float without cancellation: the four-term difference of cubeAreaElement loses about eps / step^2 of
+// its value (100% for the sub-texels of a 256 px face), the midpoint rule of the area element
+// (1 + u^2 + v^2)^(-3/2) du dv errs by about step^2 / 8. Below step 1/32 the midpoint rule is the more
+// accurate (both ~1e-4 there).
+IBL_FN float cubePatchSolidAngle(float u0, float v0, float step) {
+    if (step >= 0.03125f)
+        return fabs(cubeAreaElement(u0, v0) - cubeAreaElement(u0, v0 + step) -
+                    cubeAreaElement(u0 + step, v0) + cubeAreaElement(u0 + step, v0 + step));
+    float u = u0 + 0.5f * step, v = v0 + 0.5f * step;
+    float r2 = 1.0f + u * u + v * v;
+    return step * step / (r2 * sqrt(r2));
+}
+
 // Lat-long (equirect) mapping of OpenEXR's ImfEnvmap LatLongMap: longitude = atan2(x, z),
 // latitude = asin(y); u = 0.5 - longitude / (2 pi), v = 0.5 - latitude / pi. The image centre looks
 // toward +Z, the first scanline is +Y, +X is at u = 0.25.

@@ -79,10 +79,9 @@ IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayo
 #define IBL_BRIGHT_ENTRY_FLOATS 10
 
 // D(h) NoL over a sub-rectangle [u0, u0 + step] x [v0, v0 + step] (face-plane coordinates in [-1, 1])
-// of one face, evaluated at its centre with its exact solid angle.
+// of one face, evaluated at its centre with its solid angle.
 IBL_FN float lobeWeightOfPatch(vec3 n, int face, float u0, float v0, float step, float alpha) {
-    float omega = fabs(cubeAreaElement(u0, v0) - cubeAreaElement(u0, v0 + step) -
-                       cubeAreaElement(u0 + step, v0) + cubeAreaElement(u0 + step, v0 + step));
+    float omega = cubePatchSolidAngle(u0, v0, step);
     vec3 l = v3normalize(
         cubeFaceDirection(face, 0.5f * (u0 + 0.5f * step + 1.0f), 0.5f * (v0 + 0.5f * step + 1.0f)));
     float NoL = v3dot(n, l);
@@ -126,20 +125,27 @@ IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, fl
     return 4.0f * fabs(sum);
 }
 
+// Whether a source texel (face-plane size texelSize) at `angle` radians from a lobe of GGX alpha takes
+// narrowLobeTexelWeight: the lobe under a quarter texel wide and the texel within three texels of it, and
+// within half a radian, so that on coarse faces every corner stays in front of the lobe's tangent plane
+// (4 px faces gave NaN without it). The bake and the fp64 reference decide alike.
+IBL_FN bool narrowLobeClosedFormApplies(float alpha, float texelSize, float angle) {
+    return 4.0f * alpha < texelSize && angle < fmin(3.0f * texelSize, 0.5f);
+}
+
 // integral_texel D(h) NoL dl of one bright-list entry for the lobe around n (unnormalized).
 IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, float alpha, float texelSize) {
     // The midpoint rule over a texel of size a at angle theta from the lobe centre errs by about
     // (a / theta)^2 in GGX's theta^-4 tail, so texels nearer than 10 texels are integrated on an S x S
-    // grid, S = 10 a / max(theta, alpha) (error ~1%). Texels within three texels (and half a radian, so
-    // that on coarse faces every corner stays in front of the lobe's tangent plane) of a lobe under a
-    // quarter texel wide use the closed form instead.
+    // grid, S = 10 a / max(theta, alpha) (error ~1%). Near a lobe under a quarter texel wide the closed
+    // form is used instead (narrowLobeClosedFormApplies).
     vec3 d = v3(e[0], e[1], e[2]);
     float cosAngle = v3dot(n, d);
     float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chord: the angle where it matters (small)
     float subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
     int face = (int)e[7];
     float u0 = -1.0f + e[8] * texelSize, v0 = -1.0f + e[9] * texelSize;
-    if (4.0f * alpha < texelSize && angle < fmin(3.0f * texelSize, 0.5f))
+    if (narrowLobeClosedFormApplies(alpha, texelSize, angle))
         return narrowLobeTexelWeight(frame, face, u0, v0, texelSize, alpha);
     if (subdivisions <= 1.0f || cosAngle < 0.0f) {
         vec3 h = v3normalize(v3add(n, d));

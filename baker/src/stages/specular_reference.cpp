@@ -22,6 +22,12 @@ glm::dvec3 texelCentre(int face, int x, int y, int w) {
     return glm::normalize(glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / w, (y + 0.5f) / w)));
 }
 
+// kernels/cube.h's cubeAreaElement in fp64: in float, the four-term difference that gives a sub-texel's
+// solid angle would lose all of it on large faces (eps / step^2).
+double areaElement(double x, double y) {
+    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
+
 // The LD weight of one source texel of constant radiance for the lobe around `nrm` (N = V = R): the
 // integral of pi D(h) NoL over the texel (Listing 19's estimator's expectation, up to normalization),
 // on an S x S grid of exact sub-texel solid angles. S grows as the lobe gets narrow compared with the
@@ -36,7 +42,7 @@ double texelWeight(const glm::dvec3& nrm, int f, int x, int y, int w, double alp
     // closed-form small-angle integral (kernels/ld.h, checked against quadrature in tests) is exact
     // to O(texel angle^2).
     // narrowLobeTexelWeight integrates D NoL, the grid below pi D NoL (a^2 / d^2 NoL): the same measure.
-    if (4.0 * alpha < texelSize && angle < 3.0 * texelSize)
+    if (narrowLobeClosedFormApplies(float(alpha), texelSize, float(angle)))
         return kPi * double(narrowLobeTexelWeight(frameFromNormal(vec3(nrm)), f, -1.0f + x * texelSize,
                                                   -1.0f + y * texelSize, texelSize, float(alpha)));
     int S = int(std::clamp(std::ceil(gridFactor * texelAngle / std::max(angle, alpha)), 1.0, 256.0));
@@ -44,10 +50,8 @@ double texelWeight(const glm::dvec3& nrm, int f, int x, int y, int w, double alp
     for (int j = 0; j < S; ++j)
         for (int i = 0; i < S; ++i) {
             double u0 = -1.0 + (x * S + i) * step, v0 = -1.0 + (y * S + j) * step;
-            double omega = cubeAreaElement(float(u0), float(v0)) -
-                           cubeAreaElement(float(u0), float(v0 + step)) -
-                           cubeAreaElement(float(u0 + step), float(v0)) +
-                           cubeAreaElement(float(u0 + step), float(v0 + step));
+            double omega = areaElement(u0, v0) - areaElement(u0, v0 + step) - areaElement(u0 + step, v0) +
+                           areaElement(u0 + step, v0 + step);
             if (S == 1) omega = cubeTexelSolidAngle(x, y, w);
             float s = float((x * S + i + 0.5) / (double(w) * S)),
                   t = float((y * S + j + 0.5) / (double(w) * S));
