@@ -320,12 +320,19 @@ IBL_FN AreaLightResult areaLightShade(AreaLight light, AreaSurface s, uint flags
     return result;
 }
 
-// The surface of a shading point: probe.h's material (Filament 4.8.3), view bent to NoV >= 1e-4.
+// The surface of a shading point: probe.h's material (Filament 4.8.3).
 IBL_FN AreaSurface areaSurfaceFromPoint(ShadingPoint sp, float dielectricF0, uint flags) {
     AreaSurface s;
     s.P = sp.position;
     s.N = v3safeNormalize(sp.normal, v3(0.0f, 1.0f, 0.0f));
     s.V = v3safeNormalize(sp.view, s.N);
+    // A view at or below the horizon is bent up to grazing, keeping its azimuth (as the reference does):
+    // unbent, its mirror direction and half vectors would lie under the surface, where GGX is not defined.
+    float NoV = v3dot(s.N, s.V);
+    if (NoV < 1e-4f) {
+        vec3 tangent = v3safeNormalize(v3sub(s.V, v3scale(s.N, NoV)), frameFromNormal(s.N).t);
+        s.V = v3normalize(v3madd(s.N, 1e-4f, tangent));
+    }
     s.NoV = fmax(v3dot(s.N, s.V), 1e-4f);
     s.perceptualRoughness = saturate(sp.perceptualRoughness);
     s.alpha = s.perceptualRoughness * s.perceptualRoughness;

@@ -1,7 +1,11 @@
-// Area lights on the CPU: kernels/area_lights.h over the points, and the lights' construction.
+// Area lights on either backend: kernels/area_lights.cl (its work-item kernels/area_light_points.h) over the
+// points, and the lights' construction.
+#include "iblbake/opencl/dispatch.h"
 #include "iblbake/runtime/runtime_area_lights.h"
 
-#include "point_dispatch.h"
+#include <area_light_points.h>
+
+#include <cstddef>
 
 #include <glm/geometric.hpp>
 
@@ -57,16 +61,48 @@ AreaLight rectangleAreaLight(const glm::vec3& center, const glm::vec3& normal, c
                          lumens);
 }
 
+static_assert(sizeof(AreaLightParams) == 76 && offsetof(AreaLightParams, flags) == 64,
+              "AreaLightParams must match kernels/area_light_points.h");
+
+namespace {
+
+// Two dispatches of the kernel, one per term, so that the 4-float output carries each on its own.
+std::vector<AreaLightResult> shadeAreaLight(const Dispatcher& dispatcher, const AreaLight& light,
+                                            std::span<const ShadingPoint> points,
+                                            const RuntimeOptions& options) {
+    const uint32_t flags = areaLightFlags(options);
+    const DeviceArray<ShadingPoint> input = dispatcher.upload("shading points", points);
+    AreaLightResult zero;
+    zero.diffuse = zero.specular = glm::vec3(0.0f);
+    std::vector<AreaLightResult> out(points.size(), zero);
+    for (uint32_t term : {uint32_t(IBL_RT_DIFFUSE), uint32_t(IBL_RT_SPECULAR)}) {
+        if ((flags & term) == 0) continue;
+        AreaLightParams params{};
+        params.light = light;
+        params.flags = (flags & ~uint32_t(IBL_RT_DIFFUSE | IBL_RT_SPECULAR)) | term;
+        params.dielectricF0 = options.dielectricF0;
+        params.pointCount = uint32_t(points.size());
+        DispatchOutput result = dispatcher.output(DispatchGrid::list(points.size()));
+        dispatcher.run(kernel("area_lights.cl", "shadeAreaLights", shadeAreaLightItem), result, params,
+                       input);
+        const std::vector<glm::vec4> radiance = dispatcher.download(result);
+        for (std::size_t i = 0; i < points.size(); ++i)
+            (term == IBL_RT_DIFFUSE ? out[i].diffuse : out[i].specular) = glm::vec3(radiance[i]);
+    }
+    return out;
+}
+
+} // namespace
+
 std::vector<AreaLightResult> shadeAreaLightCpu(const AreaLight& light, std::span<const ShadingPoint> points,
                                                const RuntimeOptions& options) {
-    const uint32_t flags = areaLightFlags(options);
-    std::vector<AreaLightResult> out(points.size());
-    DispatchGrid::list(points.size()).forEachRange([&](std::size_t first, std::size_t end) {
-        for (std::size_t i = first; i < end; ++i)
-            out[i] =
-                areaLightShade(light, areaSurfaceFromPoint(points[i], options.dielectricF0, flags), flags);
-    });
-    return out;
+    return shadeAreaLight(Dispatcher(nullptr), light, points, options);
+}
+
+std::vector<AreaLightResult> shadeAreaLightOpenCL(ocl::Context& context, const AreaLight& light,
+                                                  std::span<const ShadingPoint> points,
+                                                  const RuntimeOptions& options) {
+    return shadeAreaLight(Dispatcher(&context), light, points, options);
 }
 
 } // namespace ibl

@@ -129,7 +129,8 @@ std::vector<AreaReference> renderAreaLightReference(const AreaLight& light,
         const glm::dvec3 p(points[k].position);
         if (surface.hidden(p)) return;
         const PointMaterial m(points[k], material, settings.minAlpha, [](double, double) { return 1.0; });
-        const double cells = std::ceil(settings.cellsPerAlpha * surface.angularSize(p) / m.alpha);
+        const double cells =
+            m.specular ? std::ceil(settings.cellsPerAlpha * surface.angularSize(p) / m.alpha) : 0.0;
         const uint32_t n = uint32_t(std::clamp(cells, double(std::max<uint32_t>(settings.gridSize, 2)),
                                                double(std::max(settings.maxGridSize, settings.gridSize))));
         const ReferenceResult fine = integrate(surface, m, p, radiance, n);

@@ -26,11 +26,16 @@ AreaLight rectangleAreaLight(const glm::vec3& center, const glm::vec3& normal, c
 // (it needs the DFG LUT: multiply the specular by shadePoint's 1 + f0 (1 / r - 1) when combining).
 std::vector<AreaLightResult> shadeAreaLightCpu(const AreaLight& light, std::span<const ShadingPoint> points,
                                                const RuntimeOptions& options = {});
+// The same through OpenCL (kernels/area_lights.cl). Throws ibl::Error on any CL failure.
+std::vector<AreaLightResult> shadeAreaLightOpenCL(ocl::Context& context, const AreaLight& light,
+                                                  std::span<const ShadingPoint> points,
+                                                  const RuntimeOptions& options = {});
 
 struct AreaReferenceSettings {
     // The light's surface is integrated on an n x n midpoint grid of equal-area cells (concentric-mapped for
     // disks; a sphere's visible cap in equal solid angles), n = cellsPerAlpha x (the angle the light spans)
-    // / GGX alpha, clamped to [gridSize, maxGridSize]: a lobe of width alpha gets >= cellsPerAlpha cells.
+    // / GGX alpha, clamped to [gridSize, maxGridSize]: a lobe of width alpha gets >= cellsPerAlpha cells
+    // (gridSize without the specular).
     std::uint32_t gridSize = 512;
     std::uint32_t maxGridSize = 2048;
     double cellsPerAlpha = 16.0;
