@@ -217,9 +217,9 @@ IBL_FN vec3 areaSpecular(LightPlane plane, AreaSurface s, float illuminance, vec
     vec3 H = v3safeNormalize(v3add(s.V, L), s.N);
     float NoL = saturate(v3dot(s.N, L)), NoH = saturate(v3dot(s.N, H)), LoH = saturate(v3dot(L, H));
     float alpha = fmax(s.alpha, 2e-3f); // Filament's minimum roughness keeps fp32 D finite
-    // The light's angular half-extents across L, in the plane of incidence (inPlane) and out of it (across),
-    // scaled so that pi inPlane across is the light's solid angle; in half-vector space they shrink by 1/2
-    // and 1 / (2 VoH) (h = (V + L) / (2 VoH)).
+    // The light's half-extents across L, in the plane of incidence (inPlane) and out of it (across), scaled
+    // to angles whose product is E / (pi NoL) (pi times it: the solid angle that gives the light's
+    // illuminance at L's cosine); in half-vector space they shrink by 1/2 and 1 / (2 VoH).
     vec3 across = v3safeNormalize(v3cross(s.V, L), frameFromNormal(L).t);
     vec3 inPlane = v3cross(across, L);
     float extentIn = lightSupport(plane, inPlane), extentAcross = lightSupport(plane, across);
@@ -283,7 +283,7 @@ IBL_FN AreaLightResult areaLightShade(AreaLight light, AreaSurface s, uint flags
         outline[2] = v3add(v3add(toCenter, u), w);
         outline[3] = v3add(v3sub(toCenter, u), w);
     } else {
-        float c = 1.0f, sn = 0.0f, k = 1.0131f; // k: the circumradius factor for 16 vertices
+        float c = 1.0f, sn = 0.0f, k = 1.0130016f; // k: the circumradius factor for 16 vertices
         for (int i = 0; i < IBL_DISK_VERTICES; ++i) {
             outline[i] =
                 v3add(toCenter, v3scale(v3add(v3scale(plane.tangent, c), v3scale(plane.bitangent, sn)),
