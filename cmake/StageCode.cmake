@@ -66,7 +66,8 @@ set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/sce
     baker/src/products)
 
 # Sources that decide no stage's bytes: planning and keys (their effect is in the key's settings and
-# dependency chain), the bake's bookkeeping, the Filament SH exporter, batch, accuracy, the dispatch test kernel.
+# dependency chain), the bake's bookkeeping, the Filament SH exporter, batch, accuracy, the dispatch test kernel,
+# the runtime's area-light kernel.
 set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/bake_summary.cpp baker/src/scene/bake_report.cpp baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
     baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
@@ -74,7 +75,8 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/batch baker/src/accuracy
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/stages/specular_reference.cpp
-    kernels/dispatch_check.cl kernels/dispatch_check.h) # dispatch_check: the dispatch helper's test kernel
+    kernels/dispatch_check.cl kernels/dispatch_check.h # dispatch_check: the dispatch helper's test kernel
+    kernels/area_lights.cl) # the runtime's area lights: no stage renders them
 
 # _iblbake_code_files(<root> <out-var> <entry>...): the files (relative to <root>, sorted) that the
 # entries name, expanded through groups and directories. Fails for a path that does not exist or a

@@ -455,4 +455,8 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER
 
 IBL_END_NAMESPACE
 
+// The area lights build on this header's material and sun helpers; they are part of the runtime (and of
+// probe.glsl) without changing what shadePoint computes.
+#include "area_lights.h"
+
 #endif

@@ -49,6 +49,9 @@
 //     DfgLut.EnergyBoundedAndMirrorLimit, Specular.WhiteFurnaceEveryLevelEveryTexel,
 //     Furnace.MetalF0OneWithin2PercentForEveryRoughness, CalibrateCli.ExtractSunWritesTheLightAndConserves
 //     Energy, and the energy statements of this file.
+// - Area lights: shading points on the light, on its plane, behind it, inside a sphere light, at grazing
+//     normals and views, zero vectors: AreaLights.HardCasesAreFinite (finite and >= 0, exactly 0 where the
+//     brute force is).
 #include "test_support.h"
 
 #include <iblbake/baker/calibration.h>
