@@ -21,7 +21,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -202,12 +201,7 @@ Action addDiffuseCommand(CLI::App& app) {
         doc["timing"] = {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}};
         if (wantCube) doc["irradianceCube"] = cubeJson;
 
-        {
-            std::ofstream out(jsonFile.tempPath());
-            out << doc.dump(2) << '\n';
-            out.close();
-            if (!out) throw Error(o->output + ": cannot write the JSON file");
-        }
+        writeFileBytes(jsonFile.tempPath(), doc.dump(2) + '\n', o->output);
         auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
         if (cubeFile) cubeFile->commit();
         jsonFile.commit();

@@ -11,6 +11,7 @@
 #include <iblbake/baker/specular.h>
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
+#include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
 
@@ -108,6 +109,12 @@ Action addSpecularCommand(CLI::App& app) {
         settings.mapping = parseMipMapping(o->mipMapping);
         settings.lodBias = o->lodBias;
         validateSpecularSettings(settings, o->size);
+        // Every output checked before any work: a bad --preview must not fail after -o was written.
+        checkOutputFile(o->output);
+        if (!o->preview.empty()) checkOutputFile(o->preview);
+        if (!o->exrDir.empty() && std::filesystem::exists(o->exrDir) &&
+            !std::filesystem::is_directory(o->exrDir))
+            throw Error(o->exrDir + ": is not a directory (--exr)");
         Executor executor = o->backend.makeExecutor();
         // The cube with the sun is kept for level 0 (below).
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);

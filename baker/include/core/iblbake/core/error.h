@@ -14,6 +14,14 @@ class Error : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// An Error writing an output file (a full disk, a read-only directory): its message names the output and
+// the system's reason, and a caller that puts the input being processed in front of its errors leaves
+// this one alone (an input is not to blame for a full disk).
+class OutputError : public Error {
+  public:
+    using Error::Error;
+};
+
 // An Error caused by the value of one setting. The message says what is wrong in the library's terms;
 // setting() names the setting as its struct field does (e.g. "layout", "sourceFaceSize", "calibration",
 // "extractSun"; each throwing function lists its own), so that a caller can put its own name for it in front:
