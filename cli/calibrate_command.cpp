@@ -17,6 +17,7 @@
 #include <iblbake/baker/ingest.h>
 #include <iblbake/baker/products.h>
 #include <iblbake/core/error.h>
+#include <iblbake/core/limits.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -52,7 +53,7 @@ Action addCalibrateCommand(CLI::App& app) {
     cmd->add_option("--size", o->size,
                     "face size of the source cube the factor is measured on (default: from the input); also "
                     "the output's for cube inputs")
-        ->check(CLI::Range(0, 8192));
+        ->check(CLI::Range(0, limits::kMaxFaceSize));
     cmd->add_option("--layout", o->layout, "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip")
         ->capture_default_str();
     cmd->add_option("--input-colorspace", o->inputColorSpace,

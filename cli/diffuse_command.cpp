@@ -10,6 +10,7 @@
 #include <iblbake/baker/products.h>
 #include <iblbake/baker/sh.h>
 #include <iblbake/core/error.h>
+#include <iblbake/core/limits.h>
 #include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
@@ -20,7 +21,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -70,7 +70,7 @@ Action addDiffuseCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember({"draft", "production", "reference"}));
     cmd->add_option("--samples", o->samples, "cosine samples per texel (overrides the preset)")
-        ->check(CLI::Range(1u, 1u << 20));
+        ->check(CLI::Range(1u, limits::kMaxSamples));
     cmd->add_option(
            "--window", o->window,
            "SH deringing window: auto (weakest with E >= 0 everywhere), none, sloan, hanning, lanczos")
@@ -100,8 +100,9 @@ Action addDiffuseCommand(CLI::App& app) {
         const bool wantCube = !o->irradianceCube.empty();
         const IrradianceMethod method = parseIrradianceMethod(o->irradianceMethod);
         const Ktx2Format format = parseKtx2Format(o->format);
-        if (o->size < 1 || o->size > 8192)
-            throw Error("--size: " + std::to_string(o->size) + " is not from 1 to 8192");
+        if (o->size < 1 || o->size > limits::kMaxFaceSize)
+            throw Error("--size: " + std::to_string(o->size) + " is not from 1 to " +
+                        std::to_string(limits::kMaxFaceSize));
         if (wantCube && method == IrradianceMethod::Sampled && (o->size & (o->size - 1)) != 0)
             throw Error("--size: " + std::to_string(o->size) +
                         " is not a power of two (needed by --irradiance-method sampled)");
@@ -200,12 +201,7 @@ Action addDiffuseCommand(CLI::App& app) {
         doc["timing"] = {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}};
         if (wantCube) doc["irradianceCube"] = cubeJson;
 
-        {
-            std::ofstream out(jsonFile.tempPath());
-            out << doc.dump(2) << '\n';
-            out.close();
-            if (!out) throw Error(o->output + ": cannot write the JSON file");
-        }
+        writeFileBytes(jsonFile.tempPath(), doc.dump(2) + '\n', o->output);
         auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
         if (cubeFile) cubeFile->commit();
         jsonFile.commit();

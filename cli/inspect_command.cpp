@@ -38,6 +38,7 @@
 #include <iblbake/baker/ingest.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/baker/sun_in_probe.h>
+#include <iblbake/core/limits.h>
 
 #include <nlohmann/json.hpp>
 
@@ -72,7 +73,7 @@ Action addInspectCommand(CLI::App& app) {
     cmd->add_option("input", o->input, "HDR environment")->required();
     cmd->add_flag("--json", o->json, "print one JSON object (schema in cli/inspect_command.cpp)");
     cmd->add_option("--size", o->size, "face size of the source cube measured (default: from the input)")
-        ->check(CLI::Range(0, 8192));
+        ->check(CLI::Range(0, limits::kMaxFaceSize));
     cmd->add_option("--layout", o->layout, "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip")
         ->capture_default_str();
     cmd->add_option("--input-colorspace", o->inputColorSpace,

@@ -7,7 +7,9 @@
 #include <iblbake/core/error.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <map>
+#include <new>
 #include <string>
 
 namespace {
@@ -72,6 +74,14 @@ int main(int argc, char** argv) {
         return 1;
     } catch (const ibl::Error& e) {
         std::fprintf(stderr, "iblbake: error: %s\n", oneLine(e.what()).c_str());
+        return 1;
+    } catch (const std::filesystem::filesystem_error& e) { // a path the user gave: its name and the reason
+        std::fprintf(stderr, "iblbake: error: %s: %s\n",
+                     oneLine(ibl::printableForMessage(e.path1().string())).c_str(),
+                     e.code().message().c_str());
+        return 1;
+    } catch (const std::bad_alloc&) { // the limits (iblbake/core/limits.h) keep inputs from getting here
+        std::fprintf(stderr, "iblbake: error: not enough memory\n");
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "iblbake: internal error: %s\n", oneLine(e.what()).c_str());

@@ -22,7 +22,10 @@ std::string flagOf(const std::string& setting) {
                                                              {"dfgSize", "--size"},
                                                              {"dfgSamples", "--samples"},
                                                              {"backend", "--backend"},
-                                                             {"minFaceSize", "--min-face-size"}};
+                                                             {"minFaceSize", "--min-face-size"},
+                                                             {"faceSize", "--size"},
+                                                             {"levels", "--levels"},
+                                                             {"samples", "--samples"}};
     const auto it = flags.find(setting);
     return it == flags.end() ? std::string() : it->second;
 }

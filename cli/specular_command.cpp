@@ -10,6 +10,8 @@
 #include <iblbake/baker/products.h>
 #include <iblbake/baker/specular.h>
 #include <iblbake/core/error.h>
+#include <iblbake/core/limits.h>
+#include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
 
@@ -70,11 +72,13 @@ Action addSpecularCommand(CLI::App& app) {
     o->input.addTo(*cmd);
     cmd->add_option("-o,--output", o->output, "output .ktx2 file")->required();
     cmd->add_option("--size", o->size, "face size of level 0 (power of two)")->capture_default_str();
-    cmd->add_option("--levels", o->levels, "mip levels (default: down to 1x1)");
+    cmd->add_option("--levels", o->levels, "mip levels (default: down to 1x1)")
+        ->check(CLI::Range(1, mipLevelCount(limits::kMaxFaceSize)));
     cmd->add_option("--quality", o->quality, "sample preset: draft, production, reference")
         ->capture_default_str()
         ->check(CLI::IsMember({"draft", "production", "reference"}));
-    cmd->add_option("--samples", o->samples, "maximum samples per texel (overrides the preset)");
+    cmd->add_option("--samples", o->samples, "maximum samples per texel (overrides the preset)")
+        ->check(CLI::Range(1u, limits::kMaxSamples));
     cmd->add_option("--format", o->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
@@ -98,14 +102,19 @@ Action addSpecularCommand(CLI::App& app) {
     return [o] {
         auto start = std::chrono::steady_clock::now();
         const Ktx2Format format = parseKtx2Format(o->format);
-        if (o->size < 1 || o->size > 8192 || (o->size & (o->size - 1)) != 0)
-            throw Error("--size: " + std::to_string(o->size) + " is not a power of two from 1 to 8192");
         SpecularSettings settings;
         settings.levels = o->levels;
         settings.quality = parseQuality(o->quality);
         settings.samples = o->samples;
         settings.mapping = parseMipMapping(o->mipMapping);
         settings.lodBias = o->lodBias;
+        validateSpecularSettings(settings, o->size);
+        // Every output checked before any work: a bad --preview must not fail after -o was written.
+        checkOutputFile(o->output);
+        if (!o->preview.empty()) checkOutputFile(o->preview);
+        if (!o->exrDir.empty() && std::filesystem::exists(o->exrDir) &&
+            !std::filesystem::is_directory(o->exrDir))
+            throw Error(o->exrDir + ": is not a directory (--exr)");
         Executor executor = o->backend.makeExecutor();
         // The cube with the sun is kept for level 0 (below).
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);

@@ -138,9 +138,13 @@ TEST(Batch, ManifestErrorsNameTheKeyPath) {
     EXPECT_EQ(error(R"([{"hdri": "x.hdr", "preset": "dr\naft"}])"),
               "b.json: items[0].preset: 'dr\\x0Aaft' is not one of draft, production, reference");
     EXPECT_EQ(error(R"([{"hdri": "x.hdr", "id": "a\rb"}, {"scene": "s.json", "id": "a\rb"}])"),
-              "b.json: items[1].id: 'a\\x0Db' is used by an earlier item");
-    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "output": "o\n"}, {"hdri": "y.hdr", "output": "o\n"}])"),
-              "b.json: items[1].output: '/base/o\\x0A' is also the output of items[0]");
+              "b.json: items[0].id: 'a\\x0Db' must be 1 to 128 of A-Z a-z 0-9 _ - . (not . or ..)");
+    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "id": "a"}, {"scene": "s.json", "id": "a"}])"),
+              "b.json: items[1].id: 'a' is used by an earlier item");
+    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "output": "o\n"}])"),
+              "b.json: items[0].output: 'o\\x0A' holds control bytes, which no file name may");
+    EXPECT_EQ(error(R"([{"hdri": "x.hdr", "output": "o"}, {"hdri": "y.hdr", "output": "o"}])"),
+              "b.json: items[1].output: /base/o is also the output of items[0]");
 
     const ibl::BatchManifest m = ibl::parseBatchManifest(
         R"([{"hdri": "h/x.hdr"}, {"scene": "s.json", "id": "s"}])", "b.json", "/base");

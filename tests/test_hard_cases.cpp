@@ -45,6 +45,9 @@
 //     1e30: every stage finite, calibration undoes the pre-scale within 1e-5),
 //     Calibration.UnusableValuesAreOneLineErrorsNamingTheOption, CalibrateCli.ExactFactorsScaleEveryPixel.
 // - Damaged files (issue 7, item 5): DamagedInputs.* (HDR/EXR/PNG/KTX2), Ktx2Reader.*.
+// - Hostile inputs (issue 17): HostileInputs.* (headers claiming huge sizes, devices, FIFOs, symlink loops,
+//     oversized documents, out-of-range values, outputs leaving the scene's directory),
+//     FullAndReadOnlyDisks.* (a full and a read-only tmpfs: the output and the system's reason named).
 // - Energy conservation: IngestResample.EnergyIsPreserved, Sh.ConstantEnvironmentIsL00OnlyAndIrradiancePiL,
 //     DfgLut.EnergyBoundedAndMirrorLimit, Specular.WhiteFurnaceEveryLevelEveryTexel,
 //     Furnace.MetalF0OneWithin2PercentForEveryRoughness, CalibrateCli.ExtractSunWritesTheLightAndConserves

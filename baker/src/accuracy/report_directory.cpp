@@ -1,8 +1,8 @@
 // writeAccuracyReports (iblbake/accuracy/accuracy.h): the three reports appear together or not at all.
 #include "iblbake/accuracy/accuracy.h"
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 
-#include <fstream>
 #include <unistd.h>
 
 namespace ibl {
@@ -12,10 +12,7 @@ namespace {
 namespace fs = std::filesystem;
 
 void writeText(const fs::path& file, const std::string& text) {
-    std::ofstream out(file, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) throw Error(file.string() + ": cannot write");
+    writeFileBytes(file, text);
 }
 
 } // namespace

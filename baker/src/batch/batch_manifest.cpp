@@ -3,11 +3,13 @@
 #include "iblbake/batch/batch.h"
 
 #include "iblbake/core/error.h"
+#include "iblbake/core/input_file.h"
+#include "iblbake/core/limits.h"
+#include "iblbake/core/output_path.h"
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
-#include <iterator>
+#include <cctype>
 #include <map>
 #include <set>
 
@@ -35,11 +37,27 @@ class ItemReader {
         if (!v.is_string() || v.get<std::string>().empty()) fail(key, "must be a non-empty string");
         return v.get<std::string>();
     }
+    // A file or directory name: control bytes (a NUL would cut it short where the system reads it) refused.
+    std::string path(const json& item, const char* key) const {
+        const std::string text = string(item, key);
+        if (hasControlBytes(text))
+            fail(key, quotedForMessage(text) + " holds control bytes, which no file name may");
+        return text;
+    }
 
   private:
     const std::string& name_;
     std::string keyPath_;
 };
+
+// An item id: it names the item in the progress lines, the summary and a scheduler's logs.
+bool validId(const std::string& id) {
+    if (id.empty() || id.size() > 128 || id == "." || id == "..") return false;
+    for (const char ch : id)
+        if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.')
+            return false;
+    return true;
+}
 
 bool isPowerOfTwo(int n) {
     return n > 0 && (n & (n - 1)) == 0;
@@ -61,14 +79,24 @@ BatchItem parseItem(const json& v, std::size_t index, const std::string& name, c
                    scene ? "unknown key (a scene item has \"scene\" and \"id\")"
                          : "unknown key (an HDRI item has hdri, id, output, preset, faceSize)");
     if (scene) {
-        const std::string file = r.string(v, "scene");
+        const std::string file = r.path(v, "scene");
         item.sceneFile = resolve(file, base);
         item.id = file;
     } else {
-        const std::string file = r.string(v, "hdri");
+        const std::string file = r.path(v, "hdri");
         item.hdri = resolve(file, base);
         item.id = file;
-        item.output = v.contains("output") ? resolve(r.string(v, "output"), base) : base / item.hdri.stem();
+        if (v.contains("output")) {
+            const std::string output = r.path(v, "output");
+            if (leavesItsDirectory(output))
+                r.fail("output",
+                       valueForMessage(output) +
+                           " leaves the manifest's directory: a relative output must stay inside it "
+                           "(an absolute path may name any)");
+            item.output = resolve(output, base);
+        } else {
+            item.output = base / item.hdri.stem();
+        }
         if (v.contains("preset")) {
             item.preset = r.string(v, "preset");
             if (item.preset != "draft" && item.preset != "production" && item.preset != "reference")
@@ -77,12 +105,16 @@ BatchItem parseItem(const json& v, std::size_t index, const std::string& name, c
         }
         if (v.contains("faceSize")) {
             const json& f = v["faceSize"];
-            if (!f.is_number_integer() || !isPowerOfTwo(f.get<int>()) || f.get<int>() > 4096)
-                r.fail("faceSize", "must be a power of two up to 4096");
+            if (!f.is_number_integer() || !isPowerOfTwo(f.get<int>()) || f.get<int>() > limits::kMaxFaceSize)
+                r.fail("faceSize", "must be a power of two up to " + std::to_string(limits::kMaxFaceSize));
             item.faceSize = f.get<int>();
         }
     }
-    if (v.contains("id")) item.id = r.string(v, "id");
+    if (v.contains("id")) {
+        item.id = r.string(v, "id");
+        if (!validId(item.id))
+            r.fail("id", valueForMessage(item.id) + " must be 1 to 128 of A-Z a-z 0-9 _ - . (not . or ..)");
+    }
     return item;
 }
 
@@ -126,10 +158,8 @@ BatchManifest parseBatchManifest(std::string_view text, const std::string& name,
 }
 
 BatchManifest loadBatchManifest(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in || fs::is_directory(path)) throw Error(path.string() + ": cannot read the batch manifest");
-    const std::string text{std::istreambuf_iterator<char>(in), {}};
-    return parseBatchManifest(text, path.string(),
+    const std::string text = readInputFile(path, limits::kMaxDocumentBytes, "batch manifest");
+    return parseBatchManifest(text, printableForMessage(path.string()),
                               path.parent_path().empty() ? fs::path(".") : path.parent_path());
 }
 

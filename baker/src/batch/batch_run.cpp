@@ -9,7 +9,6 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
-#include <fstream>
 #include <mutex>
 #include <thread>
 
@@ -149,10 +148,8 @@ class BatchRun {
         summary_.ok = complete && summary_.count(BatchItemStatus::Failed) == 0;
         summary_.seconds = secondsSince(start_);
         AtomicFile file(options_.summaryFile);
-        std::ofstream out(file.tempPath());
-        out << batchSummaryJson(summary_).dump(2) << '\n';
-        out.close();
-        if (!out) throw Error(options_.summaryFile.string() + ": cannot write");
+        writeFileBytes(file.tempPath(), batchSummaryJson(summary_).dump(2) + '\n',
+                       options_.summaryFile.string());
         file.commit();
     }
 

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace ibl {
 
@@ -124,6 +125,15 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
     }
     if (!std::isfinite(rec.factor) || !(rec.factor > 0.0))
         throw unusable("the calibration factor " + number(rec.factor) + " is not a positive finite number");
+    // A channel is at most its luminance over its weight: the brightest texel scaled must stay a finite fp32
+    // value (calibrate --scale 1e308 made nearly every value Inf).
+    const double minWeight =
+        std::min({settings.luminanceWeights.x, settings.luminanceWeights.y, settings.luminanceWeights.z});
+    const double brightestChannel = stats.maxLuminance / minWeight;
+    if (minWeight > 0.0 && !(rec.factor * brightestChannel <= double(std::numeric_limits<float>::max())))
+        throw unusable("the calibration factor " + number(rec.factor) + " would take the brightest texel (" +
+                       number(brightestChannel) + ") beyond the largest float, " +
+                       number(std::numeric_limits<float>::max()));
     rec.measuredAfter = rec.factor * rec.measuredBefore;
     rec.upwardIlluminanceAfter = rec.factor * rec.upwardIlluminanceBefore;
     rec.meanLuminanceAfter = rec.factor * rec.meanLuminanceBefore;
@@ -196,14 +206,17 @@ glm::dvec3 workingLuminanceWeights(const std::string& workingColorSpace) {
 
 ImageRGBA readWorkingLatLong(const std::filesystem::path& file, const IngestSettings& settings,
                              IngestReport* report) {
-    ingest::RawImage raw = ingest::readImage(file);
+    // The layout from the header: a file that is no lat-long is refused before its pixels are read.
+    ingest::RawImage raw = ingest::readImage(file, [&](const ingest::RawImage& header) {
+        const EnvLayout layout = ingest::resolveLayout(header, settings.layout);
+        if (layout != EnvLayout::LatLong)
+            throw Error(header.file + ": is a " + layoutName(layout) + " environment, not a lat-long");
+    });
     IngestReport r;
     r.file = raw.file;
     r.width = raw.pixels.width;
     r.height = raw.pixels.height;
-    r.layout = ingest::resolveLayout(raw, settings.layout);
-    if (r.layout != EnvLayout::LatLong)
-        throw Error(raw.file + ": is a " + layoutName(r.layout) + " environment, not a lat-long");
+    r.layout = EnvLayout::LatLong; // checked from the header
     if (settings.rotateDegrees != 0.0f) throw Error(raw.file + ": rotation is not supported here");
     r.latLongPixels = ingest::resolveLatLongPixels(raw, settings.latLongPixels);
     r.inputColorSpace = ingest::resolveInputColorSpace(raw, settings.inputColorSpace);

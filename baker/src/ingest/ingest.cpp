@@ -5,6 +5,7 @@
 #include "ingest_internal.h"
 
 #include "iblbake/core/error.h"
+#include "iblbake/core/limits.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +15,7 @@ namespace ibl {
 
 namespace {
 
-constexpr int kMaxFaceSize = 8192;
+using limits::kMaxFaceSize;
 
 // A lat-long's width / 4 (its resolution at the equator) rounded to the nearest power of two.
 int defaultLatLongFaceSize(int width) {
@@ -42,16 +43,20 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     if (!six && files.size() != 1)
         throw Error("expected one input file, got " + std::to_string(files.size()) +
                     (files.size() == 6 ? " (six faces need the layout six-files)" : ""));
-    if (!std::isfinite(settings.rotateDegrees))
-        throw SettingError("rotateDegrees", "the rotation must be a finite number of degrees");
+    if (!(std::abs(settings.rotateDegrees) <= limits::kMaxRotationDegrees))
+        throw SettingError("rotateDegrees", "the rotation must be a number of degrees from -" +
+                                                std::to_string(int(limits::kMaxRotationDegrees)) + " to " +
+                                                std::to_string(int(limits::kMaxRotationDegrees)));
     if (settings.sourceFaceSize < 0 || settings.sourceFaceSize > kMaxFaceSize)
         throw SettingError("sourceFaceSize", "the source face size " +
                                                  std::to_string(settings.sourceFaceSize) + " is not in 0.." +
                                                  std::to_string(kMaxFaceSize));
 
     std::vector<ingest::RawImage> images;
+    // A size the layout cannot take is refused from the header, before the pixels are read.
     for (const auto& file : files)
-        images.push_back(ingest::readImage(file));
+        images.push_back(ingest::readImage(
+            file, [&](const ingest::RawImage& header) { ingest::resolveLayout(header, settings.layout); }));
 
     SourceEnvironment env;
     IngestReport& report = env.report;

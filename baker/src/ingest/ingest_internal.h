@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,8 +43,12 @@ struct RawImage {
     bool integerPixels = false;        // stored as integers (8-bit PNG/JPEG, 16-bit TIFF...): display-encoded
 };
 
-// Reads level 0 of the first subimage. Throws ibl::Error "<file>: ..." when it cannot.
-RawImage readImage(const std::filesystem::path& file);
+// Reads level 0 of the first subimage. Throws ibl::Error "<file>: ..." when it cannot, when it is no
+// regular file, or when its header claims more pixels than limits::maxImagePixels(). `checkHeader`, when
+// given, sees the image with its size and metadata before any pixel is read (pixels.pixels still empty),
+// so that a size that cannot work (a layout that does not fit) is refused without reading the file.
+RawImage readImage(const std::filesystem::path& file,
+                   const std::function<void(const RawImage&)>& checkHeader = nullptr);
 
 // ---- layout (layout.cpp) ----
 // The layout of a single image: `requested` if not Auto (checked against the size), else detected from

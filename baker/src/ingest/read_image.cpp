@@ -4,6 +4,8 @@
 #include "ingest_internal.h"
 
 #include "iblbake/core/error.h"
+#include "iblbake/core/input_file.h"
+#include "iblbake/core/limits.h"
 
 #include <OpenImageIO/imageio.h>
 
@@ -39,19 +41,30 @@ std::array<int, 3> pickChannels(const OIIO::ImageSpec& spec) {
     return {grey, grey, grey};
 }
 
+// Pixels read at once (a strip of whole rows, at least one row or one row of tiles): 16 MB of floats.
+constexpr std::uint64_t kStripPixels = std::uint64_t(1) << 20;
+
+// Rows [y0, y1) of level 0 (counted from the data window's top), channels [begin, end), as floats.
+bool readRows(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int y0, int y1, int begin, int end,
+              float* data) {
+    if (spec.tile_width > 0)
+        return in.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z, spec.z + 1,
+                             begin, end, OIIO::TypeDesc::FLOAT, data);
+    return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, begin, end, OIIO::TypeDesc::FLOAT, data);
+}
+
 } // namespace
 
-RawImage readImage(const std::filesystem::path& file) {
-    const std::string name = file.string();
-    std::error_code ec;
-    if (!std::filesystem::exists(file, ec)) throw Error(name + ": no such file");
-    if (std::filesystem::is_directory(file, ec)) throw Error(name + ": is a directory, not an image");
+RawImage readImage(const std::filesystem::path& file,
+                   const std::function<void(const RawImage&)>& checkHeader) {
+    const std::string name = printableForMessage(file.string());
+    requireRegularFile(file); // before OIIO probes formats: a device or FIFO would never end
 
     // Alpha is ignored, so colour must not be premultiplied by it (OIIO would do so for PNG and TIFF).
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     MutedStderr muted;
-    auto in = OIIO::ImageInput::open(name, &config);
+    auto in = OIIO::ImageInput::open(file.string(), &config);
     if (!in) {
         std::string why = OIIO::geterror();
         throw Error(name + ": cannot read as an image" + (why.empty() ? std::string() : ": " + why));
@@ -62,6 +75,14 @@ RawImage readImage(const std::filesystem::path& file) {
         throw Error(name + ": image has no pixels (" + std::to_string(spec.width) + "x" +
                     std::to_string(spec.height) + ")");
     if (spec.depth > 1) throw Error(name + ": is a volume image, not an environment map");
+    // The header's claim is checked before any pixel memory is taken: a damaged or hostile header may
+    // claim billions of pixels.
+    const std::uint64_t count = std::uint64_t(spec.width) * std::uint64_t(spec.height);
+    const std::uint64_t maxPixels = limits::maxImagePixels();
+    if (count > maxPixels)
+        throw Error(name + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " is " +
+                    std::to_string(count) + " pixels, more than the limit of " + std::to_string(maxPixels) +
+                    " (" + limits::kMaxImagePixelsVariable + ")");
 
     RawImage raw;
     raw.file = name;
@@ -72,19 +93,50 @@ RawImage readImage(const std::filesystem::path& file) {
     if (spec.getattribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), chroma))
         raw.chromaticities.assign(chroma, chroma + 8);
     raw.integerPixels = !spec.format.is_floating_point();
+    raw.pixels.width = spec.width; // the size alone, for checkHeader: no pixels yet
+    raw.pixels.height = spec.height;
+    if (checkHeader) checkHeader(raw);
 
-    const std::size_t count = std::size_t(spec.width) * std::size_t(spec.height);
-    std::vector<float> buffer(count * std::size_t(spec.nchannels));
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, buffer.data()))
-        throw Error(name + ": cannot read pixels: " + in->geterror());
-    in->close();
-
+    // Only the channels from the lowest to the highest of R, G, B are read, or each of them on its own when
+    // they lie far apart (a file with render layers holds many more). Rows are read strip by strip into the
+    // image, whose memory is reserved but taken only as rows arrive: a truncated file that claims a huge
+    // size fails at its first missing strip having used little, and no second full copy is ever made.
     const std::array<int, 3> rgb = pickChannels(spec);
-    raw.pixels = ImageRGBA(spec.width, spec.height);
-    for (std::size_t i = 0; i < count; ++i) {
-        const float* p = &buffer[i * std::size_t(spec.nchannels)];
-        raw.pixels.pixels[i] = glm::vec4(p[rgb[0]], p[rgb[1]], p[rgb[2]], 1.0f);
+    const int first = *std::min_element(rgb.begin(), rgb.end());
+    const int span = *std::max_element(rgb.begin(), rgb.end()) - first + 1;
+    const bool together = span <= limits::kMaxChannelsRead;
+    const int rowStep = std::max(1, spec.tile_height);
+    const int stripRows = rowStep * std::max(1, int(kStripPixels / (std::uint64_t(spec.width) * rowStep)));
+    try {
+        raw.pixels.pixels.reserve(std::size_t(count));
+        std::vector<float> strip;
+        for (int y0 = 0; y0 < spec.height; y0 += stripRows) {
+            const int y1 = std::min(spec.height, y0 + stripRows);
+            const std::size_t offset = raw.pixels.pixels.size();
+            const std::size_t n = std::size_t(y1 - y0) * std::size_t(spec.width);
+            raw.pixels.pixels.resize(offset + n, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+            for (int c = 0; c < (together ? 1 : 3); ++c) {
+                const int begin = together ? first : rgb[std::size_t(c)];
+                const int end = together ? first + span : begin + 1;
+                strip.resize(n * std::size_t(end - begin));
+                if (!readRows(*in, spec, y0, y1, begin, end, strip.data()))
+                    throw Error(name + ": cannot read pixels: " + printableForMessage(in->geterror()));
+                for (std::size_t i = 0; i < n; ++i) {
+                    const float* p = &strip[i * std::size_t(end - begin)];
+                    glm::vec4& out = raw.pixels.pixels[offset + i];
+                    if (together)
+                        out = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first], 1.0f);
+                    else
+                        out[c] = p[0];
+                }
+            }
+        }
+    } catch (const std::bad_alloc&) {
+        throw Error(name + ": not enough memory for " + std::to_string(spec.width) + "x" +
+                    std::to_string(spec.height) + " pixels (" + limits::kMaxImagePixelsVariable +
+                    " sets a lower limit)");
     }
+    in->close();
     return raw;
 }
 

@@ -4,21 +4,27 @@
 #include <atomic>
 #include <cerrno>
 #include <cstring>
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace ibl {
 
 namespace fs = std::filesystem;
 
-AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
-    fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
+void checkOutputFile(const fs::path& target) {
+    const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
-        throw Error(target_.string() + ": directory " + dir.string() + " does not exist");
+        throw OutputError(target.string() + ": directory " + dir.string() + " does not exist");
     if (::access(dir.c_str(), W_OK) != 0)
-        throw Error(target_.string() + ": cannot write to directory " + dir.string() + ": " +
-                    std::strerror(errno));
-    if (fs::is_directory(target_, ec)) throw Error(target_.string() + ": is a directory");
+        throw OutputError(target.string() + ": cannot write to directory " + dir.string() + ": " +
+                          std::strerror(errno));
+    if (fs::is_directory(target, ec)) throw OutputError(target.string() + ": is a directory");
+}
+
+AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
+    checkOutputFile(target_);
+    const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
     static std::atomic<unsigned> counter{0};
     std::string name = "."; // built by appending: GCC 12 warns (-Wrestrict) on "." + std::string&&
     name += target_.stem().string();
@@ -37,8 +43,40 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::commit() {
     std::error_code ec;
     fs::rename(temp_, target_, ec);
-    if (ec) throw Error(target_.string() + ": cannot move the finished file into place: " + ec.message());
+    if (ec)
+        throw OutputError(target_.string() + ": cannot move the finished file into place: " + ec.message());
     committed_ = true;
+}
+
+void writeFileBytes(const fs::path& file, std::string_view bytes, const std::string& name) {
+    const std::string shown = name.empty() ? file.string() : name;
+    auto fail = [&](const char* what) {
+        throw OutputError(shown + ": " + what + ": " + std::strerror(errno));
+    };
+    const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) fail("cannot create");
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+        const ssize_t n = ::write(fd, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int error = n < 0 ? errno : ENOSPC; // a write of 0 bytes: the device is full
+            ::close(fd);
+            errno = error;
+            fail("cannot write");
+        }
+        p += n;
+        left -= std::size_t(n);
+    }
+    // A full disk may show only here (delayed allocation, network file systems).
+    if (::fsync(fd) != 0) {
+        const int error = errno;
+        ::close(fd);
+        errno = error;
+        fail("cannot write");
+    }
+    if (::close(fd) != 0) fail("cannot write");
 }
 
 } // namespace ibl

@@ -10,7 +10,7 @@ namespace ibl {
 CubeProfile parseCubeProfile(const std::string& name) {
     if (name == "standard") return CubeProfile::Standard;
     if (name == "three") return CubeProfile::Three;
-    throw Error("'" + name + "' is not one of standard, three");
+    throw Error(valueForMessage(name) + " is not one of standard, three"); // may come from a damaged file
 }
 
 const char* cubeProfileName(CubeProfile profile) {

@@ -2,9 +2,12 @@
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/atomic_file.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <string_view>
+#include <vector>
 
 namespace ibl {
 
@@ -19,13 +22,23 @@ void writeExr(const std::filesystem::path& path, const ImageRGBA& image, const E
     for (const auto& [key, value] : options.attributes)
         spec.attribute(key, value);
 
-    auto out = OIIO::ImageOutput::create(file.tempPath().string());
-    if (!out) throw Error(path.string() + ": cannot create an OpenEXR writer: " + OIIO::geterror());
-    if (!out->open(file.tempPath().string(), spec)) throw Error(path.string() + ": " + out->geterror());
+    // Encoded in memory and written by writeFileBytes, so that a full disk or a read-only directory is
+    // reported with the system's reason and the target's name (OpenEXR's own message names the temporary
+    // file and not the cause).
+    std::vector<unsigned char> encoded;
+    OIIO::Filesystem::IOVecOutput memory(encoded);
+    auto out = OIIO::ImageOutput::create("exr", &memory);
+    if (!out) throw OutputError(path.string() + ": cannot create an OpenEXR writer: " + OIIO::geterror());
+    void* proxy = &memory;
+    spec.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    if (!out->open(file.tempPath().string(), spec)) throw OutputError(path.string() + ": " + out->geterror());
     // The in-memory image is RGBA; a stride of 4 floats selects the first `channels` of each pixel.
     bool ok = out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data(), sizeof(glm::vec4));
     ok = out->close() && ok;
-    if (!ok) throw Error(path.string() + ": " + out->geterror());
+    if (!ok) throw OutputError(path.string() + ": " + out->geterror());
+    writeFileBytes(file.tempPath(),
+                   std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()),
+                   path.string());
     file.commit();
 }
 

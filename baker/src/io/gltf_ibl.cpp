@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <memory>
 
 #include <glm/geometric.hpp>
@@ -202,12 +201,7 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
     }
 
     AtomicFile gltf(path);
-    {
-        std::ofstream out(gltf.tempPath());
-        out << doc.dump(2) << '\n';
-        out.close();
-        if (!out) throw Error(path.string() + ": cannot write");
-    }
+    writeFileBytes(gltf.tempPath(), doc.dump(2) + '\n', path.string());
     for (auto& file : imageFiles)
         file->commit();
     gltf.commit();

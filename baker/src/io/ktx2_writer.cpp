@@ -91,7 +91,7 @@ class OutputFile {
 
   private:
     [[noreturn]] void fail(const char* what) {
-        throw Error(name_ + ": " + what + ": " + std::strerror(errno));
+        throw OutputError(name_ + ": " + what + ": " + std::strerror(errno));
     }
     std::string name_;
     int fd_ = -1;

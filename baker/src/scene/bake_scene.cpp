@@ -11,7 +11,6 @@
 #include "stage_keys.h"
 
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -89,8 +88,8 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         std::error_code ec;
         fs::create_directories(outputDirectory, ec);
         if (!fs::is_directory(outputDirectory))
-            throw Error(scene.name + ": outputs.directory: " + outputDirectory.string() +
-                        ": cannot create it");
+            throw OutputError(scene.name + ": outputs.directory: " + outputDirectory.string() +
+                              ": cannot create it" + (ec ? ": " + ec.message() : std::string()));
         const StageCache cache(options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache"
                                                               : options.cacheDirectory);
 
@@ -112,6 +111,9 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
                     context.dependencies[dependency] = entries.at(dependency);
                 try {
                     runStage(context);
+                } catch (const OutputError& e) { // a full disk, a read-only directory: the scene in front
+                    cache.discard(staging);
+                    throw OutputError(scene.name + ": " + e.what());
                 } catch (...) {
                     cache.discard(staging);
                     throw;
@@ -131,12 +133,9 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         const fs::path manifestPath = outputDirectory / "manifest.json";
         {
             AtomicFile file(manifestPath);
-            std::ofstream out(file.tempPath());
             const nlohmann::json document = buildManifest(manifest);
             summary.storage = storedProductsFromManifest(document);
-            out << document.dump(2) << '\n';
-            out.close();
-            if (!out) throw Error(manifestPath.string() + ": cannot write");
+            writeFileBytes(file.tempPath(), document.dump(2) + '\n', manifestPath.string());
             file.commit();
         }
         summary.products.push_back(manifestPath);

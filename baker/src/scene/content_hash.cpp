@@ -1,12 +1,13 @@
 #include "iblbake/bake_state/content_hash.h"
 
 #include "iblbake/core/error.h"
+#include "iblbake/core/input_file.h"
 
 #include <xxhash.h>
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
+#include <memory>
 #include <vector>
 
 namespace ibl {
@@ -52,21 +53,14 @@ std::string ContentHasher::hex() const {
 }
 
 std::string hashFile(const std::filesystem::path& file) {
-    std::ifstream in(file, std::ios::binary);
-    std::error_code ec;
-    if (!in || std::filesystem::is_directory(file, ec)) throw Error(file.string() + ": cannot read");
-    XXH3_state_t* state = XXH3_createState();
-    XXH3_128bits_reset(state);
+    InputFile in(file); // a device or FIFO is refused here, before it is read without end
+    const std::unique_ptr<XXH3_state_t, decltype(&XXH3_freeState)> state(XXH3_createState(), &XXH3_freeState);
+    if (!state) throw Error("content hash: out of memory");
+    XXH3_128bits_reset(state.get());
     std::vector<char> buffer(1 << 20);
-    while (in) {
-        in.read(buffer.data(), std::streamsize(buffer.size()));
-        XXH3_128bits_update(state, buffer.data(), std::size_t(in.gcount()));
-    }
-    const bool failed = in.bad();
-    const XXH128_hash_t hash = XXH3_128bits_digest(state);
-    XXH3_freeState(state);
-    if (failed) throw Error(file.string() + ": cannot read");
-    return toHex(hash);
+    while (const std::size_t n = in.read(buffer.data(), buffer.size()))
+        XXH3_128bits_update(state.get(), buffer.data(), n);
+    return toHex(XXH3_128bits_digest(state.get()));
 }
 
 } // namespace ibl

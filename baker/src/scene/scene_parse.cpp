@@ -4,6 +4,9 @@
 #include "iblbake/scene/scene.h"
 
 #include "iblbake/core/error.h"
+#include "iblbake/core/input_file.h"
+#include "iblbake/core/limits.h"
+#include "iblbake/core/output_path.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 
@@ -11,8 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
+#include <cstdio>
 #include <set>
 
 namespace ibl {
@@ -32,6 +34,16 @@ class Fail {
   private:
     std::string name_;
 };
+
+// A limit or a value for a message: "1e+09", "360", "-1.5".
+std::string shortNumber(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    return text;
+}
+
+constexpr double kMaxDistance = limits::kMaxSceneDistance;
+constexpr double kMaxDegrees = limits::kMaxRotationDegrees;
 
 const char* typeName(const json& v) {
     return v.is_object()    ? "an object"
@@ -77,6 +89,17 @@ class ObjectReader {
         if (!std::isfinite(d)) fail_(path, "must be a finite number");
         return d;
     }
+    // A number from lo to hi: the allowed range is in the refusal (limits.h).
+    double number(const std::string& k, double fallback, double lo, double hi) {
+        const json* v = take(k);
+        return v ? inRange(numberValue(*v, key(k)), key(k), lo, hi) : fallback;
+    }
+    double inRange(double d, const std::string& path, double lo, double hi) const {
+        if (!(d >= lo && d <= hi))
+            fail_(path, "must be a number from " + shortNumber(lo) + " to " + shortNumber(hi) + ", not " +
+                            shortNumber(d));
+        return d;
+    }
     int integer(const std::string& k, int fallback, int lo, int hi) {
         const json* v = take(k);
         if (!v) return fallback;
@@ -109,14 +132,15 @@ class ObjectReader {
             list += (list.empty() ? "" : ", ") + a;
         fail_(key(k), valueForMessage(s) + " is not one of " + list);
     }
-    glm::dvec3 vec3(const std::string& k, const glm::dvec3& fallback, const char* what = "3 numbers") {
+    glm::dvec3 vec3(const std::string& k, const glm::dvec3& fallback, double lo, double hi,
+                    const char* what = "3 numbers") {
         const json* v = take(k);
         if (!v) return fallback;
         if (!v->is_array() || v->size() != 3) fail_(key(k), std::string("must be ") + what);
         glm::dvec3 out;
         for (int i = 0; i < 3; ++i) {
             if (!(*v)[std::size_t(i)].is_number()) fail_(key(k), std::string("must be ") + what);
-            out[i] = numberValue((*v)[std::size_t(i)], key(k));
+            out[i] = inRange(numberValue((*v)[std::size_t(i)], key(k)), key(k), lo, hi);
         }
         return out;
     }
@@ -133,6 +157,9 @@ class ObjectReader {
     const Fail& fail_;
     std::set<std::string> remaining_;
 };
+
+// A preview's exposure in stops: 2^64 keeps every pixel's scale finite.
+constexpr double kMaxExposureStops = 64.0;
 
 fs::path resolve(const std::string& file, const fs::path& base) {
     fs::path p(file);
@@ -152,7 +179,10 @@ std::vector<fs::path> files(ObjectReader& r, const std::string& k, const fs::pat
         r.fail()(r.key(k), "must be a file name or an array of six (six-files layout)");
     }
     for (const fs::path& p : out)
-        if (p.empty() || !p.has_filename()) r.fail()(r.key(k), "must name a file");
+        if (p.empty() || !p.has_filename())
+            r.fail()(r.key(k), "must name a file");
+        else if (hasControlBytes(p.string())) // a NUL would cut the name short where the system reads it
+            r.fail()(r.key(k), quotedForMessage(p.string()) + " holds control bytes, which no file name may");
     return out;
 }
 
@@ -205,17 +235,17 @@ SceneVolume volume(const json& v, const std::string& path, const Fail& fail,
     const std::string shape = r.choice("shape", "", {"sphere", "box"});
     out.shape = shape == "sphere" ? SceneVolume::Shape::Sphere : SceneVolume::Shape::Box;
     if (!defaultCenter && !r.has("center")) fail(r.key("center"), "is required");
-    out.center = r.vec3("center", defaultCenter.value_or(glm::dvec3(0.0)));
+    out.center = r.vec3("center", defaultCenter.value_or(glm::dvec3(0.0)), -kMaxDistance, kMaxDistance);
     if (out.shape == SceneVolume::Shape::Sphere) {
         if (!r.has("radius")) fail(r.key("radius"), "is required for a sphere");
-        out.radius = r.number("radius", 0.0);
+        out.radius = r.number("radius", 0.0, 0.0, kMaxDistance);
         if (!(out.radius > 0.0)) fail(r.key("radius"), "must be a positive number");
     } else {
         if (!r.has("halfExtents")) fail(r.key("halfExtents"), "is required for a box");
-        out.halfExtents = r.vec3("halfExtents", glm::dvec3(0.0), "3 positive numbers");
+        out.halfExtents = r.vec3("halfExtents", glm::dvec3(0.0), 0.0, kMaxDistance, "3 positive numbers");
         for (int i = 0; i < 3; ++i)
             if (!(out.halfExtents[i] > 0.0)) fail(r.key("halfExtents"), "must be 3 positive numbers");
-        out.rotationDegrees = r.vec3("rotation", glm::dvec3(0.0));
+        out.rotationDegrees = r.vec3("rotation", glm::dvec3(0.0), -kMaxDegrees, kMaxDegrees);
     }
     r.finish();
     return out;
@@ -229,7 +259,7 @@ SceneEnvironment environment(const json& v, const fs::path& base, const Fail& fa
     checkLayoutFileCount(r, "layout", e.layout, e.files.size());
     e.colorSpace = r.string("colorSpace", "");
     e.workingColorSpace = r.choice("workingColorSpace", "lin_rec709", {"lin_rec709", "acescg"});
-    e.rotationDegrees = r.number("rotation", 0.0);
+    e.rotationDegrees = r.number("rotation", 0.0, -kMaxDegrees, kMaxDegrees);
     e.latLongPixels = r.choice("latlongPixels", "auto", kLatLongPixels);
     if (const json* c = r.take("calibration")) e.calibration = calibration(*c, r.key("calibration"), fail);
     e.extractSun = r.boolean("extractSun", false);
@@ -253,15 +283,14 @@ SceneProbe probe(const json& v, const std::string& path, const fs::path& base, c
     p.layout = r.choice("layout", "auto", kLayouts);
     checkLayoutFileCount(r, "layout", p.layout, p.capture.size());
     p.colorSpace = r.string("colorSpace", "");
-    p.rotationDegrees = r.number("rotation", 0.0);
+    p.rotationDegrees = r.number("rotation", 0.0, -kMaxDegrees, kMaxDegrees);
     p.latLongPixels = r.choice("latlongPixels", "auto", kLatLongPixels);
     if (!r.has("position")) fail(r.key("position"), "is required");
-    p.position = r.vec3("position", glm::dvec3(0.0));
+    p.position = r.vec3("position", glm::dvec3(0.0), -kMaxDistance, kMaxDistance);
     p.proxy = volume(r.required("proxy"), r.key("proxy"), fail, p.position);
     if (const json* i = r.take("influence"))
         p.influence = volume(*i, r.key("influence"), fail, p.proxy.center);
-    p.fadeDistance = r.number("fadeDistance", 0.0);
-    if (p.fadeDistance < 0.0) fail(r.key("fadeDistance"), "must not be negative");
+    p.fadeDistance = r.number("fadeDistance", 0.0, 0.0, kMaxDistance);
     if (const json* c = r.take("calibration")) p.calibration = calibration(*c, r.key("calibration"), fail);
     r.finish();
     return p;
@@ -324,13 +353,20 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     SceneOutputs o;
     const std::string directory = r.stringValue(r.required("directory"), r.key("directory"));
     if (directory.empty()) fail(r.key("directory"), "must name a directory");
+    if (hasControlBytes(directory))
+        fail(r.key("directory"),
+             quotedForMessage(directory) + " holds control bytes, which no file name may");
+    if (leavesItsDirectory(directory))
+        fail(r.key("directory"), valueForMessage(directory) +
+                                     " leaves the scene's directory: a relative output directory must stay "
+                                     "inside it (an absolute path may name any)");
     o.directory = resolve(directory, base);
     o.ktx2Format = r.choice("ktx2Format", "rgba16f", kKtx2FormatNames);
     o.profile = r.choice("profile", "standard", kCubeProfileNames);
     o.quality = r.choice("quality", "production", {"draft", "production", "reference"});
-    o.faceSize = r.integer("faceSize", 256, 1, 4096);
+    o.faceSize = r.integer("faceSize", 256, 1, limits::kMaxFaceSize);
     if (!isPowerOfTwo(o.faceSize)) fail(r.key("faceSize"), "must be a power of two");
-    o.probeFaceSize = r.integer("probeFaceSize", o.faceSize, 1, 4096);
+    o.probeFaceSize = r.integer("probeFaceSize", o.faceSize, 1, limits::kMaxFaceSize);
     if (!isPowerOfTwo(o.probeFaceSize)) fail(r.key("probeFaceSize"), "must be a power of two");
     o.dfgSize = r.integer("dfgSize", 128, 1, 1024);
     o.mipMapping = r.choice("mipMapping", "frostbite", {kMipMappingNames.begin(), kMipMappingNames.end()});
@@ -342,7 +378,7 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     o.gltf = optionalOutput<SceneGltfOutput>(r, "gltf", fail, [&](ObjectReader& g) {
         SceneGltfOutput out;
         out.file = outputFileName(g, "file", out.file, ".gltf", fail);
-        out.minFaceSize = g.integer("minFaceSize", out.minFaceSize, 1, 4096);
+        out.minFaceSize = g.integer("minFaceSize", out.minFaceSize, 1, limits::kMaxFaceSize);
         if (!isPowerOfTwo(out.minFaceSize)) fail(g.key("minFaceSize"), "must be a power of two");
         return out;
     });
@@ -350,7 +386,7 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
         ScenePreviewOutput out;
         out.file = outputFileName(p, "file", out.file, ".png", fail);
         out.sphereSize = p.integer("sphereSize", out.sphereSize, 8, 512);
-        out.exposure = p.number("exposure", out.exposure);
+        out.exposure = p.number("exposure", out.exposure, -kMaxExposureStops, kMaxExposureStops);
         return out;
     });
     r.finish();
@@ -413,11 +449,9 @@ Scene parseScene(std::string_view text, const std::string& name, const fs::path&
 }
 
 Scene loadSceneFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in || fs::is_directory(path)) throw Error(path.string() + ": cannot read the scene file");
-    std::string text{std::istreambuf_iterator<char>(in), {}};
-    if (in.bad()) throw Error(path.string() + ": cannot read the scene file");
-    return parseScene(text, path.string(), path.parent_path().empty() ? fs::path(".") : path.parent_path());
+    const std::string text = readInputFile(path, limits::kMaxDocumentBytes, "scene file");
+    return parseScene(text, printableForMessage(path.string()),
+                      path.parent_path().empty() ? fs::path(".") : path.parent_path());
 }
 
 } // namespace ibl

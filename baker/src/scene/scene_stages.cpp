@@ -11,6 +11,7 @@
 #include "iblbake/baker/sun.h"
 #include "iblbake/baker/sun_in_probe.h"
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 
@@ -128,6 +129,8 @@ void forInput(const StageContext& c, F&& work) {
     const std::string key = c.stage.inputs.empty() ? c.stage.id : c.stage.inputs[0].keyPath;
     try {
         work();
+    } catch (const OutputError&) { // names the output and the reason: the input is not to blame
+        throw;
     } catch (const SettingError& e) {
         throw Error(c.scene.name + ": " + sceneKeyFor(e.setting(), c.stage, key) + ": " + e.what());
     } catch (const Error& e) {
@@ -186,10 +189,7 @@ void runSun(const StageContext& c) {
     calibration["sunLight"] = json::parse(lightJson);
     writeCube(c.outputDirectory / kCubeFile, cube, "calibrated-environment-without-sun");
     writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
-    std::ofstream out(c.outputDirectory / "sun.json");
-    out << lightJson << '\n';
-    out.close();
-    if (!out) throw Error((c.outputDirectory / "sun.json").string() + ": cannot write");
+    writeFileBytes(c.outputDirectory / "sun.json", lightJson + '\n');
 }
 
 // What a detected sun left in the probe costs at runtime (environment.extractSun is false).
@@ -339,10 +339,7 @@ CubeMap readCubeFile(const fs::path& file) {
 }
 
 void writeJsonFile(const fs::path& file, const json& doc) {
-    std::ofstream out(file);
-    out << doc.dump(2) << '\n';
-    out.close();
-    if (!out) throw Error(file.string() + ": cannot write");
+    writeFileBytes(file, doc.dump(2) + '\n');
 }
 
 json readJsonFile(const fs::path& file) {

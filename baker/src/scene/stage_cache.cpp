@@ -2,6 +2,7 @@
 
 #include "iblbake/bake_state/content_hash.h"
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -52,7 +53,8 @@ StageCache::StageCache(fs::path directory) : directory_(std::move(directory)) {
     std::error_code ec;
     fs::create_directories(directory_, ec);
     if (ec || !fs::is_directory(directory_))
-        throw Error(directory_.string() + ": cannot create the cache directory");
+        throw OutputError(directory_.string() + ": cannot create the cache directory" +
+                          (ec ? ": " + ec.message() : std::string()));
 }
 
 std::optional<fs::path> StageCache::find(const std::string& key) const {
@@ -68,7 +70,7 @@ fs::path StageCache::staging(const std::string& key) const {
     const fs::path dir = directory_ / (".staging-" + key + "-" + uniqueSuffix());
     std::error_code ec;
     if (!fs::create_directory(dir, ec))
-        throw Error(dir.string() + ": cannot create a cache staging directory");
+        throw OutputError(dir.string() + ": cannot create a cache staging directory: " + ec.message());
     return dir;
 }
 
@@ -76,12 +78,7 @@ fs::path StageCache::commit(const std::string& key, const fs::path& staging) con
     nlohmann::json files = nlohmann::json::object();
     for (const fs::directory_entry& e : fs::directory_iterator(staging))
         if (e.is_regular_file()) files[e.path().filename().string()] = hashFile(e.path());
-    {
-        std::ofstream out(staging / kEntryFile);
-        out << nlohmann::json{{"key", key}, {"files", files}}.dump(2) << '\n';
-        out.close();
-        if (!out) throw Error((staging / kEntryFile).string() + ": cannot write");
-    }
+    writeFileBytes(staging / kEntryFile, nlohmann::json{{"key", key}, {"files", files}}.dump(2) + '\n');
     const fs::path target = directory_ / key;
     for (int attempt = 0; attempt < 2; ++attempt) {
         std::error_code ec;
@@ -112,7 +109,7 @@ void copyAtomically(const fs::path& from, const fs::path& to) {
     if (!ec) fs::rename(temp, to, ec);
     if (ec) {
         fs::remove(temp, ec);
-        throw Error(to.string() + ": cannot write");
+        throw OutputError(to.string() + ": cannot write: " + ec.message());
     }
 }
 

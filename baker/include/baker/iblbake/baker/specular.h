@@ -44,6 +44,9 @@ struct SpecularSettings {
 
 std::uint32_t samplesFor(const SpecularSettings& settings);
 int levelCountFor(int faceSize, const SpecularSettings& settings);
+// Before any work: the face size a power of two up to limits::kMaxFaceSize, levels 0 (full) or 1 to the full
+// count, samples up to limits::kMaxSamples. Throws ibl::SettingError "faceSize", "levels" or "samples".
+void validateSpecularSettings(const SpecularSettings& settings, int faceSize);
 
 struct SpecularLevelTiming {
     int level;

@@ -14,6 +14,14 @@ class Error : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// An Error writing an output file (a full disk, a read-only directory): its message names the output and
+// the system's reason, and a caller that puts the input being processed in front of its errors leaves
+// this one alone (an input is not to blame for a full disk).
+class OutputError : public Error {
+  public:
+    using Error::Error;
+};
+
 // An Error caused by the value of one setting. The message says what is wrong in the library's terms;
 // setting() names the setting as its struct field does (e.g. "layout", "sourceFaceSize", "calibration",
 // "extractSun"; each throwing function lists its own), so that a caller can put its own name for it in front:
@@ -55,16 +63,22 @@ inline bool hasControlBytes(std::string_view text) {
     return false;
 }
 
+// Text longer than this goes into a message shortened (quotedForMessage): a 10 MB key must not make a
+// 10 MB line.
+inline constexpr std::size_t kMaxMessageTextBytes = 256;
+
 // A key or path from an input file for a message: as it is (UTF-8 included), or quotedForMessage when it
-// holds control bytes, so the message stays one line (found by the fuzz targets of fuzz/).
+// holds control bytes or is longer than kMaxMessageTextBytes, so the message stays one short line (found
+// by the fuzz targets of fuzz/).
 inline std::string printableForMessage(std::string_view text) {
-    return hasControlBytes(text) ? quotedForMessage(text) : std::string(text);
+    return hasControlBytes(text) || text.size() > kMaxMessageTextBytes ? quotedForMessage(text)
+                                                                       : std::string(text);
 }
 
-// A value from an input file for a message: in single quotes, escaped like quotedForMessage when it holds
-// control bytes.
+// A value from an input file for a message: in single quotes, escaped and shortened like quotedForMessage
+// when it holds control bytes or is long.
 inline std::string valueForMessage(std::string_view value) {
-    if (hasControlBytes(value)) return quotedForMessage(value);
+    if (hasControlBytes(value) || value.size() > kMaxMessageTextBytes) return quotedForMessage(value);
     std::string out = "'";
     out.append(value);
     return out += '\'';

@@ -3,8 +3,14 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 namespace ibl {
+
+// Throws ibl::OutputError naming `target` when its directory does not exist or is not writable, or when it
+// is a directory: what AtomicFile checks, for a command to check every output before any work.
+void checkOutputFile(const std::filesystem::path& target);
 
 class AtomicFile {
   public:
@@ -24,5 +30,10 @@ class AtomicFile {
     std::filesystem::path temp_;
     bool committed_ = false;
 };
+
+// Writes `bytes` to `file` (created or truncated) and flushes them to disk. Throws ibl::OutputError
+// "<file>: cannot write: <the system's reason>" ("No space left on device", "Read-only file system"), naming
+// `name` when given (the target of a temporary file) instead of the file.
+void writeFileBytes(const std::filesystem::path& file, std::string_view bytes, const std::string& name = "");
 
 } // namespace ibl

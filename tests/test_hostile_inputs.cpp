@@ -1,0 +1,304 @@
+// Hostile inputs of a build farm (issue 17): image headers that claim huge sizes, devices, FIFOs and
+// symlink loops named as inputs, oversized scene files and manifests, values out of range, outputs that
+// would leave the scene's directory. Each must get a one-line error naming the file or key and the cause,
+// exit 1, and leave the directory exactly as it was. The headers claim sizes; the files stay small.
+#include "cli_runner.h"
+#include "scene_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sys/stat.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace ibl::test;
+using nlohmann::json;
+
+// Every path under `dir` with its size (directories, links and others as -1), symbolic links not followed
+// (a loop must not stop the listing): what a failed command must leave unchanged.
+void addListing(const fs::path& root, const fs::path& dir, std::map<std::string, std::intmax_t>& out) {
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const fs::file_status status = fs::symlink_status(e.path());
+        out[e.path().lexically_relative(root).string()] =
+            fs::is_regular_file(status) ? std::intmax_t(fs::file_size(e.path())) : -1;
+        if (fs::is_directory(status)) addListing(root, e.path(), out);
+    }
+}
+
+std::map<std::string, std::intmax_t> listing(const fs::path& dir) {
+    std::map<std::string, std::intmax_t> out;
+    addListing(dir, dir, out);
+    return out;
+}
+
+// The bytes of a small OpenEXR (64 x 32, float RGB) whose header is rewritten to claim width x height:
+// its dataWindow and displayWindow (box2i, OpenEXR file layout) are patched in place. 64 KB of zeros after
+// it give the offset table of the claimed rows something to read, so that the header is accepted.
+std::string exrClaiming(const fs::path& dir, int width, int height) {
+    const fs::path good = dir / "good_for_patch.exr";
+    writeLatLong(good, 0.5f);
+    std::string bytes = readBytes(good);
+    fs::remove(good);
+    for (const char* name : {"dataWindow", "displayWindow"}) {
+        const std::string key = std::string(name) + '\0' + "box2i" + '\0';
+        const std::size_t at = bytes.find(key);
+        EXPECT_NE(at, std::string::npos) << name;
+        const std::int32_t box[4] = {0, 0, width - 1, height - 1};
+        std::memcpy(&bytes[at + key.size() + 4], box, sizeof box); // after the attribute's size (16)
+    }
+    return bytes + std::string(64 << 10, '\0');
+}
+
+// A Radiance HDR header claiming width x height, followed by a few bytes of (bad) pixel data.
+std::string hdrClaiming(int width, int height) {
+    return "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y " + std::to_string(height) + " +X " +
+           std::to_string(width) + "\n" + std::string(64, '\x02');
+}
+
+class HostileInputs : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        dir = freshTempDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+        writeLatLong(dir / "sky.exr", 0.5f);
+    }
+    void TearDown() override { fs::remove_all(dir); }
+
+    // Runs `args` (in `dir`) and requires a clean refusal: exit 1, one line "iblbake: error: ..." holding
+    // every one of `expected` (the file or key named, the cause), and `dir` exactly as before.
+    void expectRefused(const std::string& args, const std::vector<std::string>& expected,
+                       const std::string& environment = "") {
+        const auto before = listing(dir);
+        expectOneLineRefusal(args, expected, environment);
+        EXPECT_EQ(listing(dir), before) << args << " left something behind";
+    }
+    void expectOneLineRefusal(const std::string& args, const std::vector<std::string>& expected,
+                              const std::string& environment = "") {
+        const CliRun r = runProgram("cd " + dir.string() + " && " + environment + IBLBAKE_CLI, args);
+        EXPECT_TRUE(r.exitCode == 1 || r.exitCode == 2) << args << ": " << r.err; // 2: a usage error
+        EXPECT_EQ(lineCount(r.err), 1) << args << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("iblbake: error: ", 0), 0u) << args << ": " << r.err;
+        EXPECT_LT(r.err.size(), 400u) << args; // long values are shortened
+        for (const std::string& text : expected)
+            EXPECT_NE(r.err.find(text), std::string::npos) << args << ": '" << text << "' not in " << r.err;
+    }
+
+    // A scene with `environment` and `outputs` merged over a small valid one.
+    fs::path scene(const std::string& name, const json& patch) {
+        json s = {{"environment", {{"file", "sky.exr"}}},
+                  {"outputs", {{"directory", "out"}, {"faceSize", 8}, {"quality", "draft"}}}};
+        s.merge_patch(patch);
+        writeText(dir / name, s.dump());
+        return dir / name;
+    }
+
+    fs::path dir;
+};
+
+const std::string kSpecular = "specular --size 8 --quality draft --backend cpu -o s.ktx2 ";
+
+TEST_F(HostileInputs, ImageHeadersClaimingHugeSizesAreRefusedBeforeReadingPixels) {
+    // 262661 x 15105: 3.97e9 pixels, over the 2^28 limit, refused from the header.
+    writeText(dir / "huge.exr", exrClaiming(dir, 262661, 15105));
+    expectRefused(
+        kSpecular + "huge.exr --layout latlong",
+        {"huge.exr", "262661x15105", "more than the limit of 268435456", "IBLBAKE_MAX_IMAGE_PIXELS"});
+    writeText(dir / "huge.hdr", hdrClaiming(262661, 15105));
+    expectRefused(kSpecular + "huge.hdr", {"huge.hdr", "more than the limit"});
+    // 525341 x 59 fits no layout: refused from the header, not after reading 31 million pixels.
+    writeText(dir / "wide.hdr", hdrClaiming(525341, 59));
+    expectRefused(kSpecular + "wide.hdr", {"wide.hdr", "cannot tell the layout of a 525341x59 image"});
+    expectRefused(kSpecular + "wide.hdr --layout latlong", {"wide.hdr", "2:1", "525341x59"});
+    writeText(dir / "wide.exr", exrClaiming(dir, 525341, 59));
+    expectRefused("inspect wide.exr", {"wide.exr", "525341x59"});
+    // 100663297 x 1 (under the pixel limit): no layout either.
+    writeText(dir / "line.exr", exrClaiming(dir, 100663297, 1));
+    expectRefused(kSpecular + "line.exr", {"line.exr"});
+    // A 16384 x 8192 lat-long within the limit whose pixels are missing: read strip by strip, it fails at
+    // the first missing one instead of after taking memory for the whole claim.
+    writeText(dir / "truncated.hdr", hdrClaiming(16384, 8192));
+    expectRefused(kSpecular + "truncated.hdr", {"truncated.hdr", "cannot read pixels"});
+    writeText(dir / "truncated.exr", exrClaiming(dir, 16384, 8192));
+    expectRefused(kSpecular + "truncated.exr", {"truncated.exr", "cannot read pixels"});
+    expectRefused("calibrate truncated.exr --scale 2 -o c.exr", {"truncated.exr", "cannot read pixels"});
+}
+
+TEST_F(HostileInputs, ThePixelLimitIsSetByItsVariable) {
+    expectRefused(kSpecular + "sky.exr", {"sky.exr", "64x32 is 2048 pixels, more than the limit of 2047"},
+                  "IBLBAKE_MAX_IMAGE_PIXELS=2047 ");
+    expectRefused(kSpecular + "sky.exr", {"IBLBAKE_MAX_IMAGE_PIXELS", "'lots'", "not a whole number"},
+                  "IBLBAKE_MAX_IMAGE_PIXELS=lots ");
+    const CliRun ok = runProgram("cd " + dir.string() + " && IBLBAKE_MAX_IMAGE_PIXELS=2048 " + IBLBAKE_CLI,
+                                 kSpecular + "sky.exr");
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+}
+
+TEST_F(HostileInputs, DevicesFifosAndSymlinkLoopsAreRefusedBeforeAnythingReadsThem) {
+    ASSERT_EQ(::mkfifo((dir / "fifo.hdr").c_str(), 0600), 0);
+    fs::create_symlink("loop_b.hdr", dir / "loop_a.hdr");
+    fs::create_symlink("loop_a.hdr", dir / "loop_b.hdr");
+    fs::create_directory(dir / "folder.hdr");
+    expectRefused(kSpecular + "/dev/zero", {"/dev/zero: is a character device, not a regular file"});
+    expectRefused("inspect /dev/zero", {"/dev/zero: is a character device, not a regular file"});
+    expectRefused(kSpecular + "fifo.hdr", {"fifo.hdr: is a FIFO, not a regular file"});
+    expectRefused(kSpecular + "loop_a.hdr", {"loop_a.hdr: Too many levels of symbolic links"});
+    expectRefused(kSpecular + "folder.hdr", {"folder.hdr: is a directory"});
+    expectRefused(kSpecular + "missing.hdr", {"missing.hdr: no such file"});
+    // In a scene: before the content hash; the scene file and the manifest themselves.
+    scene("device.json", {{"environment", {{"file", "/dev/zero"}}}});
+    expectRefused("bake device.json --cache cache --backend cpu --quiet",
+                  {"device.json: environment.file: /dev/zero: is a character device"});
+    scene("fifo.json", {{"environment", {{"file", "fifo.hdr"}}}});
+    expectRefused("bake fifo.json --cache cache --backend cpu --quiet",
+                  {"fifo.json: environment.file:", "fifo.hdr: is a FIFO"});
+    scene("loop.json", {{"environment", {{"file", "loop_a.hdr"}}}});
+    expectRefused("bake loop.json --cache cache --backend cpu --quiet",
+                  {"loop.json: environment.file:", "Too many levels of symbolic links"});
+    ASSERT_EQ(::mkfifo((dir / "scene_fifo.json").c_str(), 0600), 0);
+    expectRefused("bake /dev/zero --cache cache", {"/dev/zero: is a character device"});
+    expectRefused("bake scene_fifo.json --cache cache", {"scene_fifo.json: is a FIFO"});
+    expectRefused("plan scene_fifo.json", {"scene_fifo.json: is a FIFO"});
+    expectRefused("batch /dev/zero", {"/dev/zero: is a character device"});
+    expectRefused("batch scene_fifo.json", {"scene_fifo.json: is a FIFO"});
+}
+
+TEST_F(HostileInputs, OversizedSceneFilesAndManifestsAreRefusedBeforeParsing) {
+    // Sparse: the size is claimed, not written.
+    for (const char* name : {"big_scene.json", "big_manifest.json"}) {
+        writeText(dir / name, "{");
+        fs::resize_file(dir / name, std::uintmax_t(17) << 20);
+    }
+    expectRefused("bake big_scene.json --cache cache",
+                  {"big_scene.json: is 17825792 bytes, more than the 16777216 bytes a scene file may have"});
+    expectRefused(
+        "batch big_manifest.json",
+        {"big_manifest.json: is 17825792 bytes, more than the 16777216 bytes a batch manifest may have"});
+}
+
+TEST_F(HostileInputs, SceneValuesOutOfRangeAreRefusedWithTheirRange) {
+    const json probe = {{"name", "p"},
+                        {"capture", "sky.exr"},
+                        {"position", {0, 0, 0}},
+                        {"proxy", {{"shape", "box"}, {"halfExtents", {1e308, 1, 1}}}}};
+    scene("half.json", {{"probes", {probe}}});
+    expectRefused("bake half.json --cache cache --backend cpu --quiet",
+                  {"half.json: probes[0].proxy.halfExtents: must be a number from 0 to 1e+09, not 1e+308"});
+    json faded = probe;
+    faded["proxy"] = {{"shape", "sphere"}, {"radius", 1}};
+    faded["fadeDistance"] = 1e300;
+    scene("fade.json", {{"probes", {faded}}});
+    expectRefused("bake fade.json --cache cache --backend cpu --quiet",
+                  {"fade.json: probes[0].fadeDistance: must be a number from 0 to 1e+09, not 1e+300"});
+    scene("rotation.json", {{"environment", {{"rotation", 1e308}}}});
+    expectRefused("bake rotation.json --cache cache --backend cpu --quiet",
+                  {"rotation.json: environment.rotation: must be a number from -360 to 360, not 1e+308"});
+    scene("face.json", {{"outputs", {{"faceSize", 8192}}}});
+    expectRefused("bake face.json --cache cache --quiet", {"face.json: outputs.faceSize:", "4096"});
+}
+
+TEST_F(HostileInputs, CommandLineValuesOutOfRangeAreRefused) {
+    expectRefused(kSpecular + "sky.exr --levels 1e9", {"--levels"});
+    expectRefused(kSpecular + "sky.exr --levels -1", {"--levels", "1 to 13"});
+    expectRefused(kSpecular + "sky.exr --levels 0", {"--levels", "1 to 13"});
+    expectRefused(kSpecular + "sky.exr --levels 5", {"--levels: the level count 5 is not from 1 to 4"});
+    expectRefused(kSpecular + "sky.exr --samples 4294967295", {"--samples"});
+    expectRefused("specular sky.exr --size 8192 -o s.ktx2",
+                  {"--size: 8192 is not a power of two from 1 to 4096"});
+    expectRefused("calibrate sky.exr --scale 1e308 -o c.exr",
+                  {"--scale", "sky.exr", "calibration factor 1e+308", "beyond the largest float"});
+    expectRefused(kSpecular + "sky.exr --rotate 1e30", {"--rotate", "from -360 to 360"});
+}
+
+TEST_F(HostileInputs, LongAndBinaryTextIsShortenedAndQuoted) {
+    json s = json::parse(readBytes(scene("long.json", json::object())));
+    s[std::string(10 << 20, 'k')] = 1; // a 10 MB unknown key
+    writeText(dir / "long.json", s.dump());
+    expectRefused("bake long.json --cache cache --quiet", {"long.json: 'kkkk", "...': unknown key"});
+    scene("nul.json", {{"environment", {{"file", std::string("a\0b.hdr", 7)}}}});
+    expectRefused("bake nul.json --cache cache --quiet",
+                  {"nul.json: environment.file:", "'a\\x00b.hdr' holds control bytes"});
+}
+
+TEST_F(HostileInputs, RelativeOutputsMayNotLeaveTheScenesDirectory) {
+    fs::create_directories(dir / "scenes" / "deep");
+    writeLatLong(dir / "scenes" / "deep" / "sky.exr", 0.5f);
+    writeText(
+        dir / "scenes" / "deep" / "escape.json",
+        json({{"environment", {{"file", "sky.exr"}}}, {"outputs", {{"directory", "../../etc"}}}}).dump());
+    expectRefused("bake scenes/deep/escape.json --cache cache --quiet",
+                  {"escape.json: outputs.directory: '../../etc' leaves the scene's directory"});
+    writeText(
+        dir / "scenes" / "deep" / "sneaky.json",
+        json({{"environment", {{"file", "sky.exr"}}}, {"outputs", {{"directory", "a/../../x"}}}}).dump());
+    expectRefused("bake scenes/deep/sneaky.json --cache cache --quiet",
+                  {"outputs.directory: 'a/../../x' leaves"});
+    writeText(dir / "scenes" / "deep" / "items.json", R"([{"hdri": "sky.exr", "output": "../../etc-x"}])");
+    expectRefused("batch scenes/deep/items.json --quiet",
+                  {"items.json: items[0].output: '../../etc-x' leaves the manifest's directory"});
+    writeText(dir / "scenes" / "deep" / "ids.json", R"([{"hdri": "sky.exr", "id": "../../x"}])");
+    expectRefused("batch scenes/deep/ids.json --quiet", {"ids.json: items[0].id: '../../x' must be"});
+}
+
+TEST_F(HostileInputs, EveryOutputIsCheckedBeforeAnyWork) {
+    fs::create_directory(dir / "folder");
+    writeText(dir / "plain_file", "x");
+    expectRefused(kSpecular + "sky.exr --preview folder", {"folder: is a directory"});
+    expectRefused(kSpecular + "sky.exr --exr plain_file", {"plain_file: is not a directory"});
+    expectRefused("specular sky.exr --size 8 -o folder", {"folder: is a directory"});
+    expectRefused("specular sky.exr --size 8 -o missing/s.ktx2",
+                  {"missing/s.ktx2: directory missing does not exist"});
+}
+
+// A small tmpfs at dir/name (mounting needs root: skipped otherwise), filled to the last byte when `full`,
+// or remounted read-only; unmounted by the fixture.
+class FullAndReadOnlyDisks : public HostileInputs {
+  protected:
+    bool mountSmall(const std::string& name, bool full, bool readOnly) {
+        const fs::path at = dir / name;
+        fs::create_directory(at);
+        if (std::system(("mount -t tmpfs -o size=256k tmpfs " + at.string() + " 2>/dev/null").c_str()) != 0)
+            return false;
+        mounts.push_back(at);
+        if (full) // dd stops at the end of the device
+            std::system(("dd if=/dev/zero of=" + (at / "filler").string() + " bs=4k 2>/dev/null").c_str());
+        if (readOnly) std::system(("mount -o remount,ro " + at.string()).c_str());
+        return true;
+    }
+    void TearDown() override {
+        for (const fs::path& at : mounts)
+            std::system(("umount " + at.string()).c_str());
+        HostileInputs::TearDown();
+    }
+    std::vector<fs::path> mounts;
+};
+
+TEST_F(FullAndReadOnlyDisks, WriteFailuresNameTheOutputAndTheSystemsReason) {
+    if (!mountSmall("full", true, false) || !mountSmall("ro", false, true))
+        GTEST_SKIP() << "mounting a tmpfs needs root";
+    const std::string noSpace = "No space left on device", readOnly = "Read-only file system";
+    expectRefused("diffuse sky.exr --backend cpu -o full/d.json", {"full/d.json: cannot write", noSpace});
+    expectRefused("calibrate sky.exr --scale 2 -o full/c.exr", {"full/c.exr: cannot write", noSpace});
+    expectRefused("dfg --size 8 --samples 16 --backend cpu -o full/dfg.ktx2", {"full/dfg.ktx2", noSpace});
+    expectRefused("specular --size 8 --quality draft --backend cpu -o ro/s.ktx2 sky.exr",
+                  {"ro/s.ktx2", readOnly});
+    // A scene whose outputs cannot be written: the output and the reason, not the environment, are named.
+    // (What a failed bake leaves in its cache and output directory is item 4 of issue 17, not checked here.)
+    scene("to_full.json", {{"outputs", {{"directory", "full/out"}}}});
+    expectOneLineRefusal("bake to_full.json --backend cpu --quiet", {"to_full.json: full/out/", noSpace});
+    scene("to_ro.json", {{"outputs", {{"directory", "ro/out"}}}});
+    expectOneLineRefusal("bake to_ro.json --backend cpu --quiet", {"to_ro.json", "ro/out", readOnly});
+    scene("to_dir.json", {{"outputs", {{"directory", "out"}}}});
+    expectOneLineRefusal("bake to_dir.json --force --cache ro/cache --backend cpu --quiet",
+                         {"ro/cache", readOnly});
+}
+
+} // namespace
