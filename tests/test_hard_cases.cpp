@@ -84,15 +84,6 @@ namespace {
 using namespace ibl;
 using namespace ibl::test;
 
-void expectFiniteNonNegative(const CubeMap& cube, const char* what) {
-    for (const ImageRGBA& face : cube.faces)
-        for (const glm::vec4& p : face.pixels)
-            for (int c = 0; c < 3; ++c) {
-                ASSERT_TRUE(std::isfinite(p[c])) << what;
-                ASSERT_GE(p[c], 0.0f) << what;
-            }
-}
-
 void expectFinite(const ShRgb& sh, const char* what) {
     for (const glm::dvec3& c : sh)
         ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) << what;

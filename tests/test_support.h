@@ -44,6 +44,16 @@ CubeMap makeCube(int n, F radiance) {
 using ibl::relativeMeanAbsError;
 
 // A file of ../shared/data/hdri (tests skip when it is absent).
+// Every RGB value of the cube finite and >= 0 (the hard-case suite's first rule); `what` names the case.
+inline void expectFiniteNonNegative(const CubeMap& cube, const char* what) {
+    for (const ImageRGBA& face : cube.faces)
+        for (const glm::vec4& p : face.pixels)
+            for (int c = 0; c < 3; ++c) {
+                ASSERT_TRUE(std::isfinite(p[c])) << what;
+                ASSERT_GE(p[c], 0.0f) << what;
+            }
+}
+
 inline std::filesystem::path hdriPath(const char* name) {
     return std::filesystem::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / name;
 }
