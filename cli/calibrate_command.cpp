@@ -18,6 +18,8 @@
 #include <iblbake/baker/products.h>
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
+#include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/ktx2/output_set.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -65,6 +67,8 @@ Action addCalibrateCommand(CLI::App& app) {
         if (!o->calibration.anySource())
             throw Error("give one calibration source: --scale, --ev100, --illuminance, --sun-illuminance, "
                         "--sky-luminance or --radiometric (--scale 1 keeps the values)");
+        checkOutputFile(o->output); // every output checked before any work
+        if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
         CalibratedImage calibrated;
         try {
             IngestSettings ingest;
@@ -102,9 +106,11 @@ Action addCalibrateCommand(CLI::App& app) {
         for (auto& kv : calibrationKeyValues(calibrated.record, calibrated.sun, "iblbake:"))
             exr.attributes.push_back(std::move(kv));
 
-        std::unique_ptr<AtomicFile> sunJson = stageSunJson(o->calibration, calibrated.record, calibrated.sun);
-        writeExr(o->output, image, exr);
-        if (sunJson) sunJson->commit();
+        OutputSet outputs;
+        outputs.writeFile(o->output,
+                          [&](const std::filesystem::path& temporary) { writeExr(temporary, image, exr); });
+        writeSunJson(outputs, o->calibration, calibrated.record, calibrated.sun);
+        outputs.commit();
 
         std::printf("input   %s: %dx%d %s, %s -> %s, source cube %d\n", r.file.c_str(), r.width, r.height,
                     layoutText(r).c_str(), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),

@@ -101,15 +101,12 @@ Error withFlag(const SettingError& error, const CalibrationOptions& calibration)
                  error.what());
 }
 
-std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options, const CalibrationRecord& record,
-                                         const std::optional<DiskLight>& sun) {
-    if (options.sunJson.empty() || !sun) return nullptr;
-    auto file = std::make_unique<AtomicFile>(options.sunJson);
-    std::ofstream out(file->tempPath());
-    out << sunJson(*sun, record) << "\n";
-    out.close();
-    if (!out) throw Error(options.sunJson + ": cannot write the sun's JSON");
-    return file;
+void writeSunJson(OutputSet& outputs, const CalibrationOptions& options, const CalibrationRecord& record,
+                  const std::optional<DiskLight>& sun) {
+    if (options.sunJson.empty() || !sun) return;
+    outputs.writeFile(options.sunJson, [&](const std::filesystem::path& temporary) {
+        writeFileBytes(temporary, sunJson(*sun, record) + "\n");
+    });
 }
 
 PreparedEnvironment ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,

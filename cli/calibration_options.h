@@ -7,9 +7,10 @@
 //   ...
 //   PreparedEnvironment in = ingestCalibrated(input, calibration, size);  // prepareEnvironment, printed
 //   keyValues = ldChainKeyValues(..., in.record, in.sun);  // products.h
-//   auto sunJson = stageSunJson(calibration, in.record, in.sun);  // before writing the main output ...
-//   ... write the main output ...
-//   if (sunJson) sunJson->commit();                            // ... and committed after it
+//   OutputSet outputs;                                        // every output of the command
+//   ... outputs.writeFile(main output, ...) ...
+//   writeSunJson(outputs, calibration, in.record, in.sun);    // with --sun-json
+//   outputs.commit();                                         // all of them, or none
 #pragma once
 
 #include <iblbake/baker/calibration.h>
@@ -18,6 +19,7 @@
 #include <iblbake/baker/sun.h>
 #include <iblbake/core/error.h>
 #include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/ktx2/output_set.h>
 
 #include <CLI/CLI.hpp>
 
@@ -51,10 +53,9 @@ struct CalibrationOptions {
 // park.hdr: no sun detected: ..." (`calibration`: the chosen source's flag).
 Error withFlag(const SettingError& error, const CalibrationOptions& calibration);
 
-// With --sun-json: the light written to a temporary file beside the target; commit() it once the main
-// output is written, so that a failed run leaves neither. nullptr without --sun-json.
-std::unique_ptr<AtomicFile> stageSunJson(const CalibrationOptions& options, const CalibrationRecord& record,
-                                         const std::optional<DiskLight>& sun);
+// With --sun-json and a sun: the light, added to the command's outputs (committed with them).
+void writeSunJson(OutputSet& outputs, const CalibrationOptions& options, const CalibrationRecord& record,
+                  const std::optional<DiskLight>& sun);
 
 struct InputOptions;
 

@@ -5,6 +5,7 @@
 #include <iblbake/baker/dfg_lut.h>
 #include <iblbake/baker/exr_output.h>
 #include <iblbake/baker/products.h>
+#include <iblbake/ktx2/atomic_file.h>
 
 #include <chrono>
 #include <cstdio>
@@ -37,6 +38,7 @@ Action addDfgCommand(CLI::App& app) {
     opts->backend.addTo(*cmd);
 
     return [opts] {
+        checkOutputFile(opts->output); // before the work
         Executor executor = opts->backend.makeExecutor();
         auto start = std::chrono::steady_clock::now();
         ImageRGBA lut = bakeDfgLut(opts->settings, executor);

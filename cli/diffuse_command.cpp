@@ -14,6 +14,7 @@
 #include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
+#include <iblbake/ktx2/output_set.h>
 
 #include <nlohmann/json.hpp>
 
@@ -114,10 +115,11 @@ Action addDiffuseCommand(CLI::App& app) {
             throw Error("--window-param: needs --window sloan, hanning or lanczos");
         if (wantCube && std::filesystem::absolute(o->irradianceCube) == std::filesystem::absolute(o->output))
             throw Error("--irradiance-cube: " + o->irradianceCube + " is also the JSON output");
-        // Fail on unwritable outputs before the work; both files appear only when everything succeeded.
-        AtomicFile jsonFile(o->output);
-        std::optional<AtomicFile> cubeFile;
-        if (wantCube) cubeFile.emplace(o->irradianceCube);
+        // Fail on unwritable outputs before the work; the files appear only when everything succeeded.
+        checkOutputFile(o->output);
+        if (wantCube) checkOutputFile(o->irradianceCube);
+        if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
+        OutputSet outputs;
 
         Executor executor = o->backend.makeExecutor();
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size);
@@ -170,7 +172,10 @@ Action addDiffuseCommand(CLI::App& app) {
             CubeMapChain chain;
             chain.levels.push_back(std::move(cube));
             const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
-            Ktx2WriteStats stats = writeProductCube(cubeFile->tempPath(), chain, format, kv, storage);
+            Ktx2WriteStats stats;
+            outputs.writeFile(o->irradianceCube, [&](const std::filesystem::path& temporary) {
+                stats = writeProductCube(temporary, chain, format, kv, storage);
+            });
             std::printf("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
                         o->irradianceSize, o->irradianceMethod.c_str(), o->format.c_str(), cubeMs,
                         (unsigned long long)stats.clampedTexels, (unsigned long long)shClamped);
@@ -201,11 +206,11 @@ Action addDiffuseCommand(CLI::App& app) {
         doc["timing"] = {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}};
         if (wantCube) doc["irradianceCube"] = cubeJson;
 
-        writeFileBytes(jsonFile.tempPath(), doc.dump(2) + '\n', o->output);
-        auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
-        if (cubeFile) cubeFile->commit();
-        jsonFile.commit();
-        if (sunJson) sunJson->commit();
+        outputs.writeFile(o->output, [&](const std::filesystem::path& temporary) {
+            writeFileBytes(temporary, doc.dump(2) + '\n');
+        });
+        writeSunJson(outputs, o->calibration, calibration.record, calibration.sun);
+        outputs.commit();
         std::printf("wrote   %s%s%s\n", o->output.c_str(), wantCube ? " and " : "",
                     wantCube ? o->irradianceCube.c_str() : "");
         std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n", ingestMs, shMs,

@@ -8,7 +8,6 @@
 #include <iblbake/ktx2/atomic_file.h>
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 
 namespace ibl::cli {
@@ -36,12 +35,7 @@ Action addExportShCommand(CLI::App& app) {
         const std::filesystem::path diffuse = std::filesystem::path(o->bakeDir) / "diffuse.json";
         const std::string text = filamentShText(readPrescaledIrradiance(diffuse));
         AtomicFile file(o->output);
-        {
-            std::ofstream out(file.tempPath());
-            out << text;
-            out.close();
-            if (!out) throw Error(o->output + ": cannot write");
-        }
+        writeFileBytes(file.tempPath(), text, o->output);
         file.commit();
         std::printf("wrote   %s (Filament sh.txt from %s)\n", o->output.c_str(), diffuse.c_str());
         return 0;

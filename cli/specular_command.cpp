@@ -14,6 +14,7 @@
 #include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
+#include <iblbake/ktx2/output_set.h>
 
 #include <algorithm>
 #include <chrono>
@@ -45,7 +46,6 @@ struct SpecularOptions {
 
 // One EXR per level: the six faces side by side in +X, -X, +Y, -Y, +Z, -Z order (OpenGL orientation).
 void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, MipMapping mapping) {
-    std::filesystem::create_directories(dir);
     for (std::size_t m = 0; m < chain.levels.size(); ++m) {
         const CubeMap& level = chain.levels[m];
         ImageRGBA strip(6 * level.faceSize, level.faceSize);
@@ -115,6 +115,10 @@ Action addSpecularCommand(CLI::App& app) {
         if (!o->exrDir.empty() && std::filesystem::exists(o->exrDir) &&
             !std::filesystem::is_directory(o->exrDir))
             throw Error(o->exrDir + ": is not a directory (--exr)");
+        if (!o->exrDir.empty()) // its files, or the directory the command will make
+            checkOutputFile(std::filesystem::is_directory(o->exrDir) ? o->exrDir + "/level_0.exr"
+                                                                     : o->exrDir);
+        if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
         Executor executor = o->backend.makeExecutor();
         // The cube with the sun is kept for level 0 (below).
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
@@ -146,12 +150,22 @@ Action addSpecularCommand(CLI::App& app) {
         ld.sunMaxSolidAngle = o->calibration.sunMaxSolidAngle;
         Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
         kv.emplace_back(kCubeProfileKey, o->profile);
-        auto sunJson = stageSunJson(o->calibration, calibration.record, calibration.sun);
         const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
-        Ktx2WriteStats stats = writeProductCube(o->output, chain, format, kv, storage);
-        if (sunJson) sunJson->commit();
-        if (!o->exrDir.empty()) writeDebugExr(o->exrDir, chain, settings.mapping);
-        if (!o->preview.empty()) writeChainPreview(o->preview, chain);
+        OutputSet outputs; // all of them or none: a failed --preview leaves no -o
+        Ktx2WriteStats stats;
+        outputs.writeFile(o->output, [&](const std::filesystem::path& temporary) {
+            stats = writeProductCube(temporary, chain, format, kv, storage);
+        });
+        writeSunJson(outputs, o->calibration, calibration.record, calibration.sun);
+        if (!o->exrDir.empty())
+            outputs.writeDirectory(o->exrDir, [&](const std::filesystem::path& temporary) {
+                writeDebugExr(temporary, chain, settings.mapping);
+            });
+        if (!o->preview.empty())
+            outputs.writeFile(o->preview, [&](const std::filesystem::path& temporary) {
+                writeChainPreview(temporary, chain);
+            });
+        outputs.commit();
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
                     (unsigned long long)stats.repairedNonFinite);

@@ -25,5 +25,5 @@ set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "pocl-opencl-icd | opencl-icd, fonts-dejavu-core")
 # What building against the runtime needs (its headers include GLM and CL/opencl.hpp; a static runtime links
 # TBB and the ICD loader): recommended, so that a farm node can leave them out with --no-install-recommends.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libglm-dev, opencl-clhpp-headers, ocl-icd-opencl-dev, libtbb-dev, pkg-config")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "libglm-dev, opencl-clhpp-headers, ocl-icd-opencl-dev, libtbb-dev, libxxhash-dev, pkg-config")
 include(CPack)

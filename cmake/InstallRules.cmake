@@ -52,7 +52,7 @@ install(FILES ${PROJECT_BINARY_DIR}/iblbakeConfig.cmake ${PROJECT_BINARY_DIR}/ib
 file(RELATIVE_PATH IBLBAKE_PC_TO_PREFIX ${CMAKE_INSTALL_FULL_LIBDIR}/pkgconfig ${CMAKE_INSTALL_PREFIX})
 string(REGEX REPLACE "/$" "" IBLBAKE_PC_TO_PREFIX "${IBLBAKE_PC_TO_PREFIX}")
 if(IBLBAKE_RUNTIME_STATIC)
-  set(IBLBAKE_PC_REQUIRES_STATIC " tbb")
+  set(IBLBAKE_PC_REQUIRES_STATIC " tbb libxxhash") # libxxhash: program-binary keys (iblbake_opencl)
 else()
   set(IBLBAKE_PC_REQUIRES_STATIC "")
 endif()

@@ -59,9 +59,11 @@ set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
 # that kept the sun, the re-filter to the extension's mapping, the RGBD PNG writer) and `iblbake preview`
 # (the runtime module and its kernels, the brute-force reference, the labelled grid, PNG and EXR writers).
 set(IBLBAKE_STAGE_CODE_gltf-export stage_runner kernel_host ld_chain baker/src/scene/engine_output_stages.cpp
-    baker/src/export baker/src/calibration baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp)
+    baker/src/export baker/src/calibration baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp
+    baker/src/io/encoded_image.cpp)
 set(IBLBAKE_STAGE_CODE_material-preview stage_runner kernel_host baker/src/scene/engine_output_stages.cpp
-    baker/src/preview baker/runtime/src kernels/runtime.cl baker/src/io/preview.cpp baker/src/io/exr_output.cpp)
+    baker/src/preview baker/runtime/src kernels/runtime.cl baker/src/io/preview.cpp baker/src/io/exr_output.cpp
+    baker/src/io/encoded_image.cpp)
 set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp
     baker/src/products)
 
@@ -74,6 +76,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/up_to_date.cpp
     baker/src/batch baker/src/accuracy
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
+    baker/src/io/output_set.cpp # moves finished files into place, decides no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
     baker/src/stages/specular_reference.cpp baker/src/stages/specular_settings.cpp
     kernels/dispatch_check.cl kernels/dispatch_check.h # dispatch_check: the dispatch helper's test kernel

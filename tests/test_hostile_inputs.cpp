@@ -11,11 +11,16 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <fcntl.h>
 #include <map>
+#include <sys/file.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace fs = std::filesystem;
 
@@ -290,15 +295,75 @@ TEST_F(FullAndReadOnlyDisks, WriteFailuresNameTheOutputAndTheSystemsReason) {
     expectRefused("dfg --size 8 --samples 16 --backend cpu -o full/dfg.ktx2", {"full/dfg.ktx2", noSpace});
     expectRefused("specular --size 8 --quality draft --backend cpu -o ro/s.ktx2 sky.exr",
                   {"ro/s.ktx2", readOnly});
-    // A scene whose outputs cannot be written: the output and the reason, not the environment, are named.
-    // (What a failed bake leaves in its cache and output directory is item 4 of issue 17, not checked here.)
-    scene("to_full.json", {{"outputs", {{"directory", "full/out"}}}});
-    expectOneLineRefusal("bake to_full.json --backend cpu --quiet", {"to_full.json: full/out/", noSpace});
-    scene("to_ro.json", {{"outputs", {{"directory", "ro/out"}}}});
-    expectOneLineRefusal("bake to_ro.json --backend cpu --quiet", {"to_ro.json", "ro/out", readOnly});
-    scene("to_dir.json", {{"outputs", {{"directory", "out"}}}});
-    expectOneLineRefusal("bake to_dir.json --force --cache ro/cache --backend cpu --quiet",
-                         {"ro/cache", readOnly});
+    // Every output of a command or none: the first output fits, a later one does not.
+    expectRefused(kSpecular + "sky.exr --preview full/p.png", {"full/p.png: cannot write", noSpace});
+    expectRefused(kSpecular + "sky.exr --exr full/levels", {"full/levels", noSpace});
+    expectRefused("diffuse sky.exr --backend cpu -o d.json --irradiance-cube full/i.ktx2 --irradiance-size 8",
+                  {"full/i.ktx2", noSpace});
+    // A scene whose outputs cannot be written: the output and the reason, not the environment, are named,
+    // and the tree and the cache (with an earlier bake's entries in it) are as they were, every stage's
+    // work included (issue 17, item 4).
+    scene("good.json", {{"outputs", {{"directory", "good"}}}});
+    ASSERT_EQ(runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "bake good.json --cache cache --quiet")
+                  .exitCode,
+              0);
+    scene("to_full.json", {{"outputs", {{"directory", "full/out"}, {"dfgSize", 16}}}});
+    expectRefused("bake to_full.json --cache cache --backend cpu --quiet",
+                  {"to_full.json: full/out/", noSpace});
+    scene("to_ro.json", {{"outputs", {{"directory", "ro/out"}, {"dfgSize", 16}}}});
+    expectRefused("bake to_ro.json --cache cache --backend cpu --quiet", {"to_ro.json", "ro/out", readOnly});
+    expectRefused("bake to_ro.json --force --cache ro/cache --backend cpu --quiet", {"ro/cache", readOnly});
+}
+
+// A bake that fails anywhere leaves the output tree and the cache exactly as they were: no output
+// directory, no cache entry of the stages that ran before the failure (here the DFG LUT, planned first),
+// no staging directory (issue 17, item 4).
+TEST_F(HostileInputs, AFailedBakeLeavesTheTreeAndTheCacheAsTheyWere) {
+    scene("good.json", {{"outputs", {{"directory", "good"}}}});
+    ASSERT_EQ(runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "bake good.json --cache cache --quiet")
+                  .exitCode,
+              0);
+    // A product path that is a directory: refused before any work.
+    fs::create_directories(dir / "taken" / "specular.ktx2");
+    scene("taken.json", {{"outputs", {{"directory", "taken"}, {"dfgSize", 16}}}});
+    expectRefused("bake taken.json --cache cache --backend cpu --quiet",
+                  {"taken.json", "taken/specular.ktx2: is a directory"});
+    // An environment that hashes but does not decode: the DFG stage has run when the environment fails.
+    writeText(dir / "broken.exr", std::string("\x76\x2f\x31\x01", 4) + std::string(4096, '\x07'));
+    scene("broken.json", {{"environment", {{"file", "broken.exr"}}},
+                          {"outputs", {{"directory", "new/deep"}, {"dfgSize", 16}}}});
+    expectRefused("bake broken.json --cache cache --backend cpu --quiet", {"broken.exr"});
+    expectRefused("bake broken.json --backend cpu --quiet", {"broken.exr"}); // the cache inside new/deep
+}
+
+// Staging directories left by runs that died (SIGKILL, a lost node) are removed by the next run; those of
+// live runs (their owner file locked) and fresh ones without an owner file are left alone.
+TEST_F(HostileInputs, StaleStagingIsRemovedOnlyWhenItsOwnerIsGone) {
+    const fs::path cache = dir / "cache";
+    auto staging = [&](const std::string& name, bool owner) {
+        fs::create_directories(cache / name);
+        writeText(cache / name / "partial.ktx2", "x");
+        if (owner) writeText(cache / name / ".owner", "");
+        return cache / name;
+    };
+    staging(".staging-dead-1", true);
+    const fs::path live = staging(".staging-live-1", true);
+    const int lock = ::open((live / ".owner").c_str(), O_RDONLY);
+    ASSERT_EQ(::flock(lock, LOCK_EX | LOCK_NB), 0); // held by this process: a live run
+    const fs::path old = staging(".staging-ownerless-old", false);
+    fs::last_write_time(old, fs::file_time_type::clock::now() - std::chrono::hours(2));
+    staging(".staging-ownerless-new", false);
+    staging(".trash-1", false);
+    scene("s.json", {});
+    const CliRun r =
+        runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "bake s.json --cache cache --quiet");
+    ::close(lock);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    std::vector<std::string> left;
+    for (const auto& e : fs::directory_iterator(cache))
+        if (e.path().filename().string()[0] == '.') left.push_back(e.path().filename().string());
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{".staging-live-1", ".staging-ownerless-new"}));
 }
 
 } // namespace

@@ -4,12 +4,12 @@
 #include "iblbake/core/error.h"
 #include "iblbake/core/gltf_names.h"
 #include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/output_set.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
 #include <glm/geometric.hpp>
 
@@ -154,14 +154,15 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
 
     nlohmann::json images = nlohmann::json::array();
     nlohmann::json specularImages = nlohmann::json::array();
-    std::vector<std::unique_ptr<AtomicFile>> imageFiles;
+    OutputSet outputs; // the images and the glTF that names them, all or none
     for (std::size_t m = 0; m < scene.specular.levels.size(); ++m) {
         nlohmann::json faces = nlohmann::json::array();
         for (int f = 0; f < 6; ++f) {
             const std::string name = gltfSpecularImageName(stem, int(m), f);
-            imageFiles.push_back(std::make_unique<AtomicFile>(path.parent_path() / name));
-            writeRgbdPng(imageFiles.back()->tempPath(), exportedFaceImage(scene.specular.levels[m], f),
-                         float(1.0 / (intensity * scene.storageScale)));
+            outputs.writeFile(path.parent_path() / name, [&](const fs::path& temporary) {
+                writeRgbdPng(temporary, exportedFaceImage(scene.specular.levels[m], f),
+                             float(1.0 / (intensity * scene.storageScale)));
+            });
             faces.push_back(images.size());
             images.push_back({{"uri", name}, {"mimeType", "image/png"}});
         }
@@ -200,11 +201,9 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
         doc["scenes"][0]["nodes"] = {0};
     }
 
-    AtomicFile gltf(path);
-    writeFileBytes(gltf.tempPath(), doc.dump(2) + '\n', path.string());
-    for (auto& file : imageFiles)
-        file->commit();
-    gltf.commit();
+    outputs.writeFile(path,
+                      [&](const fs::path& temporary) { writeFileBytes(temporary, doc.dump(2) + '\n'); });
+    outputs.commit();
 }
 
 } // namespace ibl

@@ -1,6 +1,6 @@
 #include "iblbake/baker/preview.h"
+#include "encoded_image.h"
 #include "iblbake/core/error.h"
-#include "iblbake/ktx2/atomic_file.h"
 
 #include <cube.h>
 
@@ -47,14 +47,8 @@ float encodeSrgb(float linear) {
 
 void writeSrgb8Png(const std::filesystem::path& path, int width, int height,
                    const std::vector<unsigned char>& rgb) {
-    AtomicFile file(path);
-    auto out = OIIO::ImageOutput::create(file.tempPath().string());
-    if (!out) throw Error(path.string() + ": cannot create an image writer: " + OIIO::geterror());
-    OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(file.tempPath().string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-        !out->close())
-        throw Error(path.string() + ": " + out->geterror());
-    file.commit();
+    writeEncodedImage(path, "png", OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8),
+                      OIIO::TypeDesc::UINT8, rgb.data());
 }
 
 unsigned char tonemapToSrgb8(float linear, float scale) {

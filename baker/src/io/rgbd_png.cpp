@@ -1,4 +1,5 @@
 // RGBD packing (iblbake/baker/rgbd.h) and its PNG files through OpenImageIO.
+#include "encoded_image.h"
 #include "iblbake/baker/rgbd.h"
 #include "iblbake/core/error.h"
 
@@ -46,14 +47,10 @@ void writeRgbdPng(const std::filesystem::path& path, const ImageRGBA& image, flo
         const auto rgbd = encodeRgbd(glm::vec3(image.pixels[i]) * scale);
         std::copy(rgbd.begin(), rgbd.end(), pixels.begin() + std::ptrdiff_t(4 * i));
     }
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out) throw Error(path.string() + ": cannot create a PNG writer: " + OIIO::geterror());
     OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
     // Alpha is D, not coverage: OpenImageIO must not divide the colour by it on the way out.
     spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (!out->open(path.string(), spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) ||
-        !out->close())
-        throw Error(path.string() + ": " + out->geterror());
+    writeEncodedImage(path, "png", spec, OIIO::TypeDesc::UINT8, pixels.data());
 }
 
 ImageRGBA readRgbdPng(const std::filesystem::path& path) {

@@ -1,5 +1,6 @@
 #include "iblbake/core/error.h"
 #include "iblbake/opencl/opencl_context.h"
+#include "program_binaries.h"
 
 #include <algorithm>
 #include <cctype>
@@ -141,11 +142,46 @@ cl::Program& Context::program(const std::string& file, const std::string& option
     std::lock_guard lock(mutex_);
     std::string key = file + '\n' + options;
     auto it = programs_.find(key);
-    if (it == programs_.end())
-        it = programs_
-                 .emplace(key, buildProgram(file, assembleProgramSource(file), baseOptions_ + " " + options))
-                 .first;
-    return it->second;
+    if (it != programs_.end()) return it->second;
+    const std::string source = assembleProgramSource(file), buildOptions = baseOptions_ + " " + options;
+    if (binaryDirectory_.empty()) {
+        ++builds_.fromSource;
+        return programs_.emplace(key, buildProgram(file, source, buildOptions)).first->second;
+    }
+    const std::string binaryKey = programBinaryKey(device_, buildOptions, source);
+    if (const std::optional<ProgramBinary> binary = readProgramBinary(binaryDirectory_, binaryKey)) try {
+            cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
+            program.build({device_}, buildOptions.c_str());
+            ++builds_.fromBinary;
+            return programs_.emplace(key, program).first->second;
+        } catch (const cl::Error&) { // the driver refused it (another build of the driver): rebuild
+        }
+    cl::Program program = buildProgram(file, source, buildOptions);
+    ++builds_.fromSource;
+    try {
+        const std::vector<ProgramBinary> binaries = program.getInfo<CL_PROGRAM_BINARIES>();
+        if (binaries.size() == 1 && !binaries.front().empty())
+            unstoredBinaries_[binaryKey] = binaries.front();
+    } catch (const cl::Error&) { // a driver without binaries: nothing to keep
+    }
+    return programs_.emplace(key, program).first->second;
+}
+
+void Context::useProgramBinaries(std::filesystem::path directory) {
+    std::lock_guard lock(mutex_);
+    binaryDirectory_ = std::move(directory);
+}
+
+void Context::storeProgramBinaries() {
+    std::lock_guard lock(mutex_);
+    for (const auto& [binaryKey, binary] : unstoredBinaries_)
+        writeProgramBinary(binaryDirectory_, binaryKey, binary);
+    unstoredBinaries_.clear();
+}
+
+Context::ProgramBuilds Context::programBuilds() const {
+    std::lock_guard lock(mutex_);
+    return builds_;
 }
 
 cl::Kernel Context::kernel(const std::string& file, const std::string& kernelName,

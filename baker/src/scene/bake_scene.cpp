@@ -4,6 +4,7 @@
 #include "iblbake/bake_state/content_hash.h"
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/output_set.h"
 #include "iblbake/opencl/executor.h"
 #include "scene_manifest.h"
 #include "scene_stages.h"
@@ -31,11 +32,34 @@ bool needsBackend(const Plan& plan) {
     return false;
 }
 
-// Copies the products into the output directory (a file already holding the same bytes is left alone) and
-// returns their hashes.
-std::map<std::string, std::string> publishProducts(const Plan& plan,
-                                                   const std::map<std::string, fs::path>& entries,
-                                                   const fs::path& outputDirectory, BakeSummary& summary) {
+// Every output path of the plan, checked before any work (README "Failures leave nothing behind"): the
+// output directory is a directory or can be made one, and no product or manifest path is a directory.
+void checkOutputPaths(const Scene& scene, const Plan& plan) {
+    const fs::path& directory = scene.outputs.directory;
+    std::error_code ec;
+    fs::path existing = directory;
+    while (!existing.empty() && !fs::exists(existing, ec) && existing != existing.parent_path())
+        existing = existing.parent_path();
+    if (existing.empty()) existing = ".";
+    if (!fs::is_directory(existing, ec))
+        throw OutputError(scene.name + ": outputs.directory: " + directory.string() + ": " +
+                          existing.string() + " is not a directory");
+    auto mustNotBeADirectory = [&](const std::string& product) {
+        if (fs::is_directory(directory / product, ec))
+            throw OutputError(scene.name + ": " + (directory / product).string() + ": is a directory");
+    };
+    for (const PlanStage& stage : plan.stages)
+        for (const std::string& product : stage.products)
+            mustNotBeADirectory(product);
+    mustNotBeADirectory("manifest.json");
+}
+
+// Stages the products beside their places in the output directory (a file already holding the same bytes is
+// left alone) and returns their hashes; `outputs` moves them into place on commit.
+std::map<std::string, std::string> stageProducts(const Plan& plan,
+                                                 const std::map<std::string, fs::path>& entries,
+                                                 const fs::path& outputDirectory, OutputSet& outputs,
+                                                 BakeSummary& summary) {
     std::map<std::string, std::string> hashes;
     for (const PlanStage& stage : plan.stages)
         for (const std::string& product : stage.products) {
@@ -48,7 +72,11 @@ std::map<std::string, std::string> publishProducts(const Plan& plan,
                     same = hashFile(to) == hash;
                 } catch (const Error&) { // unreadable: replace it
                 }
-            if (!same) copyAtomically(from, to);
+            if (!same)
+                outputs.writeFile(to, [&](const fs::path& temporary) {
+                    fs::copy_file(from, temporary, fs::copy_options::overwrite_existing, ec);
+                    if (ec) throw OutputError(temporary.string() + ": cannot write: " + ec.message());
+                });
             hashes[product] = hash;
             summary.products.push_back(to);
         }
@@ -56,6 +84,10 @@ std::map<std::string, std::string> publishProducts(const Plan& plan,
 }
 
 // The stages of a stale bake; `checkedInputHashes` are the check's (empty when it did not read every input).
+// All or nothing: the stages run into staging directories of the cache, the products and the manifest are
+// written beside their places, and only when all of them are written are the cache entries committed and
+// the outputs moved into place; a failure anywhere leaves the output tree and the cache as they were (the
+// directories it created included).
 BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressSink& progress,
                        const std::map<std::string, std::string>& checkedInputHashes,
                        std::chrono::steady_clock::time_point start) {
@@ -66,6 +98,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         summary.stages.push_back({s.id, s.kind, StageStatus::Pending, "", 0.0, s.products});
     std::size_t current = 0;
     try {
+        checkOutputPaths(scene, plan);
         // Every input is read (hashed) before anything is written: a missing file fails the bake here.
         const std::map<std::string, std::string> inputHashes =
             checkedInputHashes.empty() ? hashPlanInputs(scene, plan) : checkedInputHashes;
@@ -84,16 +117,21 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         for (std::size_t i = 0; i < plan.stages.size(); ++i)
             summary.stages[i].key = keys.at(plan.stages[i].id);
 
+        // Declared first, destroyed last: the staged entries are gone before it removes the directories it
+        // made.
+        OutputSet outputs;
         const fs::path outputDirectory = scene.outputs.directory;
-        std::error_code ec;
-        fs::create_directories(outputDirectory, ec);
-        if (!fs::is_directory(outputDirectory))
-            throw OutputError(scene.name + ": outputs.directory: " + outputDirectory.string() +
-                              ": cannot create it" + (ec ? ": " + ec.message() : std::string()));
-        const StageCache cache(options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache"
-                                                              : options.cacheDirectory);
+        const fs::path cacheDirectory =
+            options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache" : options.cacheDirectory;
+        outputs.createDirectories(cacheDirectory, scene.name + ": cache");
+        const StageCache cache(cacheDirectory);
+        // Compiled kernels beside the entries (README "Kernel binaries"): a node with a warm cache compiles
+        // none.
+        const fs::path programBinaries = cache.directory() / "kernels";
+        if (executor && executor->usesOpenCL()) executor->cl().useProgramBinaries(programBinaries);
 
         std::map<std::string, fs::path> entries;
+        std::vector<StagedEntry> ran;
         const int count = int(plan.stages.size());
         for (current = 0; current < plan.stages.size(); ++current) {
             const PlanStage& stage = plan.stages[current];
@@ -105,20 +143,17 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             if (entry) {
                 result.status = StageStatus::Cached;
             } else {
-                const fs::path staging = cache.staging(result.key);
-                StageContext context{scene, stage, {}, executor ? &*executor : nullptr, staging};
+                StagedEntry& staged = ran.emplace_back(cache.staging(result.key));
+                StageContext context{scene, stage, {}, executor ? &*executor : nullptr, staged.directory()};
                 for (const std::string& dependency : stage.dependsOn)
                     context.dependencies[dependency] = entries.at(dependency);
                 try {
                     runStage(context);
+                    cache.seal(staged);
                 } catch (const OutputError& e) { // a full disk, a read-only directory: the scene in front
-                    cache.discard(staging);
                     throw OutputError(scene.name + ": " + e.what());
-                } catch (...) {
-                    cache.discard(staging);
-                    throw;
                 }
-                entry = cache.commit(result.key, staging);
+                entry = staged.directory();
                 result.status = StageStatus::Ran;
             }
             entries[stage.id] = *entry;
@@ -126,18 +161,21 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             progress.stageEnd(result, int(current), count);
         }
 
-        // Products first, the manifest last: a bake killed before this point leaves the old manifest, which
-        // points only at files that are still there.
+        outputs.createDirectories(outputDirectory, scene.name + ": outputs.directory");
         ManifestInputs manifest{scene, plan, entries, keys, {}, summary.backend};
-        manifest.productHashes = publishProducts(plan, entries, outputDirectory, summary);
+        manifest.productHashes = stageProducts(plan, entries, outputDirectory, outputs, summary);
         const fs::path manifestPath = outputDirectory / "manifest.json";
-        {
-            AtomicFile file(manifestPath);
-            const nlohmann::json document = buildManifest(manifest);
-            summary.storage = storedProductsFromManifest(document);
-            writeFileBytes(file.tempPath(), document.dump(2) + '\n', manifestPath.string());
-            file.commit();
-        }
+        const nlohmann::json document = buildManifest(manifest);
+        summary.storage = storedProductsFromManifest(document);
+        outputs.writeFile(manifestPath, [&](const fs::path& temporary) {
+            writeFileBytes(temporary, document.dump(2) + '\n', manifestPath.string());
+        });
+        // Everything is written: commit the cache entries, then the products, the manifest last (a bake
+        // killed in between leaves the old manifest, which points only at files that are still there).
+        for (StagedEntry& staged : ran)
+            cache.commit(staged);
+        outputs.commit();
+        if (executor && executor->usesOpenCL()) executor->cl().storeProgramBinaries();
         summary.products.push_back(manifestPath);
         summary.manifest = manifestPath;
         summary.ok = true;

@@ -7,8 +7,13 @@
 #include <nlohmann/json.hpp>
 
 #include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <fcntl.h>
 #include <fstream>
 #include <random>
+#include <sys/file.h>
 #include <unistd.h>
 
 namespace ibl {
@@ -18,12 +23,19 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kEntryFile = "entry.json";
+constexpr const char* kOwnerFile = ".owner";
+constexpr const char* kStagingPrefix = ".staging-";
+constexpr const char* kTrashPrefix = ".trash-";
+// A staging directory without an owner file exists only between its mkdir and the owner's creation, and
+// between the owner's removal and the commit's rename; one that stays so for this long was left by a run
+// killed in that instant (or by a version without owner files).
+constexpr auto kOwnerlessStagingAge = std::chrono::hours(1);
 
 // Moves a directory out of the way first (one rename, atomic), then deletes it: a concurrent reader sees
 // either the whole entry or none.
 void removeDirectory(const fs::path& dir) {
     std::error_code ec;
-    const fs::path trash = dir.parent_path() / (".trash-" + uniqueSuffix());
+    const fs::path trash = dir.parent_path() / (kTrashPrefix + uniqueSuffix());
     fs::rename(dir, trash, ec);
     fs::remove_all(ec ? dir : trash, ec);
 }
@@ -49,12 +61,56 @@ std::string uniqueSuffix() {
     return std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + std::to_string(random());
 }
 
+StagedEntry::StagedEntry(std::string key, fs::path directory, int ownerLock)
+    : key_(std::move(key)), directory_(std::move(directory)), ownerLock_(ownerLock) {}
+
+StagedEntry::StagedEntry(StagedEntry&& other) noexcept
+    : key_(std::move(other.key_)), directory_(std::move(other.directory_)), ownerLock_(other.ownerLock_),
+      committed_(other.committed_) {
+    other.ownerLock_ = -1;
+    other.committed_ = true; // the moved-from object owns nothing
+}
+
+StagedEntry::~StagedEntry() {
+    if (!committed_) {
+        std::error_code ec;
+        fs::remove_all(directory_, ec);
+    }
+    if (ownerLock_ >= 0) ::close(ownerLock_); // releases the lock, after the directory is gone
+}
+
 StageCache::StageCache(fs::path directory) : directory_(std::move(directory)) {
     std::error_code ec;
     fs::create_directories(directory_, ec);
     if (ec || !fs::is_directory(directory_))
         throw OutputError(directory_.string() + ": cannot create the cache directory" +
                           (ec ? ": " + ec.message() : std::string()));
+    removeStaleStaging();
+}
+
+// flock is released by the kernel when its process ends, however it ends (SIGKILL included), so a free lock
+// means a dead owner; on NFS, Linux maps flock to byte-range locks that every client sees.
+void StageCache::removeStaleStaging() const {
+    std::error_code ec;
+    for (fs::directory_iterator it(directory_, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.starts_with(kTrashPrefix)) { // only its remover uses it, and removing twice is harmless
+            fs::remove_all(it->path(), ec);
+            ec.clear();
+            continue;
+        }
+        if (!name.starts_with(kStagingPrefix) || !it->is_directory(ec)) continue;
+        const int owner = ::open((it->path() / kOwnerFile).c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+        if (owner < 0) {
+            const bool ownerless = errno == ENOENT;
+            const auto age = fs::file_time_type::clock::now() - fs::last_write_time(it->path(), ec);
+            if (!ec && ownerless && age > kOwnerlessStagingAge) removeDirectory(it->path());
+            ec.clear();
+            continue;
+        }
+        if (::flock(owner, LOCK_EX | LOCK_NB) == 0) removeDirectory(it->path());
+        ::close(owner);
+    }
 }
 
 std::optional<fs::path> StageCache::find(const std::string& key) const {
@@ -66,51 +122,45 @@ std::optional<fs::path> StageCache::find(const std::string& key) const {
     return std::nullopt;
 }
 
-fs::path StageCache::staging(const std::string& key) const {
-    const fs::path dir = directory_ / (".staging-" + key + "-" + uniqueSuffix());
+StagedEntry StageCache::staging(const std::string& key) const {
+    const fs::path dir = directory_ / (kStagingPrefix + key + "-" + uniqueSuffix());
     std::error_code ec;
     if (!fs::create_directory(dir, ec))
         throw OutputError(dir.string() + ": cannot create a cache staging directory: " + ec.message());
-    return dir;
+    const int owner = ::open((dir / kOwnerFile).c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (owner < 0 || ::flock(owner, LOCK_EX | LOCK_NB) != 0) {
+        const std::string reason = std::strerror(errno);
+        if (owner >= 0) ::close(owner);
+        fs::remove_all(dir, ec);
+        throw OutputError(dir.string() + ": cannot lock a cache staging directory: " + reason);
+    }
+    return StagedEntry(key, dir, owner);
 }
 
-fs::path StageCache::commit(const std::string& key, const fs::path& staging) const {
+void StageCache::seal(const StagedEntry& staged) const {
     nlohmann::json files = nlohmann::json::object();
-    for (const fs::directory_entry& e : fs::directory_iterator(staging))
-        if (e.is_regular_file()) files[e.path().filename().string()] = hashFile(e.path());
-    writeFileBytes(staging / kEntryFile, nlohmann::json{{"key", key}, {"files", files}}.dump(2) + '\n');
-    const fs::path target = directory_ / key;
+    for (const fs::directory_entry& e : fs::directory_iterator(staged.directory()))
+        if (e.is_regular_file() && e.path().filename() != kOwnerFile)
+            files[e.path().filename().string()] = hashFile(e.path());
+    writeFileBytes(staged.directory() / kEntryFile,
+                   nlohmann::json{{"key", staged.key()}, {"files", files}}.dump(2) + '\n');
+}
+
+fs::path StageCache::commit(StagedEntry& staged) const {
+    const fs::path target = directory_ / staged.key();
+    // The lock stays held (the descriptor is open) while the owner file is gone: a cleaner that opened it
+    // earlier cannot take the lock, and one that comes later finds no owner file and a fresh directory.
+    std::error_code ec;
+    fs::remove(staged.directory() / kOwnerFile, ec);
     for (int attempt = 0; attempt < 2; ++attempt) {
-        std::error_code ec;
-        fs::rename(staging, target, ec);
-        if (!ec) return target;
-        if (find(key)) { // another run committed the same key first: same inputs, same content
-            discard(staging);
+        fs::rename(staged.directory(), target, ec);
+        if (!ec) {
+            staged.committed_ = true;
             return target;
         }
+        if (find(staged.key())) return target; // another run committed the same key first: same content
     }
-    discard(staging);
-    throw Error(target.string() + ": cannot commit the cache entry");
-}
-
-void StageCache::discard(const fs::path& staging) const {
-    std::error_code ec;
-    fs::remove_all(staging, ec);
-}
-
-void copyAtomically(const fs::path& from, const fs::path& to) {
-    std::string name = to.filename().string();
-    name.insert(0, 1, '.');
-    name += ".tmp-";
-    name += uniqueSuffix();
-    const fs::path temp = to.parent_path() / name;
-    std::error_code ec;
-    fs::copy_file(from, temp, fs::copy_options::overwrite_existing, ec);
-    if (!ec) fs::rename(temp, to, ec);
-    if (ec) {
-        fs::remove(temp, ec);
-        throw OutputError(to.string() + ": cannot write: " + ec.message());
-    }
+    throw OutputError(target.string() + ": cannot commit the cache entry: " + ec.message());
 }
 
 } // namespace ibl

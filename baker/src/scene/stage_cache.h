@@ -10,23 +10,48 @@
 
 namespace ibl {
 
+// One stage's files before they become a cache entry: a new directory beside the entries, locked (flock
+// on its owner file) while this object lives, so that a later run can tell a dead run's leftovers from a
+// live run's work. Removed on destruction unless committed.
+class StagedEntry {
+  public:
+    StagedEntry(std::string key, std::filesystem::path directory, int ownerLock);
+    StagedEntry(StagedEntry&& other) noexcept;
+    StagedEntry& operator=(StagedEntry&&) = delete;
+    StagedEntry(const StagedEntry&) = delete;
+    ~StagedEntry();
+
+    const std::string& key() const { return key_; }
+    const std::filesystem::path& directory() const { return directory_; }
+
+  private:
+    friend class StageCache;
+    std::string key_;
+    std::filesystem::path directory_;
+    int ownerLock_ = -1;
+    bool committed_ = false;
+};
+
 class StageCache {
   public:
-    explicit StageCache(std::filesystem::path directory); // created when missing; throws ibl::Error
+    // Created when missing (throws ibl::OutputError naming it and the reason). Removes what runs that no
+    // longer live left behind: staging directories whose owner lock is free, and trash.
+    explicit StageCache(std::filesystem::path directory);
 
     // The entry's directory when it exists and is intact; a damaged entry is removed (nullopt).
     std::optional<std::filesystem::path> find(const std::string& key) const;
-    // A new, empty directory beside the entries, unique to this call.
-    std::filesystem::path staging(const std::string& key) const;
-    // Hashes the staged files into entry.json and renames the directory to the key. When another run
-    // committed the same key first, its entry is kept and the staging directory removed.
-    std::filesystem::path commit(const std::string& key, const std::filesystem::path& staging) const;
-    // Removes a staging directory left by a failed stage.
-    void discard(const std::filesystem::path& staging) const;
+    StagedEntry staging(const std::string& key) const;
+    // Hashes the staged files into entry.json: the last write of an entry, so that committing it is one
+    // rename that cannot run out of space.
+    void seal(const StagedEntry& staged) const;
+    // Renames a sealed entry to its key. When another run committed the same key first, its entry is kept
+    // and the staging directory removed.
+    std::filesystem::path commit(StagedEntry& staged) const;
 
     const std::filesystem::path& directory() const { return directory_; }
 
   private:
+    void removeStaleStaging() const;
     std::filesystem::path directory_;
 };
 

@@ -8,6 +8,7 @@
 #define CL_HPP_ENABLE_EXCEPTIONS
 #include <CL/opencl.hpp>
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -64,6 +65,19 @@ class Context {
     // Builds arbitrary source; on failure throws ibl::Error with program name, device, options and log.
     cl::Program buildProgram(const std::string& name, const std::string& source, const std::string& options);
 
+    // Program binaries kept in `directory` (README "Kernel binaries"): from now on an embedded program is
+    // loaded from a binary there when one of the same platform, device, driver, options and source is found
+    // and builds; otherwise it is built from source and its binary held for storeProgramBinaries().
+    void useProgramBinaries(std::filesystem::path directory);
+    // Writes the binaries built from source since useProgramBinaries (called once a command's outputs are
+    // complete, so a failed command adds nothing to a cache). A directory that cannot be written is skipped:
+    // it costs only compile time.
+    void storeProgramBinaries();
+    struct ProgramBuilds {
+        int fromSource = 0, fromBinary = 0;
+    };
+    ProgramBuilds programBuilds() const;
+
     // Buffers, with CL failures turned into ibl::Error.
     cl::Buffer createBuffer(cl_mem_flags flags, std::size_t bytes, const void* hostData = nullptr);
     void download(const cl::Buffer& buffer, std::size_t bytes, void* destination);
@@ -81,8 +95,11 @@ class Context {
     std::string baseOptions_;
     cl::Context context_;
     cl::CommandQueue queue_;
-    std::mutex mutex_;
+    mutable std::mutex mutex_;
     std::map<std::string, cl::Program> programs_;
+    std::filesystem::path binaryDirectory_;
+    std::map<std::string, std::vector<unsigned char>> unstoredBinaries_; // by binary key
+    ProgramBuilds builds_;
     std::vector<DispatchTiming> timings_;
 };
 
