@@ -156,6 +156,11 @@ TEST_F(HostileInputs, OpenExrHeaderClaimsAreRefusedBeforeOpenExrTakesMemory) {
     // A fixed-size type given another size would make OpenEXR read on from elsewhere than the walk did.
     writeText(dir / "box.exr", withAttribute("window2\0box2i\0"sv, 20, std::string(20, '\0')));
     expectRefused(kSpecular + "box.exr", {"box.exr", "window2 of type box2i has 20 bytes"});
+    // 1 x 2^28 is within the pixel limit, but its chunk-offset table (8 bytes a chunk, allocated when
+    // OpenEXR opens the file) is not in the file.
+    writeText(dir / "tall.exr", exrClaiming(dir, 1, 1 << 28));
+    expectRefused(kSpecular + "tall.exr", {"tall.exr", "1x268435456 data window needs",
+                                           "chunk offsets, more than the rest of the file holds"});
 }
 
 TEST_F(HostileInputs, ThePixelLimitIsSetByItsVariable) {

@@ -1,7 +1,8 @@
 // The OpenEXR header walked before OpenImageIO opens the file. OpenEXR 3.1 takes memory while it reads a
 // header, sized by what the header claims, before any caller can look: a string attribute's value (a
 // 1.3 KB file claiming a 1.8 GB "Software" string, found by fuzz/image_header.cpp), a string vector's
-// strings, a preview image's pixels, the chunk-offset table (dataWindow, chunkCount). Each claim is held
+// strings, a preview image's pixels, the chunk-offset table (dataWindow with compression or tiles,
+// chunkCount). Each claim is held
 // against what the file can hold and against the pixel limit, so such a file is refused in one line.
 // Layout (OpenEXR "File Layout"): magic 76 2f 31 01, a 4-byte version with flags, then one header (a
 // multi-part file: several, closed by an empty one) of attributes name\0 type\0 int32 size, value; a
@@ -11,9 +12,9 @@
 #include "iblbake/core/error.h"
 #include "iblbake/core/input_file.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
-#include <vector>
 
 namespace ibl::ingest {
 
@@ -101,9 +102,28 @@ std::int32_t fixedSizeOf(const std::string& type) {
     return 0;
 }
 
+// What a part's header says about its chunks: OpenEXR allocates one 8-byte offset per chunk when it opens
+// the file, and a file that holds the part holds those offsets after its headers.
+struct PartClaims {
+    std::uint64_t width = 0, height = 0; // of the dataWindow, 0 when absent or empty
+    int compression = -1;
+    std::uint64_t tileWidth = 0, tileHeight = 0; // of tiledesc, 0 when absent
+
+    // Chunks of level 0 (OpenEXR "Chunk Offset Tables"): tiles, or blocks of scanlines whose height the
+    // compression gives (an unknown compression, which OpenEXR refuses, counts as the tallest, 256).
+    std::uint64_t minimumChunks() const {
+        if (width == 0 || height == 0) return 0;
+        const auto divUp = [](std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; };
+        if (tileWidth > 0 && tileHeight > 0) return divUp(width, tileWidth) * divUp(height, tileHeight);
+        static constexpr std::uint64_t kLinesPerChunk[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+        const bool known = compression >= 0 && compression < int(std::size(kLinesPerChunk));
+        return divUp(height, known ? kLinesPerChunk[compression] : 256);
+    }
+};
+
 // One attribute's value, walked as OpenEXR reads it and checked where OpenEXR sizes memory from it.
 void checkAttribute(HeaderReader& in, const std::string& attribute, const std::string& type,
-                    std::int32_t size, const std::string& name) {
+                    std::int32_t size, const std::string& name, PartClaims& part) {
     const std::string quoted = printableForMessage(attribute);
     if (size < 0 || std::uint64_t(size) > in.left())
         throw in.damaged("attribute " + quoted + " claims " + std::to_string(size) + " bytes, the file has " +
@@ -116,7 +136,17 @@ void checkAttribute(HeaderReader& in, const std::string& attribute, const std::s
     if (attribute == "dataWindow" && type == "box2i") {
         const std::int64_t xMin = in.int32(), yMin = in.int32(), xMax = in.int32(), yMax = in.int32();
         // An empty or inverted window is OpenEXR's to refuse; it takes no memory for one.
-        if (xMax >= xMin && yMax >= yMin) checkPixelLimit(name, xMax - xMin + 1, yMax - yMin + 1);
+        if (xMax >= xMin && yMax >= yMin) {
+            part.width = std::uint64_t(xMax - xMin + 1), part.height = std::uint64_t(yMax - yMin + 1);
+            checkPixelLimit(name, part.width, part.height);
+        }
+    } else if (attribute == "compression" && type == "compression") {
+        unsigned char compression;
+        in.bytes(reinterpret_cast<char*>(&compression), 1);
+        part.compression = compression;
+    } else if (attribute == "tiles" && type == "tiledesc") {
+        part.tileWidth = std::uint32_t(in.int32()), part.tileHeight = std::uint32_t(in.int32());
+        in.skip(1); // the level mode: more levels add chunks, the bound holds without them
     } else if (attribute == "chunkCount" && type == "int") {
         // One 8-byte offset per chunk follows the headers: a count the file cannot hold is a lie.
         const std::int64_t chunks = in.int32();
@@ -138,7 +168,8 @@ void checkAttribute(HeaderReader& in, const std::string& attribute, const std::s
         // width, height, then width x height RGBA bytes: the attribute's size exactly.
         if (size < 8) throw sizeMismatch();
         const std::uint64_t width = std::uint32_t(in.int32()), height = std::uint32_t(in.int32());
-        if (width * height * 4 != std::uint64_t(size) - 8)
+        const std::uint64_t pixelBytes = std::uint64_t(size) - 8;
+        if ((width > 0 && height > pixelBytes / 4 / width) || width * height * 4 != pixelBytes)
             throw in.damaged("the preview claims " + std::to_string(width) + "x" + std::to_string(height) +
                              " pixels, not what its " + std::to_string(size) + " bytes hold");
         in.skip(std::uint64_t(size) - 8);
@@ -178,10 +209,15 @@ void checkExrHeader(const std::filesystem::path& file, const std::string& name) 
             if (!multiPart || part > 0) return; // the single header's end, or the empty header after the last
             throw in.damaged("a multi-part file with no part");
         }
+        PartClaims claims;
         for (; !attribute.empty(); attribute = in.text()) {
             const std::string type = in.text();
-            checkAttribute(in, attribute, type, in.int32(), name);
+            checkAttribute(in, attribute, type, in.int32(), name, claims);
         }
+        if (const std::uint64_t chunks = claims.minimumChunks(); chunks > in.left() / 8)
+            throw in.damaged("its " + std::to_string(claims.width) + "x" + std::to_string(claims.height) +
+                             " data window needs " + std::to_string(chunks) +
+                             " chunk offsets, more than the rest of the file holds");
         if (!multiPart) return;
     }
 }
