@@ -137,6 +137,37 @@ TEST_F(HostileInputs, ImageHeadersClaimingHugeSizesAreRefusedBeforeReadingPixels
     expectRefused("calibrate truncated.exr --scale 2 -o c.exr", {"truncated.exr", "cannot read pixels"});
 }
 
+// Found by fuzz/image_header.cpp: OpenEXR 3.1 takes the memory a header attribute claims before reading
+// it (a 1.3 KB file claimed a 1.8 GB string). The header is walked first (baker/src/ingest/exr_header.cpp).
+TEST_F(HostileInputs, OpenExrHeaderClaimsAreRefusedBeforeOpenExrTakesMemory) {
+    const std::string good = readBytes(dir / "sky.exr");
+    // `good` with one attribute (name\0type\0, int32 size, value) put first in its header.
+    const auto withAttribute = [&](std::string_view nameAndType, std::int32_t size,
+                                   const std::string& value) {
+        char sizeBytes[4];
+        std::memcpy(sizeBytes, &size, 4); // OpenEXR is little-endian, as this machine
+        return good.substr(0, 8) + std::string(nameAndType) + std::string(sizeBytes, 4) + value +
+               good.substr(8);
+    };
+    using namespace std::string_view_literals;
+    writeText(dir / "string.exr", withAttribute("Software\0string\0"sv, 1836085861, "x"));
+    expectRefused(kSpecular + "string.exr",
+                  {"string.exr", "damaged OpenEXR header", "Software claims 1836085861 bytes"});
+    const std::int32_t previewSize[2] = {65535, 65535};
+    writeText(dir / "preview.exr",
+              withAttribute("thumb\0preview\0"sv, 12,
+                            std::string(reinterpret_cast<const char*>(previewSize), 8) + "rgba"));
+    expectRefused(kSpecular + "preview.exr", {"preview.exr", "the preview claims 65535x65535 pixels"});
+    // A fixed-size type given another size would make OpenEXR read on from elsewhere than the walk did.
+    writeText(dir / "box.exr", withAttribute("window2\0box2i\0"sv, 20, std::string(20, '\0')));
+    expectRefused(kSpecular + "box.exr", {"box.exr", "window2 of type box2i has 20 bytes"});
+    // 1 x 2^28 is within the pixel limit, but its chunk-offset table (8 bytes a chunk, allocated when
+    // OpenEXR opens the file) is not in the file.
+    writeText(dir / "tall.exr", exrClaiming(dir, 1, 1 << 28));
+    expectRefused(kSpecular + "tall.exr", {"tall.exr", "1x268435456 data window needs",
+                                           "chunk offsets, more than the rest of the file holds"});
+}
+
 TEST_F(HostileInputs, ThePixelLimitIsSetByItsVariable) {
     expectRefused(kSpecular + "sky.exr", {"sky.exr", "64x32 is 2048 pixels, more than the limit of 2047"},
                   "IBLBAKE_MAX_IMAGE_PIXELS=2047 ");

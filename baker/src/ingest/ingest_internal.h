@@ -50,6 +50,16 @@ struct RawImage {
 RawImage readImage(const std::filesystem::path& file,
                    const std::function<void(const RawImage&)>& checkHeader = nullptr);
 
+// Throws ibl::Error "<name>: WxH is N pixels, more than the limit of M (IBLBAKE_MAX_IMAGE_PIXELS)" when a
+// width x height image (both >= 1) is over limits::maxImagePixels().
+void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t height);
+
+// When `file` is OpenEXR (its magic number): walks its header(s) before OpenImageIO opens it, refusing
+// (ibl::Error "<name>: ...") an attribute larger than the rest of the file, a string vector or preview
+// claiming more than its attribute holds, a chunkCount the file cannot hold and a dataWindow over the
+// pixel limit: OpenEXR sizes memory from each of these while it reads the header (exr_header.cpp).
+void checkExrHeader(const std::filesystem::path& file, const std::string& name);
+
 // ---- layout (layout.cpp) ----
 // The layout of a single image: `requested` if not Auto (checked against the size), else detected from
 // metadata and aspect ratio. Throws ibl::Error naming the file when it cannot tell or the size does not fit.

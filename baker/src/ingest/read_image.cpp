@@ -55,10 +55,21 @@ bool readRows(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int y0, int y1,
 
 } // namespace
 
+void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t height) {
+    const std::uint64_t maxPixels = limits::maxImagePixels();
+    if (height <= maxPixels / width) return;
+    const bool overflows = width > UINT64_MAX / height;
+    throw Error(name + ": " + std::to_string(width) + "x" + std::to_string(height) + " is " +
+                (overflows ? std::string("more than 2^64") : std::to_string(width * height)) +
+                " pixels, more than the limit of " + std::to_string(maxPixels) + " (" +
+                limits::kMaxImagePixelsVariable + ")");
+}
+
 RawImage readImage(const std::filesystem::path& file,
                    const std::function<void(const RawImage&)>& checkHeader) {
     const std::string name = printableForMessage(file.string());
-    requireRegularFile(file); // before OIIO probes formats: a device or FIFO would never end
+    requireRegularFile(file);   // before OIIO probes formats: a device or FIFO would never end
+    checkExrHeader(file, name); // before OpenEXR sizes memory from the header's claims
 
     // Alpha is ignored, so colour must not be premultiplied by it (OIIO would do so for PNG and TIFF).
     OIIO::ImageSpec config;
@@ -77,12 +88,8 @@ RawImage readImage(const std::filesystem::path& file,
     if (spec.depth > 1) throw Error(name + ": is a volume image, not an environment map");
     // The header's claim is checked before any pixel memory is taken: a damaged or hostile header may
     // claim billions of pixels.
+    checkPixelLimit(name, std::uint64_t(spec.width), std::uint64_t(spec.height));
     const std::uint64_t count = std::uint64_t(spec.width) * std::uint64_t(spec.height);
-    const std::uint64_t maxPixels = limits::maxImagePixels();
-    if (count > maxPixels)
-        throw Error(name + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " is " +
-                    std::to_string(count) + " pixels, more than the limit of " + std::to_string(maxPixels) +
-                    " (" + limits::kMaxImagePixelsVariable + ")");
 
     RawImage raw;
     raw.file = name;
