@@ -353,7 +353,8 @@ IBL_FN AreaLightResult areaLightShadeGeometry(AreaLightGeometry g, vec3 radiance
 // IBL_RT_SPECULAR, IBL_RT_DISNEY_DIFFUSE (probe.h). Zero where the light is behind the point or the point
 // on a disk's or rectangle's plane; finite everywhere, inside a sphere included.
 IBL_FN AreaLightResult areaLightShade(AreaLight light, AreaSurface s, uint flags) {
-    return areaLightShadeGeometry(areaLightGeometry(light, s), v3scale(light.color, light.luminance), s, flags);
+    return areaLightShadeGeometry(areaLightGeometry(light, s), v3scale(light.color, light.luminance), s,
+                                  flags);
 }
 
 // The surface of a shading point: probe.h's material (Filament 4.8.3).

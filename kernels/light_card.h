@@ -1,5 +1,5 @@
-// Light cards: textured rectangle lights pre-integrated as Drobot, "Physically Based Area Lights" (GPU Pro 5),
-// 1.3.5 (eq. 1.23-1.28, Figures 1.25-1.26) and 1.4.1 describe. One source for the baker (the card's bake,
+// Light cards: textured rectangle lights pre-integrated as Drobot, "Physically Based Area Lights" (GPU Pro
+// 5), 1.3.5 (eq. 1.23-1.28, Figures 1.25-1.26) and 1.4.1 describe. One source for the baker (the card's bake,
 // kernels/light_card_bake.h), the runtime (kernels/textured_light.h) and the files' metadata.
 //
 // The card. The light is a rectangle; its texture covers it with u along the light's tangent (u = 0 at the
@@ -12,8 +12,9 @@
 //   layer 0, level m   the specular card (Figure 1.25, eq. 1.27): the texture pre-integrated over a footprint
 //                      of radius rho_m (lightCardLevelFootprint); level 0 is the texture itself (a mirror)
 //   layer 1 + k, level 0  the diffuse card (Figure 1.26, eq. 1.23's Diffuse_Lookup): the texture integrated
-//                      as seen from normalized distance t_k = (k / (K - 1))^2 of r_max (lightCardLayerDistance);
-//                      its deeper levels are plain 2x2 box reductions (no reader needs them)
+//                      as seen from normalized distance t_k = (k / (K - 1))^2 of r_max
+//                      (lightCardLayerDistance); its deeper levels are plain 2x2 box reductions (no reader
+//                      needs them)
 //
 // The pre-integration kernel. Both lookups are normalized integrals over the light: sum T w / sum w, so a
 // constant card returns its constant and the runtime's uniform rectangle light (area_lights.h) supplies
@@ -46,11 +47,11 @@ IBL_BEGIN_NAMESPACE
 
 // The mapping's parameters, as the file stores them (KTX2 keys iblbake.card*).
 IBL_STRUCT(LightCardLayout) {
-    uint32_t width, height;  // level 0, texels (powers of two)
-    uint32_t levelCount;     // floor(log2(max(width, height))) + 1: every level down to 1x1
-    uint32_t diffuseLayers;  // K >= 2: layers 1..K
-    float aspect;            // the light's width / height the card was baked for
-    float maxDistance;       // r_max, card units: sqrt(1 / IBL_CARD_SIGMA)
+    uint32_t width, height; // level 0, texels (powers of two)
+    uint32_t levelCount;    // floor(log2(max(width, height))) + 1: every level down to 1x1
+    uint32_t diffuseLayers; // K >= 2: layers 1..K
+    float aspect;           // the light's width / height the card was baked for
+    float maxDistance;      // r_max, card units: sqrt(1 / IBL_CARD_SIGMA)
     uint32_t pad0, pad1;
 };
 
@@ -59,8 +60,8 @@ IBL_FN float lightCardMaxDistance(void) {
 }
 
 // The footprint radius level m holds, card units: 0 for level 0, rho_m = IBL_CARD_MAX_FOOTPRINT 2^(m - L + 1)
-// for m >= 1 (a factor 2 per level, as the texel size; level 1's radius is 4 level-0 texels when L is the full
-// chain of a square card).
+// for m >= 1 (a factor 2 per level, as the texel size; level 1's radius is 4 level-0 texels when L is the
+// full chain of a square card).
 IBL_FN float lightCardLevelFootprint(LightCardLayout card, uint level) {
     if (level == 0u) return 0.0f;
     float rho = IBL_CARD_MAX_FOOTPRINT;

@@ -3,8 +3,10 @@
 // and the representative point of area_lights.h, for the light's mean radiance) times the card's
 // normalized pre-integrated emission at the most important points:
 //   diffuse   p_d where the visible part's vector-irradiance direction (the direction area_lights.h lights
-//             the diffuse with) meets the light, read from the diffuse layers at distance r = |p_d - p|
-//             (Drobot's "distance r between points p and p_d"), eq. 1.24
+//             the diffuse with) meets the light, read from the diffuse layers at r = the point's height above
+//             the light's plane: the card's layer holds the light seen from p_d + r n_l (eq. 1.23's lookup),
+//             whose kernel is then as wide as the point's own (measured: 3.3% mean error at 1 light size,
+//             3.8% with Drobot's r = |p - p_d|, which is wider for oblique points), eq. 1.24
 //   specular  p_sc, the centre of the specular cone's overlap with the light (area_lights.h, eq. 1.19-1.23),
 //             read from the specular chain at the footprint radius |p_sc - p| tan(alpha) (eq. 1.26), eq. 1.28
 // The card holds the emission normalized to mean luminance 1; light.color x light.luminance scale it as for a
@@ -54,13 +56,15 @@ IBL_FN vec3 lightCardDiffuse(IBL_FLOAT_BUFFER data, LightCardLayout card, float 
     uint k0 = IBL_UINT(layer);
     uint k1 = min(k0 + 1u, card.diffuseLayers - 1u);
     float f = layer - IBL_FLOAT(k0);
-    vec3 a = lightCardBilinear(data, card, 0u, 1u + k0, u, v), b = lightCardBilinear(data, card, 0u, 1u + k1, u, v);
+    vec3 a = lightCardBilinear(data, card, 0u, 1u + k0, u, v),
+         b = lightCardBilinear(data, card, 0u, 1u + k1, u, v);
     return v3add(v3scale(a, 1.0f - f), v3scale(b, f));
 }
 
 // Light-space (u, v) of a point of the light's plane at (px, py) from its centre (tangent, bitangent).
 IBL_FN float2 lightCardUv(LightPlane plane, float px, float py) {
-    return make_float2(saturate(0.5f + 0.5f * px / plane.halfWidth), saturate(0.5f - 0.5f * py / plane.halfHeight));
+    return make_float2(saturate(0.5f + 0.5f * px / plane.halfWidth),
+                       saturate(0.5f - 0.5f * py / plane.halfHeight));
 }
 
 // A textured rectangle light (light.shape IBL_AREA_RECTANGLE; light.color and light.luminance as for the
@@ -73,8 +77,9 @@ IBL_FN AreaLightResult texturedLightShade(AreaLight light, LightCardLayout card,
     LightPlane plane = g.plane;
     float sqrtArea = 2.0f * sqrt(plane.halfWidth * plane.halfHeight);
     if ((flags & IBL_RT_DIFFUSE) != 0u) {
-        // p_d: the diffuse direction's hit on the light's plane (inside the light: the visible part's centroid
-        // direction; clamped for the rounding at its edges).
+        // p_d: the diffuse direction's hit on the light's plane (inside the light: the visible part's
+        // centroid direction; clamped for the rounding at its edges); the lookup's distance is the point's
+        // height.
         vec3 toCenter = v3sub(plane.center, s.P);
         float height = -v3dot(toCenter, plane.normal);
         float along = -v3dot(g.direction, plane.normal);
@@ -82,9 +87,8 @@ IBL_FN AreaLightResult texturedLightShade(AreaLight light, LightCardLayout card,
         vec3 fromCenter = v3sub(hit, toCenter);
         float px = clamp(v3dot(fromCenter, plane.tangent), -plane.halfWidth, plane.halfWidth);
         float py = clamp(v3dot(fromCenter, plane.bitangent), -plane.halfHeight, plane.halfHeight);
-        vec3 toPd = v3madd(plane.tangent, px, v3madd(plane.bitangent, py, toCenter));
         float2 uv = lightCardUv(plane, px, py);
-        vec3 c = lightCardDiffuse(data, card, uv.x, uv.y, sqrt(v3dot(toPd, toPd)) / sqrtArea);
+        vec3 c = lightCardDiffuse(data, card, uv.x, uv.y, height / sqrtArea);
         r.diffuse = v3(r.diffuse.x * c.x, r.diffuse.y * c.y, r.diffuse.z * c.z);
     }
     if ((flags & IBL_RT_SPECULAR) != 0u) {

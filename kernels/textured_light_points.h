@@ -20,9 +20,9 @@ IBL_STRUCT(TexturedLightParams) {
 
 IBL_FN void shadeTexturedLightItem(WorkItem t, IBL_GLOBAL float* out, TexturedLightParams params,
                                    IBL_GLOBAL const ShadingPoint* points, IBL_GLOBAL const float* card) {
-    AreaLightResult r =
-        texturedLightShade(params.light, params.card, card,
-                           areaSurfaceFromPoint(points[t.x], params.dielectricF0, params.flags), params.flags);
+    AreaLightResult r = texturedLightShade(
+        params.light, params.card, card, areaSurfaceFromPoint(points[t.x], params.dielectricF0, params.flags),
+        params.flags);
     storeTexelAlpha(out, t, v3add(r.diffuse, r.specular), 0.0f);
 }
 

@@ -157,7 +157,8 @@ INSTANTIATE_TEST_SUITE_P(EveryFormat, Ktx2ByKtxParse, ::testing::ValuesIn(kForma
 TEST_F(IndependentParser, LightCardArray) {
     const fs::path dir = ibl::test::freshTempDir("ktx_light_card");
     const fs::path file = dir / "card.ktx2";
-    CliRun bake = runCli("lightcard " + ibl::test::sampleHdri() + " --size 16 --layers 4 -o " + file.string());
+    CliRun bake =
+        runCli("lightcard " + ibl::test::sampleHdri() + " --size 16 --layers 4 -o " + file.string());
     ASSERT_EQ(bake.exitCode, 0) << bake.err;
     const nlohmann::json expect = {{"vkFormat", 97},
                                    {"pixelWidth", 16},
@@ -165,8 +166,8 @@ TEST_F(IndependentParser, LightCardArray) {
                                    {"faceCount", 1},
                                    {"layerCount", 5},
                                    {"keys",
-                                    {"iblbake.cardLayout", "iblbake.cardMaxFootprint", "iblbake.cardMaxDistance",
-                                     "iblbake.cardAspect", "iblbake.colorSpace"}},
+                                    {"iblbake.cardLayout", "iblbake.cardMaxFootprint",
+                                     "iblbake.cardMaxDistance", "iblbake.cardAspect", "iblbake.colorSpace"}},
                                    {"keyValues",
                                     {{"iblbake.product", "light-card"},
                                      {"iblbake.cardSpecularLevels", "5"},

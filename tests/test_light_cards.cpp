@@ -52,8 +52,9 @@ ImageRGBA texturedEmission(int size) {
     for (int y = 0; y < size; ++y)
         for (int x = 0; x < size; ++x) {
             const float u = (float(x) + 0.5f) / float(size), v = (float(y) + 0.5f) / float(size);
-            image.at(x, y) = glm::vec4(0.2f + 1.8f * u, 0.2f + 1.8f * v,
-                                       1.0f + 0.8f * std::sin(4.0f * kPi * u) * std::sin(4.0f * kPi * v), 1.0f);
+            image.at(x, y) =
+                glm::vec4(0.2f + 1.8f * u, 0.2f + 1.8f * v,
+                          1.0f + 0.8f * std::sin(4.0f * kPi * u) * std::sin(4.0f * kPi * v), 1.0f);
         }
     return normalized(image);
 }
@@ -78,8 +79,9 @@ LightCardData bakeCard(const ImageRGBA& emission, const Executor& executor, int 
 // mirror image of that direction: the reflection points at `target`.
 ShadingPoint sweepPoint(float distance, float elevation, float azimuth, float viewAngle, float roughness,
                         glm::vec3 target) {
-    const glm::vec3 position = distance * glm::vec3(std::sin(elevation) * std::cos(azimuth),
-                                                    std::sin(elevation) * std::sin(azimuth), std::cos(elevation));
+    const glm::vec3 position =
+        distance * glm::vec3(std::sin(elevation) * std::cos(azimuth), std::sin(elevation) * std::sin(azimuth),
+                             std::cos(elevation));
     const glm::vec3 toTarget = glm::normalize(target - position);
     const glm::vec3 side = glm::normalize(glm::cross(toTarget, glm::vec3(0.0f, 1.0f, 0.0f)));
     const glm::vec3 normal = std::cos(viewAngle) * toTarget + std::sin(viewAngle) * side;
@@ -127,7 +129,8 @@ TEST(LightCards, ConstantCardIsTheUniformRectangle) {
     for (float roughness : kRoughness)
         for (float distance : kDistance) {
             const std::vector<ShadingPoint> points = cellPoints(roughness, distance);
-            const std::vector<AreaLightResult> textured = shadeTexturedLightCpu(unitRectangle(), card, points);
+            const std::vector<AreaLightResult> textured =
+                shadeTexturedLightCpu(unitRectangle(), card, points);
             const std::vector<AreaLightResult> reference = shadeAreaLightCpu(uniform, points);
             for (std::size_t i = 0; i < points.size(); ++i) {
                 worst = std::max(worst, channelError(textured[i].diffuse, reference[i].diffuse));
@@ -140,11 +143,11 @@ TEST(LightCards, ConstantCardIsTheUniformRectangle) {
 
 // Mean relative errors of one (roughness, distance) cell of the sweep.
 struct CellError {
-    double diffuse = 0.0, diffuseChannel = 0.0;        // luminance; the worst channel's
-    double specular = 0.0, specularChannel = 0.0;      // views up to 57 degrees
-    double specularGrazing = 0.0;                      // 80 degrees
-    double uniformSpecular = 0.0;                      // the uniform light's own error at the same views
-    double reference = 0.0;                            // the reference's own estimate, relative, the cell's largest
+    double diffuse = 0.0, diffuseChannel = 0.0;   // luminance; the worst channel's
+    double specular = 0.0, specularChannel = 0.0; // views up to 57 degrees
+    double specularGrazing = 0.0;                 // 80 degrees
+    double uniformSpecular = 0.0;                 // the uniform light's own error at the same views
+    double reference = 0.0; // the reference's own estimate, relative, the cell's largest
 };
 
 CellError sweepCell(const LightCardData& card, const ImageRGBA& emission, float roughness, float distance) {
@@ -153,7 +156,8 @@ CellError sweepCell(const LightCardData& card, const ImageRGBA& emission, float 
     options.energyCompensation = false;
     const AreaLight light = unitRectangle();
     const std::vector<AreaLightResult> runtime = shadeTexturedLightCpu(light, card, points, options);
-    const std::vector<AreaReference> reference = renderTexturedLightReference(light, emission, points, options);
+    const std::vector<AreaReference> reference =
+        renderTexturedLightReference(light, emission, points, options);
     // The uniform light of the card's mean colour against its own brute force: what the representative
     // point costs before any texture.
     const std::vector<AreaLightResult> uniform = shadeAreaLightCpu(light, points, options);
@@ -187,7 +191,12 @@ CellError sweepCell(const LightCardData& card, const ImageRGBA& emission, float 
 
 // The sweep of issue 15 for the textured rectangle: 4 roughnesses x 3 distances x 2 reflection targets x
 // 2 elevations x 4 views, 64 x 64 card, 8 diffuse layers. Bounds: this table's measurement with margin
-// (see the README's table).
+// (the README's table). Diffuse (exact for a constant card) 4.5% / 2.5% / 1% at 1 / 3 / 10 light sizes,
+// the worst channel 16% / 12% / 5%: the lookup's kernel is the light seen from the point at the same height
+// above p_d, facing it, so a tilted or oblique receiver's own weighting (its cosine, 1 / d^2 across the
+// light) is lost; the red and green ramps (10:1) show it. Specular up to 57 degrees 12%: the card adds little
+// to the representative point's own error (the uniform light's column); at 80 degrees (the representative
+// point's known failure, Frostbite 4.7.5) 45%, 70% at 1 light size.
 TEST(LightCards, SweepAgainstTheBruteForce) {
     const ImageRGBA emission = texturedEmission(64);
     const LightCardData card = bakeCard(emission, Executor::cpu());
@@ -197,15 +206,16 @@ TEST(LightCards, SweepAgainstTheBruteForce) {
     for (float roughness : kRoughness)
         for (float distance : kDistance) {
             const CellError e = sweepCell(card, emission, roughness, distance);
-            std::printf("| %.1f | %.0f | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.3f%% |\n", roughness,
-                        distance, 100.0 * e.diffuse, 100.0 * e.diffuseChannel, 100.0 * e.specular,
+            std::printf("| %.1f | %.0f | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.2f%% | %.3f%% |\n",
+                        roughness, distance, 100.0 * e.diffuse, 100.0 * e.diffuseChannel, 100.0 * e.specular,
                         100.0 * e.specularChannel, 100.0 * e.uniformSpecular, 100.0 * e.specularGrazing,
                         100.0 * e.reference);
             SCOPED_TRACE("r " + std::to_string(roughness) + " d " + std::to_string(distance));
             EXPECT_LT(e.reference, 0.002);
-            EXPECT_LT(e.diffuse, 0.02);
-            EXPECT_LT(e.specular, distance > 1.0f ? 0.10 : 0.25);
-            EXPECT_LT(e.specularGrazing, distance > 1.0f ? 0.25 : 0.70);
+            EXPECT_LT(e.diffuse, distance < 2.0f ? 0.045 : distance < 5.0f ? 0.025 : 0.01);
+            EXPECT_LT(e.diffuseChannel, distance < 2.0f ? 0.16 : distance < 5.0f ? 0.12 : 0.05);
+            EXPECT_LT(e.specular, 0.12);
+            EXPECT_LT(e.specularGrazing, distance > 1.0f ? 0.45 : 0.70);
         }
 }
 
@@ -219,7 +229,8 @@ TEST(LightCards, InverseSquareFarAway) {
     std::vector<ShadingPoint> points;
     for (float d : {10.0f, 20.0f, 40.0f, 100.0f})
         points.push_back(sweepPoint(d, 0.3f, 0.6f, 0.0f, 0.5f, glm::vec3(0.0f)));
-    const std::vector<AreaLightResult> textured = shadeTexturedLightCpu(unitRectangle(), card, points, lambert);
+    const std::vector<AreaLightResult> textured =
+        shadeTexturedLightCpu(unitRectangle(), card, points, lambert);
     const std::vector<AreaLightResult> uniform = shadeAreaLightCpu(unitRectangle(), points, lambert);
     const std::vector<AreaReference> reference =
         renderTexturedLightReference(unitRectangle(), emission, points, lambert);
@@ -248,15 +259,16 @@ TEST(LightCards, HardCasesAreFinite) {
         unlit.push_back(dark);
     };
     for (float roughness : {0.0f, 0.05f, 1.0f}) {
-        add({0.3f, 0.0f, 0.0f}, up, up, roughness, true);                   // on the light
-        add({2.0f, 0.0f, 0.0f}, up, up, roughness, true);                   // on its plane, beside it
-        add({2.0f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f}, up, roughness, true);  // ... facing it edge-on
-        add({0.0f, 0.0f, -1.0f}, -up, -up, roughness, true);                // behind it
-        add({0.0f, 0.0f, -1.0f}, up, up, roughness, true);                  // behind it, facing its back
-        add({0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f}, up, roughness, false);  // grazing: the light on the horizon
+        add({0.3f, 0.0f, 0.0f}, up, up, roughness, true);                  // on the light
+        add({2.0f, 0.0f, 0.0f}, up, up, roughness, true);                  // on its plane, beside it
+        add({2.0f, 0.0f, 0.0f}, {-1.0f, 0.0f, 0.0f}, up, roughness, true); // ... facing it edge-on
+        add({0.0f, 0.0f, -1.0f}, -up, -up, roughness, true);               // behind it
+        add({0.0f, 0.0f, -1.0f}, up, up, roughness, true);                 // behind it, facing its back
+        add({0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f}, up, roughness,
+            false); // grazing: the light on the horizon
         add({0.0f, 0.0f, 1.0f}, -up, {1.0f, 0.0f, 0.0f}, roughness, false); // grazing view
         add({0.0f, 0.0f, 1.0f}, -up, up, roughness, false);                 // view from behind the surface
-        add({0.4f, 0.5f, 1e-4f}, -up, -up, roughness, false);               // almost on the light, at its edge
+        add({0.4f, 0.5f, 1e-4f}, -up, -up, roughness, false); // almost on the light, at its edge
         add({5.0f, 0.0f, 1e-3f}, {-1.0f, 0.0f, 0.0f}, up, roughness, false); // far along the plane
         add({0.0f, 0.0f, 1.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, roughness, false); // zero vectors
     }
@@ -265,7 +277,8 @@ TEST(LightCards, HardCasesAreFinite) {
         options.diffuseModel = model;
         const std::vector<AreaLightResult> r = shadeTexturedLightCpu(unitRectangle(), card, points, options);
         for (std::size_t i = 0; i < points.size(); ++i) {
-            SCOPED_TRACE("point " + std::to_string(i % 11) + " r " + std::to_string(points[i].perceptualRoughness));
+            SCOPED_TRACE("point " + std::to_string(i % 11) + " r " +
+                         std::to_string(points[i].perceptualRoughness));
             for (int c = 0; c < 3; ++c)
                 for (float v : {r[i].diffuse[c], r[i].specular[c]}) {
                     EXPECT_TRUE(std::isfinite(v));
@@ -287,7 +300,8 @@ TEST(LightCards, OpenCLMatchesCpu) {
     ASSERT_EQ(cpu.texels.size(), cl.texels.size());
     double worst = 0.0;
     for (std::size_t i = 0; i < cpu.texels.size(); ++i)
-        worst = std::max(worst, double(std::abs(cpu.texels[i] - cl.texels[i])) / std::max(1e-3f, std::abs(cpu.texels[i])));
+        worst = std::max(worst, double(std::abs(cpu.texels[i] - cl.texels[i])) /
+                                    std::max(1e-3f, std::abs(cpu.texels[i])));
     std::printf("card bake: OpenCL vs CPU over %zu floats: max relative difference %.3g\n", cpu.texels.size(),
                 worst);
     EXPECT_LT(worst, 1e-4);
@@ -300,15 +314,16 @@ TEST(LightCards, OpenCLMatchesCpu) {
     RuntimeOptions options;
     options.diffuseModel = DiffuseModel::Disney;
     const std::vector<AreaLightResult> a = shadeTexturedLightCpu(unitRectangle(), cpu, points, options);
-    const std::vector<AreaLightResult> b = shadeTexturedLightOpenCL(executor.cl(), unitRectangle(), cpu, points, options);
+    const std::vector<AreaLightResult> b =
+        shadeTexturedLightOpenCL(executor.cl(), unitRectangle(), cpu, points, options);
     double worstShade = 0.0;
     for (std::size_t i = 0; i < points.size(); ++i)
         for (int c = 0; c < 3; ++c) {
             const double x = a[i].diffuse[c] + a[i].specular[c], y = b[i].diffuse[c] + b[i].specular[c];
             worstShade = std::max(worstShade, std::abs(x - y) / std::max(1e-3, std::abs(x)));
         }
-    std::printf("textured light: OpenCL vs CPU over %zu points: max relative difference %.3g\n", points.size(),
-                worstShade);
+    std::printf("textured light: OpenCL vs CPU over %zu points: max relative difference %.3g\n",
+                points.size(), worstShade);
     EXPECT_LT(worstShade, 2e-3);
 }
 
@@ -318,7 +333,8 @@ void writePng(const fs::path& file, int width, int height) {
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             for (int c = 0; c < 3; ++c)
-                pixels[(std::size_t(y) * width + x) * 3 + c] = (unsigned char)(40 + (200 * x) / width + 10 * c);
+                pixels[(std::size_t(y) * width + x) * 3 + c] =
+                    (unsigned char)(40 + (200 * x) / width + 10 * c);
     auto out = OIIO::ImageOutput::create(file.string());
     ASSERT_TRUE(out);
     ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8)));
@@ -346,7 +362,8 @@ TEST(LightCards, FileReadBackByTheRuntimeLoader) {
     // far darker than linear 40/255 relative to the right edge's 240-260).
     double sum = 0.0;
     for (int i = 0; i < 16 * 16; ++i)
-        sum += glm::dot(glm::dvec3(card.texels[4 * i], card.texels[4 * i + 1], card.texels[4 * i + 2]), kLuma);
+        sum +=
+            glm::dot(glm::dvec3(card.texels[4 * i], card.texels[4 * i + 1], card.texels[4 * i + 2]), kLuma);
     EXPECT_NEAR(sum / 256.0, 1.0, 1e-4);
     const double left = card.texels[0], right = card.texels[4 * 15];
     EXPECT_LT(left / right, 0.05); // sRGB: (45/245)^2.4 ~ 0.017; linear would be 0.18
@@ -370,8 +387,9 @@ TEST(LightCards, FileReadBackByTheRuntimeLoader) {
     }
     Ktx2Image stored = readKtx2(dir / "card.ktx2");
     Ktx2KeyValues keys(stored.keyValues.begin(), stored.keyValues.end());
-    keys.erase(std::remove_if(keys.begin(), keys.end(), [](const auto& kv) { return kv.first == "KTXwriter"; }),
-               keys.end());
+    keys.erase(
+        std::remove_if(keys.begin(), keys.end(), [](const auto& kv) { return kv.first == "KTXwriter"; }),
+        keys.end());
     for (auto& [key, value] : keys)
         if (key == "iblbake.cardDiffuseLayers") value = "5";
     writeKtx2Array(dir / "bad.ktx2", stored.levels, Ktx2Format::RGBA32F, keys);

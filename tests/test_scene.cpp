@@ -314,13 +314,16 @@ TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
         json light;
         std::string expected;
     } cases[] = {
-        {{{"name", "w"}, {"texture", "w.png"}, {"cardSize", 100}}, "scene.json: lights[0].cardSize: must be a power of two"},
+        {{{"name", "w"}, {"texture", "w.png"}, {"cardSize", 100}},
+         "scene.json: lights[0].cardSize: must be a power of two"},
         {{{"name", "w"}, {"texture", "w.png"}, {"cardLayers", 1}},
          "scene.json: lights[0].cardLayers: must be a whole number from 2 to 64"},
         {{{"name", "w"}, {"shape", "disk"}, {"texture", "w.png"}},
          "scene.json: lights[0].texture: only a rectangle light can be textured"},
-        {{{"name", "w"}, {"shape", "tube"}}, "scene.json: lights[0].shape: \"tube\" is not one of sphere, disk, rectangle"},
-        {{{"name", "w"}, {"cardSize", 64}}, "scene.json: lights[0].cardSize: needs a texture: only textured lights have cards"},
+        {{{"name", "w"}, {"shape", "tube"}},
+         "scene.json: lights[0].shape: 'tube' is not one of sphere, disk, rectangle"},
+        {{{"name", "w"}, {"cardSize", 64}},
+         "scene.json: lights[0].cardSize: needs a texture: only textured lights have cards"},
         {{{"name", "w"}, {"textur", "w.png"}}, "scene.json: lights[0].textur: unknown key"},
         {{{"name", "a b"}}, "scene.json: lights[0].name: must be 1 to 64 of A-Z a-z 0-9 _ -"},
     };
@@ -331,7 +334,7 @@ TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
     }
     json twice = minimalScene();
     twice["lights"] = json::array({{{"name", "w"}}, {{"name", "w"}}});
-    EXPECT_EQ(errorOf(twice.dump()), "scene.json: lights[1].name: \"w\" is used by an earlier light");
+    EXPECT_EQ(errorOf(twice.dump()), "scene.json: lights[1].name: 'w' is used by an earlier light");
     json notArray = minimalScene();
     notArray["lights"] = json::object();
     EXPECT_EQ(errorOf(notArray.dump()), "scene.json: lights: must be an array, not an object");

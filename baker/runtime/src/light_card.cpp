@@ -85,14 +85,16 @@ std::vector<AreaLightResult> shadeTexturedLight(const Dispatcher& dispatcher, co
 
 } // namespace
 
-LightCardData lightCardData(const LightCardLayout& layout, const std::vector<std::vector<ImageRGBA>>& levels) {
+LightCardData lightCardData(const LightCardLayout& layout,
+                            const std::vector<std::vector<ImageRGBA>>& levels) {
     LightCardData card;
     card.layout = layout;
     if (levels.size() != layout.levelCount) throw Error("light card: level count disagrees with its layout");
     for (std::uint32_t m = 0; m < layout.levelCount; ++m) {
         if (levels[m].size() != layout.diffuseLayers + 1)
-            throw Error("light card: level " + std::to_string(m) + " has " + std::to_string(levels[m].size()) +
-                        " layers, its layout " + std::to_string(layout.diffuseLayers + 1));
+            throw Error("light card: level " + std::to_string(m) + " has " +
+                        std::to_string(levels[m].size()) + " layers, its layout " +
+                        std::to_string(layout.diffuseLayers + 1));
         for (const ImageRGBA& layer : levels[m]) {
             if (layer.width != int(lightCardLevelSize(layout.width, m)) ||
                 layer.height != int(lightCardLevelSize(layout.height, m)))
@@ -122,8 +124,9 @@ LightCardData loadLightCard(const std::filesystem::path& path) {
         throw Error(name + ": iblbake.cardMaxFootprint differs from this runtime's " +
                     std::to_string(IBL_CARD_MAX_FOOTPRINT));
     if (layout.diffuseLayers < 2 || image.layerCount != layout.diffuseLayers + 1)
-        throw Error(name + ": " + std::to_string(image.layerCount) + " layers, but iblbake.cardDiffuseLayers " +
-                    std::to_string(layout.diffuseLayers) + " needs " + std::to_string(layout.diffuseLayers + 1));
+        throw Error(name + ": " + std::to_string(image.layerCount) +
+                    " layers, but iblbake.cardDiffuseLayers " + std::to_string(layout.diffuseLayers) +
+                    " needs " + std::to_string(layout.diffuseLayers + 1));
     if (layout.levelCount != std::max<std::uint32_t>(1, image.levelCount) ||
         layout.levelCount != std::uint32_t(std::bit_width(std::max(layout.width, layout.height))))
         throw Error(name + ": " + std::to_string(image.levelCount) + " levels, iblbake.cardSpecularLevels " +

@@ -75,14 +75,15 @@ std::vector<AreaReference> renderTexturedLightReference(const AreaLight& light, 
         const double d = glm::length(rect.center - p);
         const double angle = 2.0 * std::atan(std::hypot(rect.halfWidth, rect.halfHeight) / d);
         const double cells = m.specular ? std::ceil(settings.cellsPerAlpha * angle / m.alpha) : 0.0;
-        const std::uint32_t n = std::uint32_t(std::clamp(
-            cells, double(std::max<std::uint32_t>(settings.gridSize, 2)),
-            double(std::max(settings.maxGridSize, settings.gridSize))));
+        const std::uint32_t n =
+            std::uint32_t(std::clamp(cells, double(std::max<std::uint32_t>(settings.gridSize, 2)),
+                                     double(std::max(settings.maxGridSize, settings.gridSize))));
         // Multiples of twice the texture's size, so that the fine and the coarse grid both align with texels.
         auto aligned = [&](std::uint32_t size) {
             return std::max<std::uint32_t>(2 * size, (n + 2 * size - 1) / (2 * size) * (2 * size));
         };
-        const std::uint32_t nx = aligned(std::uint32_t(emission.width)), ny = aligned(std::uint32_t(emission.height));
+        const std::uint32_t nx = aligned(std::uint32_t(emission.width)),
+                            ny = aligned(std::uint32_t(emission.height));
         const ReferenceResult fine = rect.integrate(m, p, radiance, nx, ny);
         const ReferenceResult coarse = rect.integrate(m, p, radiance, nx / 2, ny / 2);
         out[k].value = fine;

@@ -111,7 +111,8 @@ Header parseHeader(std::span<const std::uint8_t> bytes, const std::string& name)
 }
 
 // Texture type and format checks (KTX 2.0 "Texture Type", "typeSize", "levelCount",
-// "supercompressionScheme"), restricted to what iblbake supports: 2D textures, 2D arrays and cube maps (no cube arrays).
+// "supercompressionScheme"), restricted to what iblbake supports: 2D textures, 2D arrays and cube maps (no
+// cube arrays).
 FormatInfo checkHeader(const Header& h, const std::string& name) {
     const auto info = ktx2::findFormat(h.vkFormat);
     if (!info) throw Error(name + ": unsupported vkFormat " + std::to_string(h.vkFormat));
@@ -206,8 +207,8 @@ std::uint64_t levelByteLength(const Header& h, const FormatInfo& info, std::uint
     const std::uint64_t width = std::max<std::uint64_t>(1, h.pixelWidth >> level);
     const std::uint64_t height = std::max<std::uint64_t>(1, h.pixelHeight >> level);
     std::uint64_t bytes = width;
-    for (std::uint64_t factor : {height, std::uint64_t(h.faceCount), std::uint64_t(std::max(1u, h.layerCount)),
-                                 std::uint64_t(info.texelBytes)})
+    for (std::uint64_t factor : {height, std::uint64_t(h.faceCount),
+                                 std::uint64_t(std::max(1u, h.layerCount)), std::uint64_t(info.texelBytes)})
         if (__builtin_mul_overflow(bytes, factor, &bytes)) return UINT64_MAX;
     return bytes;
 }

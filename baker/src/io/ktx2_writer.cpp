@@ -323,8 +323,9 @@ Ktx2WriteStats writeKtx2Array(const fs::path& path, const std::vector<std::vecto
     if (width <= 0 || height <= 0) throw Error(name + ": refusing to write an empty array");
     const std::size_t maxLevels = std::size_t(std::bit_width(unsigned(std::max(width, height))));
     if (levels.size() > maxLevels)
-        throw Error(name + ": " + std::to_string(levels.size()) + " levels for size " + std::to_string(width) +
-                    "x" + std::to_string(height) + " (at most " + std::to_string(maxLevels) + ")");
+        throw Error(name + ": " + std::to_string(levels.size()) + " levels for size " +
+                    std::to_string(width) + "x" + std::to_string(height) + " (at most " +
+                    std::to_string(maxLevels) + ")");
     const std::size_t layers = levels.front().size();
     std::vector<LevelView> views;
     for (std::size_t m = 0; m < levels.size(); ++m) {
@@ -334,7 +335,8 @@ Ktx2WriteStats writeKtx2Array(const fs::path& path, const std::vector<std::vecto
                         " layers, expected " + std::to_string(layers));
         LevelView view{w, h, {}};
         for (std::size_t l = 0; l < layers; ++l) {
-            checkImage(name, levels[m][l], w, h, "level " + std::to_string(m) + " layer " + std::to_string(l));
+            checkImage(name, levels[m][l], w, h,
+                       "level " + std::to_string(m) + " layer " + std::to_string(l));
             view.faces.push_back(&levels[m][l]);
         }
         views.push_back(std::move(view));

@@ -116,10 +116,11 @@ LightCard bakeLightCard(const ImageRGBA& emission, float aspect, const LightCard
         level.resize(layers);
         const int w = int(lightCardLevelSize(card.layout.width, m));
         const int h = int(lightCardLevelSize(card.layout.height, m));
-        // Layer 0: the specular chain, level 0 the emission (a mirror's footprint), eq. 1.27 with beta = 2 rho_m.
+        // Layer 0: the specular chain, level 0 the emission (a mirror's footprint), eq. 1.27 with beta = 2
+        // rho_m.
         level[0] = m == 0 ? emission
-                          : preIntegrate(dispatcher, pyramid, w, h, 2.0f * lightCardLevelFootprint(card.layout, m),
-                                         sizeU, sizeV);
+                          : preIntegrate(dispatcher, pyramid, w, h,
+                                         2.0f * lightCardLevelFootprint(card.layout, m), sizeU, sizeV);
         for (std::uint32_t k = 0; k < card.layout.diffuseLayers; ++k) {
             ImageRGBA& layer = level[1 + k];
             if (m > 0) {

@@ -49,7 +49,8 @@ ImageRGBA boxResample(const ImageRGBA& in, int size) {
 } // namespace
 
 LightCardTexture readLightCardTexture(const std::filesystem::path& file, const LightCardSettings& settings,
-                                      const std::string& inputColorSpace, const std::string& workingColorSpace) {
+                                      const std::string& inputColorSpace,
+                                      const std::string& workingColorSpace) {
     lightCardLayout(settings, 1.0f); // the settings' ranges, before reading
     ingest::RawImage raw = ingest::readImage(file);
     LightCardTexture texture;

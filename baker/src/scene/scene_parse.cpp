@@ -364,7 +364,8 @@ SceneLight light(const json& v, const std::string& path, const fs::path& base, c
     if (!isPowerOfTwo(l.cardSize)) fail(r.key("cardSize"), "must be a power of two");
     l.cardLayers = r.integer("cardLayers", l.cardLayers, 2, 64);
     if (!l.texture && (r.has("cardSize") || r.has("cardLayers")))
-        fail(r.key(r.has("cardSize") ? "cardSize" : "cardLayers"), "needs a texture: only textured lights have cards");
+        fail(r.key(r.has("cardSize") ? "cardSize" : "cardLayers"),
+             "needs a texture: only textured lights have cards");
     r.finish();
     return l;
 }

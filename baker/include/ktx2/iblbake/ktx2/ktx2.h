@@ -1,6 +1,6 @@
-// KTX 2.0 container output and input for cube-map chains, 2D LUTs and 2D arrays (light cards) (uncompressed float formats only,
-// no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data Format Descriptor
-// follows the Khronos Data Format Specification's basic descriptor block for each vkFormat.
+// KTX 2.0 container output and input for cube-map chains, 2D LUTs and 2D arrays (light cards) (uncompressed
+// float formats only, no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data
+// Format Descriptor follows the Khronos Data Format Specification's basic descriptor block for each vkFormat.
 #pragma once
 
 #include "iblbake/core/cubemap.h"
@@ -61,8 +61,9 @@ struct Ktx2Image {
     std::uint32_t layerCount = 0;                 // 0: not an array (2D arrays only: faceCount 1)
     std::uint32_t levelCount = 0;                 // as stored in the header; 0 means "base level only"
     std::map<std::string, std::string> keyValues; // one trailing NUL of each value removed
-    // levels[m][face], or levels[m][layer] for an array, max(1, levelCount) levels, decoded to float RGBA (alpha 1 for formats without
-    // alpha). Values are decoded as stored: a foreign file may contain Inf/NaN texels.
+    // levels[m][face], or levels[m][layer] for an array, max(1, levelCount) levels, decoded to float RGBA
+    // (alpha 1 for formats without alpha). Values are decoded as stored: a foreign file may contain Inf/NaN
+    // texels.
     std::vector<std::vector<ImageRGBA>> levels;
 };
 

@@ -59,11 +59,11 @@ struct SceneProbe {
 // lights[]: the scene's area lights. The runtime evaluates them (kernels/area_lights.h); a textured one
 // (a rectangle with a texture) needs its light card baked (kernels/light_card.h), one card stage each.
 struct SceneLight {
-    std::string name;                            // [A-Za-z0-9_-], unique; names the card lightcard_<name>.ktx2
-    std::string shape = "rectangle";             // sphere, disk, rectangle
+    std::string name;                // [A-Za-z0-9_-], unique; names the card lightcard_<name>.ktx2
+    std::string shape = "rectangle"; // sphere, disk, rectangle
     std::optional<std::filesystem::path> texture; // rectangles only: the emission image
-    int cardSize = 256;                          // the card's level 0, a power of two (LightCardSettings)
-    int cardLayers = 8;                          // its diffuse layers
+    int cardSize = 256;                           // the card's level 0, a power of two (LightCardSettings)
+    int cardLayers = 8;                           // its diffuse layers
 };
 
 enum class SceneDiffuseModel { Lambert, Disney };
