@@ -22,5 +22,6 @@ Action addBatchCommand(CLI::App& app);
 Action addGltfCommand(CLI::App& app);
 Action addExportShCommand(CLI::App& app);
 Action addAccuracyCommand(CLI::App& app);
+Action addLightCardCommand(CLI::App& app);
 
 } // namespace ibl::cli

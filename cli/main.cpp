@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addGltfCommand(app));
     add(ibl::cli::addExportShCommand(app));
     add(ibl::cli::addAccuracyCommand(app));
+    add(ibl::cli::addLightCardCommand(app));
 
     try {
         app.parse(argc, argv);

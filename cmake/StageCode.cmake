@@ -40,7 +40,7 @@ set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, 
 # computation throw. "manifest" is no stage: manifest.json is written by every bake that is not up to date,
 # and records this identity so that the up-to-date check does not keep one written by other code.
 set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract sun-in-probe specular-ld diffuse-sh irradiance-cube probe-ld
-    gltf-export material-preview manifest)
+    gltf-export material-preview light-card manifest)
 set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp)
 set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
 set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration baker/src/environment)
@@ -64,6 +64,9 @@ set(IBLBAKE_STAGE_CODE_gltf-export stage_runner kernel_host ld_chain baker/src/s
 set(IBLBAKE_STAGE_CODE_material-preview stage_runner kernel_host baker/src/scene/engine_output_stages.cpp
     baker/src/preview baker/runtime/src kernels/runtime.cl baker/src/io/preview.cpp baker/src/io/exr_output.cpp
     baker/src/io/encoded_image.cpp)
+# A textured light's card (lights[].texture): the texture's read and colour conversion, the bake and its file.
+set(IBLBAKE_STAGE_CODE_light-card stage_runner kernel_host kernels/light_card.cl baker/src/light_card
+    baker/src/ingest/read_image.cpp baker/src/ingest/color.cpp baker/src/ingest/sanitize.cpp)
 set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp
     baker/src/products)
 
@@ -80,7 +83,8 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
     baker/src/stages/specular_reference.cpp baker/src/stages/specular_settings.cpp
     kernels/dispatch_check.cl kernels/dispatch_check.h # dispatch_check: the dispatch helper's test kernel
-    kernels/area_lights.cl) # the runtime's area lights: no stage renders them
+    kernels/area_lights.cl # the runtime's area lights: no stage renders them
+    kernels/textured_light.cl) # ... nor textured ones
 
 # _iblbake_code_files(<root> <out-var> <entry>...): the files (relative to <root>, sorted) that the
 # entries name, expanded through groups and directories. Fails for a path that does not exist or a

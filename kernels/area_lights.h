@@ -177,7 +177,13 @@ IBL_FN float lightSupport(LightPlane plane, vec3 u) {
 //  any shape and angle (D'(peak) V E = L for alpha -> 0), and a light much smaller than the lobe is the point
 //  light at its centre. E is the light's illuminance with the horizon (the diffuse's), so a light sinking
 //  below the horizon dims its highlight with its diffuse.
-IBL_FN vec3 areaSpecular(LightPlane plane, AreaSurface s, float illuminance, vec3 visibleDirection) {
+// Drobot's p_sc (above): the overlap's centre in the light's plane frame (px, py from its centre), how much
+// of the light the footprint covers, and the point relative to the shading point.
+IBL_STRUCT(SpecularPoint) {
+    float px, py, coverage;
+    vec3 toPoint;
+};
+IBL_FN SpecularPoint areaSpecularPoint(LightPlane plane, AreaSurface s) {
     vec3 R = v3sub(v3scale(s.N, 2.0f * v3dot(s.N, s.V)), s.V);
     float denom = v3dot(R, plane.normal);
     vec3 toCenter = v3sub(plane.center, s.P);
@@ -194,20 +200,31 @@ IBL_FN vec3 areaSpecular(LightPlane plane, AreaSurface s, float illuminance, vec
         cy = v3dot(R, plane.bitangent) * big;
         radius = 0.0f;
     }
-    float px = 0.0f, py = 0.0f, coverage = 0.0f;
+    SpecularPoint p;
+    p.px = 0.0f;
+    p.py = 0.0f;
+    p.coverage = 0.0f;
     if (plane.rectangle != 0u) {
-        px = overlapCentre(cx, radius, plane.halfWidth);
-        py = overlapCentre(cy, radius, plane.halfHeight);
-        coverage =
+        p.px = overlapCentre(cx, radius, plane.halfWidth);
+        p.py = overlapCentre(cy, radius, plane.halfHeight);
+        p.coverage =
             overlapCoverage(cx, radius, plane.halfWidth) * overlapCoverage(cy, radius, plane.halfHeight);
     } else {
         float rho = sqrt(cx * cx + cy * cy);
         float q = overlapCentre(rho, radius, plane.halfWidth);
-        px = rho > 0.0f ? cx * (q / rho) : 0.0f;
-        py = rho > 0.0f ? cy * (q / rho) : 0.0f;
-        coverage = sq(overlapCoverage(rho, radius, plane.halfWidth));
+        p.px = rho > 0.0f ? cx * (q / rho) : 0.0f;
+        p.py = rho > 0.0f ? cy * (q / rho) : 0.0f;
+        p.coverage = sq(overlapCoverage(rho, radius, plane.halfWidth));
     }
-    vec3 point = v3madd(plane.tangent, px, v3madd(plane.bitangent, py, toCenter));
+    p.toPoint = v3madd(plane.tangent, p.px, v3madd(plane.bitangent, p.py, toCenter));
+    return p;
+}
+
+IBL_FN vec3 areaSpecular(LightPlane plane, AreaSurface s, float illuminance, vec3 visibleDirection) {
+    SpecularPoint sc = areaSpecularPoint(plane, s);
+    vec3 toCenter = v3sub(plane.center, s.P);
+    float coverage = sc.coverage;
+    vec3 point = sc.toPoint;
     // p_sc is the overlap's centre on the whole light; the horizon hides part of it. As the footprint covers
     // more of the light, the direction moves from p_sc's to the visible part's centroid (the clipped
     // polygon's vector irradiance), which both are when the footprint covers all of it.
@@ -233,44 +250,44 @@ IBL_FN vec3 areaSpecular(LightPlane plane, AreaSurface s, float illuminance, vec
     return v3scale(fresnelSchlickRgb(s.f0, s.f90, LoH), dv * illuminance);
 }
 
-IBL_STRUCT(AreaLightResult) {
-    vec3 diffuse;
-    vec3 specular;
+// One light seen from one surface: its plane frame, its illuminance (unit luminance, horizon included) and
+// the direction of its visible part's vector irradiance. illuminance 0 where the light is behind the point
+// or the point on a disk's or rectangle's plane.
+IBL_STRUCT(AreaLightGeometry) {
+    LightPlane plane;
+    float illuminance;
+    vec3 direction;
 };
-
-// One light on one surface: diffuse and specular radiance toward V. flags: IBL_RT_DIFFUSE,
-// IBL_RT_SPECULAR, IBL_RT_DISNEY_DIFFUSE (probe.h). Zero where the light is behind the point or the point
-// on a disk's or rectangle's plane; finite everywhere, inside a sphere included.
-IBL_FN AreaLightResult areaLightShade(AreaLight light, AreaSurface s, uint flags) {
-    AreaLightResult result;
-    result.diffuse = v3(0.0f, 0.0f, 0.0f);
-    result.specular = v3(0.0f, 0.0f, 0.0f);
+IBL_FN AreaLightGeometry areaLightGeometry(AreaLight light, AreaSurface s) {
+    AreaLightGeometry g;
+    g.illuminance = 0.0f;
     vec3 toCenter = v3sub(light.position, s.P);
     float sqrDist = v3dot(toCenter, toCenter);
     vec3 Lc = v3safeNormalize(toCenter, s.N);
+    g.direction = Lc;
     float r2 = light.halfWidth * light.halfWidth;
 
-    LightPlane plane;
-    plane.center = light.position;
-    plane.halfWidth = light.halfWidth;
-    plane.halfHeight = light.halfHeight;
-    plane.rectangle = light.shape == IBL_AREA_RECTANGLE ? 1u : 0u;
+    g.plane.center = light.position;
+    g.plane.halfWidth = light.halfWidth;
+    g.plane.halfHeight = light.halfHeight;
+    g.plane.rectangle = light.shape == IBL_AREA_RECTANGLE ? 1u : 0u;
     float sinSigmaSqr = 0.0f; // the sphere's: sin(sigma) = radius / distance
     if (light.shape == IBL_AREA_SPHERE) {
         // The point may not enter the light (Listing 10's 0.9999).
         sinSigmaSqr = fmin(r2 / fmax(sqrDist, 1e-30f), 0.9999f);
         Frame f = frameFromNormal(v3scale(Lc, -1.0f));
-        plane.normal = f.n;
-        plane.tangent = f.t;
-        plane.bitangent = f.b;
-        plane.halfWidth = sqrt(sqrDist * sinSigmaSqr / (1.0f - sinSigmaSqr)); // d tan(sigma)
+        g.plane.normal = f.n;
+        g.plane.tangent = f.t;
+        g.plane.bitangent = f.b;
+        g.plane.halfWidth = sqrt(sqrDist * sinSigmaSqr / (1.0f - sinSigmaSqr)); // d tan(sigma)
     } else {
-        plane.normal = v3normalize(light.normal);
-        plane.tangent = v3normalize(light.tangent);
-        plane.bitangent = v3cross(plane.normal, plane.tangent);
-        float height = -v3dot(toCenter, plane.normal); // of the point above the emitting face
-        if (height <= 1e-6f * (light.halfWidth + light.halfHeight)) return result;
+        g.plane.normal = v3normalize(light.normal);
+        g.plane.tangent = v3normalize(light.tangent);
+        g.plane.bitangent = v3cross(g.plane.normal, g.plane.tangent);
+        float height = -v3dot(toCenter, g.plane.normal); // of the point above the emitting face
+        if (height <= 1e-6f * (light.halfWidth + light.halfHeight)) return g;
     }
+    LightPlane plane = g.plane;
     // The light's outline around the point: the rectangle's corners, or a regular polygon of the disk's
     // area (circumradius r sqrt(2 pi / (n sin(2 pi / n)))).
     vec3 outline[IBL_POLYGON_MAX];
@@ -295,29 +312,49 @@ IBL_FN AreaLightResult areaLightShade(AreaLight light, AreaSurface s, uint flags
     }
     PolygonIrradiance e = polygonIrradiance(outline, vertexCount, s.N, Lc);
     // The sphere's illuminance is Listing 10's exact form factor; the disk's and rectangle's the polygon's.
-    float illuminance = light.shape == IBL_AREA_SPHERE
-                            ? illuminanceSphereOrDisk(clamp(v3dot(s.N, Lc), -0.999f, 0.999f), sinSigmaSqr)
-                            : e.illuminance;
-    vec3 diffuseDirection = e.direction;
-    if (illuminance <= 0.0f) return result;
-    vec3 radiance = v3scale(light.color, light.luminance);
+    g.illuminance = light.shape == IBL_AREA_SPHERE
+                        ? illuminanceSphereOrDisk(clamp(v3dot(s.N, Lc), -0.999f, 0.999f), sinSigmaSqr)
+                        : e.illuminance;
+    g.direction = e.direction;
+    return g;
+}
 
+IBL_STRUCT(AreaLightResult) {
+    vec3 diffuse;
+    vec3 specular;
+};
+
+// The diffuse and specular radiance toward V of a light of radiance `radiance` seen as `g`. flags:
+// IBL_RT_DIFFUSE, IBL_RT_SPECULAR, IBL_RT_DISNEY_DIFFUSE (probe.h).
+IBL_FN AreaLightResult areaLightShadeGeometry(AreaLightGeometry g, vec3 radiance, AreaSurface s, uint flags) {
+    AreaLightResult result;
+    result.diffuse = v3(0.0f, 0.0f, 0.0f);
+    result.specular = v3(0.0f, 0.0f, 0.0f);
+    if (g.illuminance <= 0.0f) return result;
     if ((flags & IBL_RT_DIFFUSE) != 0u) {
         float fd = 1.0f;
         if ((flags & IBL_RT_DISNEY_DIFFUSE) != 0u) { // 4.7.4, eq. 45
-            float NoL = saturate(v3dot(s.N, diffuseDirection));
-            float LoH = sqrt(saturate(0.5f + 0.5f * v3dot(s.V, diffuseDirection)));
+            float NoL = saturate(v3dot(s.N, g.direction));
+            float LoH = sqrt(saturate(0.5f + 0.5f * v3dot(s.V, g.direction)));
             fd = Fr_DisneyDiffuse(s.NoV, NoL, LoH, s.perceptualRoughness);
         }
-        float k = illuminance * fd * IBL_INV_PI;
+        float k = g.illuminance * fd * IBL_INV_PI;
         result.diffuse = v3(s.diffuseColor.x * radiance.x * k, s.diffuseColor.y * radiance.y * k,
                             s.diffuseColor.z * radiance.z * k);
     }
     if ((flags & IBL_RT_SPECULAR) != 0u) {
-        vec3 spec = areaSpecular(plane, s, illuminance, e.direction);
+        vec3 spec = areaSpecular(g.plane, s, g.illuminance, g.direction);
         result.specular = v3(spec.x * radiance.x, spec.y * radiance.y, spec.z * radiance.z);
     }
     return result;
+}
+
+// One light on one surface: diffuse and specular radiance toward V. flags: IBL_RT_DIFFUSE,
+// IBL_RT_SPECULAR, IBL_RT_DISNEY_DIFFUSE (probe.h). Zero where the light is behind the point or the point
+// on a disk's or rectangle's plane; finite everywhere, inside a sphere included.
+IBL_FN AreaLightResult areaLightShade(AreaLight light, AreaSurface s, uint flags) {
+    return areaLightShadeGeometry(areaLightGeometry(light, s), v3scale(light.color, light.luminance), s,
+                                  flags);
 }
 
 // The surface of a shading point: probe.h's material (Filament 4.8.3).

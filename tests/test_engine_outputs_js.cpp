@@ -152,6 +152,36 @@ TEST_P(Ktx2ByKtxParse, TwoDimensionalImage) {
 
 INSTANTIATE_TEST_SUITE_P(EveryFormat, Ktx2ByKtxParse, ::testing::ValuesIn(kFormats), formatName);
 
+// The light card (`iblbake lightcard`): a 2D array of every level down to 1x1, layer 0 the specular chain and
+// layers 1..K the diffuse layers, with the mapping's keys.
+TEST_F(IndependentParser, LightCardArray) {
+    const fs::path dir = ibl::test::freshTempDir("ktx_light_card");
+    const fs::path file = dir / "card.ktx2";
+    CliRun bake =
+        runCli("lightcard " + ibl::test::sampleHdri() + " --size 16 --layers 4 -o " + file.string());
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    const nlohmann::json expect = {{"vkFormat", 97},
+                                   {"pixelWidth", 16},
+                                   {"levelCount", 5},
+                                   {"faceCount", 1},
+                                   {"layerCount", 5},
+                                   {"keys",
+                                    {"iblbake.cardLayout", "iblbake.cardMaxFootprint",
+                                     "iblbake.cardMaxDistance", "iblbake.cardAspect", "iblbake.colorSpace"}},
+                                   {"keyValues",
+                                    {{"iblbake.product", "light-card"},
+                                     {"iblbake.cardSpecularLevels", "5"},
+                                     {"iblbake.cardDiffuseLayers", "4"},
+                                     {"iblbake.cardAspect", "2"}}}};
+    NodeRun r = runNode("check_ktx2.mjs", file.string() + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    std::printf("%s", r.out.c_str());
+    nlohmann::json wrong = expect;
+    wrong["layerCount"] = 4;
+    EXPECT_EQ(runNode("check_ktx2.mjs", file.string() + " " + quoted(wrong)).exitCode, 1);
+    fs::remove_all(dir);
+}
+
 // The checker itself can fail: a wrong expectation and a damaged file are both reported.
 TEST_F(IndependentParser, Ktx2CheckerRejectsWrongExpectationsAndDamage) {
     const fs::path dir = ibl::test::freshTempDir("ktx_negative");

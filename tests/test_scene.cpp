@@ -274,3 +274,68 @@ TEST(SceneParse, ProfileIsStandardOrThreeAndEntersTheCubeStages) {
     doc["outputs"]["profile"] = "unity";
     EXPECT_NE(errorOf(doc.dump()).find("outputs.profile"), std::string::npos) << errorOf(doc.dump());
 }
+
+// lights[]: a scene without lights plans no light stage; one textured light plans exactly one card stage
+// (its texture the input, its card the product); an untextured light plans none; bad keys are one-line
+// errors naming the key.
+TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
+    auto cardStages = [](const ibl::Plan& plan) {
+        return std::count_if(plan.stages.begin(), plan.stages.end(),
+                             [](const ibl::PlanStage& s) { return s.kind == "light-card"; });
+    };
+    EXPECT_EQ(cardStages(ibl::planScene(parse(minimalScene()))), 0);
+
+    json doc = minimalScene();
+    doc["lights"] = json::array({{{"name", "window"}, {"texture", "window.png"}, {"cardSize", 64}}});
+    const ibl::Plan one = ibl::planScene(parse(doc));
+    ASSERT_EQ(cardStages(one), 1);
+    const auto card = std::find_if(one.stages.begin(), one.stages.end(),
+                                   [](const ibl::PlanStage& s) { return s.kind == "light-card"; });
+    EXPECT_EQ(card->id, "light-card:window");
+    ASSERT_EQ(card->inputs.size(), 1u);
+    EXPECT_EQ(card->inputs[0].keyPath, "lights[0].texture");
+    EXPECT_EQ(card->inputs[0].file, fs::path("/base/window.png"));
+    EXPECT_EQ(card->products, std::vector<std::string>{"lightcard_window.ktx2"});
+    EXPECT_EQ(card->settings.at("size"), 64);
+    EXPECT_EQ(card->settings.at("layers"), 8);
+    EXPECT_TRUE(card->usesBackend);
+    // The other stages are those of the scene without the light.
+    std::set<std::string> without = stageIds(ibl::planScene(parse(minimalScene())));
+    without.insert("light-card:window");
+    EXPECT_EQ(stageIds(one), without);
+
+    doc["lights"].push_back({{"name", "bulb"}, {"shape", "sphere"}});
+    const ibl::Plan analytic = ibl::planScene(parse(doc));
+    EXPECT_EQ(cardStages(analytic), 1);
+    EXPECT_TRUE(std::any_of(analytic.skipped.begin(), analytic.skipped.end(),
+                            [](const ibl::SkippedStage& s) { return s.id == "light-card:bulb"; }));
+
+    struct Case {
+        json light;
+        std::string expected;
+    } cases[] = {
+        {{{"name", "w"}, {"texture", "w.png"}, {"cardSize", 100}},
+         "scene.json: lights[0].cardSize: must be a power of two"},
+        {{{"name", "w"}, {"texture", "w.png"}, {"cardLayers", 1}},
+         "scene.json: lights[0].cardLayers: must be a whole number from 2 to 64"},
+        {{{"name", "w"}, {"shape", "disk"}, {"texture", "w.png"}},
+         "scene.json: lights[0].texture: only a rectangle light can be textured"},
+        {{{"name", "w"}, {"shape", "tube"}},
+         "scene.json: lights[0].shape: 'tube' is not one of sphere, disk, rectangle"},
+        {{{"name", "w"}, {"cardSize", 64}},
+         "scene.json: lights[0].cardSize: needs a texture: only textured lights have cards"},
+        {{{"name", "w"}, {"textur", "w.png"}}, "scene.json: lights[0].textur: unknown key"},
+        {{{"name", "a b"}}, "scene.json: lights[0].name: must be 1 to 64 of A-Z a-z 0-9 _ -"},
+    };
+    for (const Case& c : cases) {
+        json bad = minimalScene();
+        bad["lights"] = json::array({c.light});
+        EXPECT_EQ(errorOf(bad.dump()), c.expected);
+    }
+    json twice = minimalScene();
+    twice["lights"] = json::array({{{"name", "w"}}, {{"name", "w"}}});
+    EXPECT_EQ(errorOf(twice.dump()), "scene.json: lights[1].name: 'w' is used by an earlier light");
+    json notArray = minimalScene();
+    notArray["lights"] = json::object();
+    EXPECT_EQ(errorOf(notArray.dump()), "scene.json: lights: must be an array, not an object");
+}

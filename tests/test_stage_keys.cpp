@@ -41,6 +41,7 @@ ibl::Plan everyKindPlan() {
     scene["outputs"]["irradianceCube"] = true;
     scene["outputs"]["gltf"] = true;
     scene["outputs"]["preview"] = true;
+    scene["lights"] = {{{"name", "window"}, {"texture", "../rooitou_park_1k.hdr"}, {"cardSize", 16}}};
     return ibl::planScene(ibl::parseScene(scene.dump(), "park.json", scenes));
 }
 
@@ -186,9 +187,9 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     const ibl::StageCodeIdentity unchanged = sources.identity();
     EXPECT_EQ(unchanged, ibl::builtInStageCodeIdentity());
 
-    const std::set<std::string> stages = {"dfg-lut",     "environment",     "sun-extract",     "sun-in-probe",
-                                          "specular-ld", "diffuse-sh",      "irradiance-cube", "probe-ld",
-                                          "gltf-export", "material-preview"};
+    const std::set<std::string> stages = {
+        "dfg-lut",         "environment", "sun-extract", "sun-in-probe",     "specular-ld", "diffuse-sh",
+        "irradiance-cube", "probe-ld",    "gltf-export", "material-preview", "light-card"};
     std::set<std::string> stagesAndManifest = stages;
     stagesAndManifest.insert("manifest");
     const std::map<std::string, std::set<std::string>> reached = {

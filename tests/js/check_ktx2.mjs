@@ -49,12 +49,13 @@ check(ktx.supercompressionScheme === 0, `supercompressionScheme ${ktx.supercompr
 
 if (format) {
   check(ktx.typeSize === format.typeSize, `typeSize ${ktx.typeSize}, expected ${format.typeSize} for ${format.name}`);
-  // Level m holds faceCount images of max(1, size >> m) squared texels, nothing more or less.
+  // Level m holds max(1, layerCount) x faceCount images of max(1, size >> m) texels per axis, nothing more or less.
+  const images = Math.max(1, ktx.layerCount) * ktx.faceCount;
   ktx.levels.forEach((level, m) => {
     const w = Math.max(1, ktx.pixelWidth >> m), h = Math.max(1, ktx.pixelHeight >> m);
-    const expected = ktx.faceCount * w * h * format.bytes;
+    const expected = images * w * h * format.bytes;
     check(level.levelData.byteLength === expected,
-          `level ${m}: ${level.levelData.byteLength} bytes, expected ${expected} (${ktx.faceCount} x ${w}x${h} x ${format.bytes})`);
+          `level ${m}: ${level.levelData.byteLength} bytes, expected ${expected} (${images} x ${w}x${h} x ${format.bytes})`);
     check(level.uncompressedByteLength === expected,
           `level ${m}: uncompressedByteLength ${level.uncompressedByteLength}, expected ${expected}`);
   });

@@ -111,7 +111,8 @@ Header parseHeader(std::span<const std::uint8_t> bytes, const std::string& name)
 }
 
 // Texture type and format checks (KTX 2.0 "Texture Type", "typeSize", "levelCount",
-// "supercompressionScheme"), restricted to what iblbake supports: 2D and cube maps, no arrays.
+// "supercompressionScheme"), restricted to what iblbake supports: 2D textures, 2D arrays and cube maps (no
+// cube arrays).
 FormatInfo checkHeader(const Header& h, const std::string& name) {
     const auto info = ktx2::findFormat(h.vkFormat);
     if (!info) throw Error(name + ": unsupported vkFormat " + std::to_string(h.vkFormat));
@@ -122,7 +123,9 @@ FormatInfo checkHeader(const Header& h, const std::string& name) {
         throw Error(name + ": 1D or empty textures are not supported");
     if (h.pixelWidth > INT_MAX || h.pixelHeight > INT_MAX) throw Error(name + ": image size is too large");
     if (h.pixelDepth != 0) throw Error(name + ": 3D textures are not supported");
-    if (h.layerCount != 0) throw Error(name + ": array textures are not supported");
+    if (h.layerCount != 0 && h.faceCount != 1) throw Error(name + ": cube map arrays are not supported");
+    if (h.layerCount > 4096)
+        throw Error(name + ": layerCount " + std::to_string(h.layerCount) + " exceeds 4096");
     if (h.faceCount != 1 && h.faceCount != 6)
         throw Error(name + ": faceCount " + std::to_string(h.faceCount) + " is neither 1 nor 6");
     if (h.faceCount == 6 && h.pixelWidth != h.pixelHeight)
@@ -204,7 +207,8 @@ std::uint64_t levelByteLength(const Header& h, const FormatInfo& info, std::uint
     const std::uint64_t width = std::max<std::uint64_t>(1, h.pixelWidth >> level);
     const std::uint64_t height = std::max<std::uint64_t>(1, h.pixelHeight >> level);
     std::uint64_t bytes = width;
-    for (std::uint64_t factor : {height, std::uint64_t(h.faceCount), std::uint64_t(info.texelBytes)})
+    for (std::uint64_t factor : {height, std::uint64_t(h.faceCount),
+                                 std::uint64_t(std::max(1u, h.layerCount)), std::uint64_t(info.texelBytes)})
         if (__builtin_mul_overflow(bytes, factor, &bytes)) return UINT64_MAX;
     return bytes;
 }
@@ -299,6 +303,7 @@ Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name)
     image.pixelWidth = h.pixelWidth;
     image.pixelHeight = h.pixelHeight;
     image.faceCount = h.faceCount;
+    image.layerCount = h.layerCount;
     image.levelCount = h.levelCount;
     image.levels.resize(numLevels);
     for (std::uint32_t p = 0; p < numLevels; ++p) {
@@ -306,7 +311,7 @@ Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name)
         const int width = int(std::max<std::uint32_t>(1, h.pixelWidth >> p));
         const int height = int(std::max<std::uint32_t>(1, h.pixelHeight >> p));
         const std::uint8_t* cursor = data.data();
-        for (std::uint32_t f = 0; f < h.faceCount; ++f) {
+        for (std::uint32_t f = 0; f < h.faceCount * std::max(1u, h.layerCount); ++f) {
             ImageRGBA face(width, height);
             for (glm::vec4& texel : face.pixels) {
                 texel = decodeTexel(cursor, info.format);

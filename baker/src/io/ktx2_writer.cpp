@@ -24,7 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using ktx2::FormatInfo;
 
-// One level as the writer sees it: its size and the images of its faces, in face order.
+// One level as the writer sees it: its size and its images, in KTX2's order within a level (layer by
+// layer, face by face within a layer).
 struct LevelView {
     int width = 0;
     int height = 0;
@@ -185,11 +186,13 @@ std::vector<std::uint8_t> keyValueData(const std::string& name, const Ktx2KeyVal
     return std::move(kvd.bytes);
 }
 
+// layerCount 0: not an array (each level's images are its faces); else a 2D array of that many layers.
 Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& levels, Ktx2Format format,
-                         const Ktx2KeyValues& keyValues) {
+                         const Ktx2KeyValues& keyValues, std::uint32_t layerCount = 0) {
     const std::string name = path.string();
     const FormatInfo& info = ktx2::formatInfo(format);
-    const std::uint32_t faceCount = std::uint32_t(levels.front().faces.size());
+    const std::uint32_t imagesPerLevel = std::uint32_t(levels.front().faces.size());
+    const std::uint32_t faceCount = layerCount == 0 ? imagesPerLevel : 1;
     const std::uint32_t levelCount = std::uint32_t(levels.size());
 
     const std::vector<std::uint32_t> dfd = ktx2::dataFormatDescriptor(format);
@@ -205,7 +208,7 @@ Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& lev
     std::uint64_t cursor = kvdOffset + kvd.size();
     if (cursor > 0xFFFFFFFFu) throw Error(name + ": metadata too large for the 32-bit KTX2 index");
     for (std::uint32_t p = levelCount; p-- > 0;) {
-        levelBytes[p] = std::uint64_t(faceCount) * std::uint64_t(levels[p].width) *
+        levelBytes[p] = std::uint64_t(imagesPerLevel) * std::uint64_t(levels[p].width) *
                         std::uint64_t(levels[p].height) * info.texelBytes;
         levelOffset[p] = alignUp(cursor, alignment);
         cursor = levelOffset[p] + levelBytes[p];
@@ -218,7 +221,7 @@ Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& lev
     head.u32(std::uint32_t(levels.front().width));
     head.u32(std::uint32_t(levels.front().height));
     head.u32(0); // pixelDepth: not a 3D texture
-    head.u32(0); // layerCount: not an array
+    head.u32(layerCount);
     head.u32(faceCount);
     head.u32(levelCount);
     head.u32(0); // supercompressionScheme: none
@@ -309,6 +312,36 @@ Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Kt
         levels.push_back(std::move(view));
     }
     return writeKtx2(path, levels, format, keyValues);
+}
+
+Ktx2WriteStats writeKtx2Array(const fs::path& path, const std::vector<std::vector<ImageRGBA>>& levels,
+                              Ktx2Format format, const Ktx2KeyValues& keyValues) {
+    const std::string name = path.string();
+    if (levels.empty() || levels.front().empty())
+        throw Error(name + ": refusing to write an array without levels or layers");
+    const int width = levels.front().front().width, height = levels.front().front().height;
+    if (width <= 0 || height <= 0) throw Error(name + ": refusing to write an empty array");
+    const std::size_t maxLevels = std::size_t(std::bit_width(unsigned(std::max(width, height))));
+    if (levels.size() > maxLevels)
+        throw Error(name + ": " + std::to_string(levels.size()) + " levels for size " +
+                    std::to_string(width) + "x" + std::to_string(height) + " (at most " +
+                    std::to_string(maxLevels) + ")");
+    const std::size_t layers = levels.front().size();
+    std::vector<LevelView> views;
+    for (std::size_t m = 0; m < levels.size(); ++m) {
+        const int w = std::max(1, width >> m), h = std::max(1, height >> m);
+        if (levels[m].size() != layers)
+            throw Error(name + ": level " + std::to_string(m) + " has " + std::to_string(levels[m].size()) +
+                        " layers, expected " + std::to_string(layers));
+        LevelView view{w, h, {}};
+        for (std::size_t l = 0; l < layers; ++l) {
+            checkImage(name, levels[m][l], w, h,
+                       "level " + std::to_string(m) + " layer " + std::to_string(l));
+            view.faces.push_back(&levels[m][l]);
+        }
+        views.push_back(std::move(view));
+    }
+    return writeKtx2(path, views, format, keyValues, std::uint32_t(layers));
 }
 
 Ktx2WriteStats writeKtx2Image(const fs::path& path, const ImageRGBA& image, Ktx2Format format,

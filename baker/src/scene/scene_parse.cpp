@@ -348,6 +348,28 @@ std::optional<Output> optionalOutput(ObjectReader& outputs, const std::string& k
     return out;
 }
 
+SceneLight light(const json& v, const std::string& path, const fs::path& base, const Fail& fail) {
+    ObjectReader r(v, path, fail);
+    SceneLight l;
+    l.name = r.string("name", "");
+    if (!validProbeName(l.name)) fail(r.key("name"), "must be 1 to 64 of A-Z a-z 0-9 _ -");
+    l.shape = r.choice("shape", "rectangle", {"sphere", "disk", "rectangle"});
+    if (r.has("texture")) {
+        const std::vector<fs::path> file = files(r, "texture", base);
+        if (file.size() != 1) fail(r.key("texture"), "must be one file name");
+        if (l.shape != "rectangle") fail(r.key("texture"), "only a rectangle light can be textured");
+        l.texture = file.front();
+    }
+    l.cardSize = r.integer("cardSize", l.cardSize, 4, 4096);
+    if (!isPowerOfTwo(l.cardSize)) fail(r.key("cardSize"), "must be a power of two");
+    l.cardLayers = r.integer("cardLayers", l.cardLayers, 2, 64);
+    if (!l.texture && (r.has("cardSize") || r.has("cardLayers")))
+        fail(r.key(r.has("cardSize") ? "cardSize" : "cardLayers"),
+             "needs a texture: only textured lights have cards");
+    r.finish();
+    return l;
+}
+
 SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
     ObjectReader r(v, "outputs", fail);
     SceneOutputs o;
@@ -437,6 +459,17 @@ Scene parseScene(std::string_view text, const std::string& name, const fs::path&
                 if (!names.insert(scene.probes.back().name).second)
                     fail(path + ".name",
                          valueForMessage(scene.probes.back().name) + " is used by an earlier probe");
+            }
+        }
+        if (const json* list = r.take("lights")) {
+            if (!list->is_array()) fail("lights", std::string("must be an array, not ") + typeName(*list));
+            std::set<std::string> names;
+            for (std::size_t i = 0; i < list->size(); ++i) {
+                const std::string path = "lights[" + std::to_string(i) + "]";
+                scene.lights.push_back(light((*list)[i], path, baseDirectory, fail));
+                if (!names.insert(scene.lights.back().name).second)
+                    fail(path + ".name",
+                         valueForMessage(scene.lights.back().name) + " is used by an earlier light");
             }
         }
         if (const json* m = r.take("materials")) scene.materials = materials(*m, fail);

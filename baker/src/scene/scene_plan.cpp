@@ -259,6 +259,32 @@ Plan planScene(const Scene& scene) {
             plan.stages.push_back(std::move(s));
         }
     }
+    // Textured lights: one card each (kernels/light_card.h), independent of the environment and the
+    // materials (a card serves every roughness). Analytic lights need nothing baked.
+    if (scene.lights.empty())
+        plan.skipped.push_back({"light-card:*", "light-card", "the scene has no lights"});
+    for (std::size_t i = 0; i < scene.lights.size(); ++i) {
+        const SceneLight& l = scene.lights[i];
+        const std::string id = "light-card:" + l.name;
+        if (!l.texture) {
+            plan.skipped.push_back({id, "light-card",
+                                    "light '" + l.name + "' has no texture: the runtime evaluates its " +
+                                        l.shape + " analytically"});
+            continue;
+        }
+        PlanStage s{id,
+                    "light-card",
+                    {},
+                    {{"lights[" + std::to_string(i) + "].texture", *l.texture}},
+                    {{"size", l.cardSize},
+                     {"layers", l.cardLayers},
+                     {"ktx2Format", o.ktx2Format},
+                     {"workingColorSpace", env.workingColorSpace}},
+                    {"lightcard_" + l.name + ".ktx2"},
+                    true,
+                    "light '" + l.name + "' is textured: its light card (Drobot 1.3.5)"};
+        plan.stages.push_back(std::move(s));
+    }
     planEngineOutputs(scene, glossy, lightSource, plan);
     return plan;
 }

@@ -5,6 +5,7 @@
 #include "iblbake/baker/environment.h"
 #include "iblbake/baker/ingest.h"
 #include "iblbake/baker/irradiance.h"
+#include "iblbake/baker/light_card.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sh.h"
 #include "iblbake/baker/specular.h"
@@ -356,6 +357,22 @@ std::string entryFileFor(const PlanStage& stage, const std::string& product) {
     return stage.kind == "probe-ld" ? "ld.ktx2" : product;
 }
 
+// A textured light's card (kernels/light_card.h), from its texture.
+void runLightCard(const StageContext& c) {
+    const json& s = c.stage.settings;
+    LightCardSettings settings;
+    settings.size = s.at("size").get<int>();
+    settings.diffuseLayers = s.at("layers").get<int>();
+    settings.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    forInput(c, [&] {
+        const LightCardTexture texture = readLightCardTexture(c.stage.inputs.at(0).file, settings, "",
+                                                              s.at("workingColorSpace").get<std::string>());
+        const LightCard card = bakeLightCard(texture.emission, texture.aspect, settings, *c.executor);
+        writeKtx2Array(c.outputDirectory / c.stage.products.at(0), card.levels, settings.format,
+                       lightCardKeyValues(card, texture));
+    });
+}
+
 void runStage(const StageContext& c) {
     const std::string& kind = c.stage.kind;
     if (kind == "dfg-lut") return runDfg(c);
@@ -368,6 +385,7 @@ void runStage(const StageContext& c) {
     if (kind == "irradiance-cube") return runIrradiance(c);
     if (kind == "gltf-export") return runGltfStage(c);
     if (kind == "material-preview") return runPreviewStage(c);
+    if (kind == "light-card") return runLightCard(c);
     throw Error("scene: unknown stage kind '" + kind + "'");
 }
 

@@ -1,6 +1,6 @@
-// KTX 2.0 container output and input for cube-map chains and 2D LUTs (uncompressed float formats only,
-// no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data Format Descriptor
-// follows the Khronos Data Format Specification's basic descriptor block for each vkFormat.
+// KTX 2.0 container output and input for cube-map chains, 2D LUTs and 2D arrays (light cards) (uncompressed
+// float formats only, no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data
+// Format Descriptor follows the Khronos Data Format Specification's basic descriptor block for each vkFormat.
 #pragma once
 
 #include "iblbake/core/cubemap.h"
@@ -46,15 +46,24 @@ Ktx2WriteStats writeKtx2Cube(const std::filesystem::path& path, const CubeMapCha
 Ktx2WriteStats writeKtx2Image(const std::filesystem::path& path, const ImageRGBA& image, Ktx2Format format,
                               const Ktx2KeyValues& keyValues);
 
+// Writes a 2D array texture (faceCount 1, layerCount = levels[0].size() >= 1): levels[m][layer], level m of
+// size max(1, width >> m) x max(1, height >> m), every level with the same layers. Same conventions as
+// writeKtx2Cube.
+Ktx2WriteStats writeKtx2Array(const std::filesystem::path& path,
+                              const std::vector<std::vector<ImageRGBA>>& levels, Ktx2Format format,
+                              const Ktx2KeyValues& keyValues);
+
 struct Ktx2Image {
     std::uint32_t vkFormat = 0;
     std::uint32_t pixelWidth = 0;
     std::uint32_t pixelHeight = 0;
     std::uint32_t faceCount = 0;
+    std::uint32_t layerCount = 0;                 // 0: not an array (2D arrays only: faceCount 1)
     std::uint32_t levelCount = 0;                 // as stored in the header; 0 means "base level only"
     std::map<std::string, std::string> keyValues; // one trailing NUL of each value removed
-    // levels[m][face], max(1, levelCount) levels, decoded to float RGBA (alpha 1 for formats without
-    // alpha). Values are decoded as stored: a foreign file may contain Inf/NaN texels.
+    // levels[m][face], or levels[m][layer] for an array, max(1, levelCount) levels, decoded to float RGBA
+    // (alpha 1 for formats without alpha). Values are decoded as stored: a foreign file may contain Inf/NaN
+    // texels.
     std::vector<std::vector<ImageRGBA>> levels;
 };
 

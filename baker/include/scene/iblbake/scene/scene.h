@@ -56,6 +56,16 @@ struct SceneProbe {
     std::optional<SceneCalibrationChoice> calibration;
 };
 
+// lights[]: the scene's area lights. The runtime evaluates them (kernels/area_lights.h); a textured one
+// (a rectangle with a texture) needs its light card baked (kernels/light_card.h), one card stage each.
+struct SceneLight {
+    std::string name;                // [A-Za-z0-9_-], unique; names the card lightcard_<name>.ktx2
+    std::string shape = "rectangle"; // sphere, disk, rectangle
+    std::optional<std::filesystem::path> texture; // rectangles only: the emission image
+    int cardSize = 256;                           // the card's level 0, a power of two (LightCardSettings)
+    int cardLayers = 8;                           // its diffuse layers
+};
+
 enum class SceneDiffuseModel { Lambert, Disney };
 
 struct SceneMaterials {
@@ -107,6 +117,7 @@ struct Scene {
     std::string name; // for messages: the scene file as the user named it
     SceneEnvironment environment;
     std::vector<SceneProbe> probes;
+    std::vector<SceneLight> lights;
     SceneMaterials materials;
     SceneOutputs outputs;
 };

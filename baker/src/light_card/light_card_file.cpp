@@ -1,0 +1,49 @@
+// The light card's document (its KTX2 keys) and the flow of `iblbake lightcard` (iblbake/baker/light_card.h).
+#include "iblbake/baker/light_card.h"
+
+#include <cstdio>
+
+namespace ibl {
+
+namespace {
+
+// Enough digits that the runtime loader reads back the very float the bake used.
+std::string floatText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", v);
+    return text;
+}
+
+} // namespace
+
+Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& texture) {
+    const LightCardLayout& l = card.layout;
+    return {{"iblbake.product", "light-card"},
+            {"iblbake.cardLayout",
+             "2D array; layer 0 level m: specular, the texture pre-integrated over a footprint of radius "
+             "rho_m = " +
+                 floatText(IBL_CARD_MAX_FOOTPRINT) +
+                 " * 2^(m-L+1) (level 0: rho 0), kernel 1/(1+x^2/(2 rho)^2)^2; layer 1+k level 0: diffuse, "
+                 "seen from distance r_k = (k/(K-1))^2 r_max, kernel 1/(1+x^2/r^2)^2; lengths in "
+                 "sqrt(light area); u along the tangent, v = 0 at the +bitangent edge; normalized sum T w / "
+                 "sum w over the light"},
+            {"iblbake.cardSpecularLevels", std::to_string(l.levelCount)},
+            {"iblbake.cardMaxFootprint", floatText(IBL_CARD_MAX_FOOTPRINT)},
+            {"iblbake.cardDiffuseLayers", std::to_string(l.diffuseLayers)},
+            {"iblbake.cardMaxDistance", floatText(l.maxDistance)},
+            {"iblbake.cardSigma", floatText(IBL_CARD_SIGMA)},
+            {"iblbake.cardAspect", floatText(l.aspect)},
+            {"iblbake.cardNormalization", "mean luminance 1 over the light"},
+            {"iblbake.cardSourceMeanLuminance", floatText(texture.sourceMeanLuminance)},
+            {"iblbake.colorSpace", texture.workingColorSpace},
+            {"iblbake.inputColorSpace", texture.inputColorSpace}};
+}
+
+Ktx2WriteStats bakeLightCardFile(const std::filesystem::path& texture, const std::filesystem::path& output,
+                                 const LightCardSettings& settings, const Executor& executor) {
+    const LightCardTexture emission = readLightCardTexture(texture, settings);
+    const LightCard card = bakeLightCard(emission.emission, emission.aspect, settings, executor);
+    return writeKtx2Array(output, card.levels, settings.format, lightCardKeyValues(card, emission));
+}
+
+} // namespace ibl
