@@ -385,7 +385,7 @@ TEST_F(HostileInputs, StaleStagingIsRemovedOnlyWhenItsOwnerIsGone) {
     fs::last_write_time(old, fs::file_time_type::clock::now() - std::chrono::hours(2));
     staging(".staging-ownerless-new", false);
     staging(".trash-1", false);
-    scene("s.json", {});
+    scene("s.json", json::object());
     const CliRun r =
         runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "bake s.json --cache cache --quiet");
     ::close(lock);

@@ -163,18 +163,22 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
 
         outputs.createDirectories(outputDirectory, scene.name + ": outputs.directory");
         ManifestInputs manifest{scene, plan, entries, keys, {}, summary.backend};
-        manifest.productHashes = stageProducts(plan, entries, outputDirectory, outputs, summary);
         const fs::path manifestPath = outputDirectory / "manifest.json";
-        const nlohmann::json document = buildManifest(manifest);
-        summary.storage = storedProductsFromManifest(document);
-        outputs.writeFile(manifestPath, [&](const fs::path& temporary) {
-            writeFileBytes(temporary, document.dump(2) + '\n', manifestPath.string());
-        });
-        // Everything is written: commit the cache entries, then the products, the manifest last (a bake
-        // killed in between leaves the old manifest, which points only at files that are still there).
-        for (StagedEntry& staged : ran)
-            cache.commit(staged);
-        outputs.commit();
+        try {
+            manifest.productHashes = stageProducts(plan, entries, outputDirectory, outputs, summary);
+            const nlohmann::json document = buildManifest(manifest);
+            summary.storage = storedProductsFromManifest(document);
+            outputs.writeFile(manifestPath, [&](const fs::path& temporary) {
+                writeFileBytes(temporary, document.dump(2) + '\n', manifestPath.string());
+            });
+            // Everything is written: commit the cache entries, then the products, the manifest last (a bake
+            // killed in between leaves the old manifest, which points only at files that are still there).
+            for (StagedEntry& staged : ran)
+                cache.commit(staged);
+            outputs.commit();
+        } catch (const OutputError& e) { // a full disk, a read-only directory: the scene in front
+            throw OutputError(scene.name + ": " + e.what());
+        }
         if (executor && executor->usesOpenCL()) executor->cl().storeProgramBinaries();
         summary.products.push_back(manifestPath);
         summary.manifest = manifestPath;
