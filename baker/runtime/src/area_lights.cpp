@@ -1,5 +1,6 @@
 // Area lights on either backend: kernels/area_lights.cl (its work-item kernels/area_light_points.h) over the
 // points, and the lights' construction.
+#include "area_light_dispatch.h"
 #include "iblbake/opencl/dispatch.h"
 #include "iblbake/runtime/runtime_area_lights.h"
 
@@ -33,16 +34,6 @@ glm::vec3 perpendicular(const glm::vec3& n) {
     return frameFromNormal(glm::normalize(n)).t;
 }
 
-// The switches of kernels/area_lights.h that the options set.
-uint32_t areaLightFlags(const RuntimeOptions& options) {
-    uint32_t flags = 0;
-    if (options.specular) flags |= IBL_RT_SPECULAR;
-    if (options.diffuse) flags |= IBL_RT_DIFFUSE;
-    if (options.diffuseModel == DiffuseModel::Disney) flags |= IBL_RT_DISNEY_DIFFUSE;
-    if (options.f90FromF0) flags |= IBL_RT_F90_FROM_F0;
-    return flags;
-}
-
 } // namespace
 
 AreaLight sphereAreaLight(const glm::vec3& center, float radius, const glm::vec3& color, float lumens) {
@@ -66,30 +57,21 @@ static_assert(sizeof(AreaLightParams) == 76 && offsetof(AreaLightParams, flags) 
 
 namespace {
 
-// Two dispatches of the kernel, one per term, so that the 4-float output carries each on its own.
 std::vector<AreaLightResult> shadeAreaLight(const Dispatcher& dispatcher, const AreaLight& light,
                                             std::span<const ShadingPoint> points,
                                             const RuntimeOptions& options) {
-    const uint32_t flags = areaLightFlags(options);
     const DeviceArray<ShadingPoint> input = dispatcher.upload("shading points", points);
-    AreaLightResult zero;
-    zero.diffuse = zero.specular = glm::vec3(0.0f);
-    std::vector<AreaLightResult> out(points.size(), zero);
-    for (uint32_t term : {uint32_t(IBL_RT_DIFFUSE), uint32_t(IBL_RT_SPECULAR)}) {
-        if ((flags & term) == 0) continue;
+    return shadeEachTerm(points.size(), options, [&](uint32_t flags) {
         AreaLightParams params{};
         params.light = light;
-        params.flags = (flags & ~uint32_t(IBL_RT_DIFFUSE | IBL_RT_SPECULAR)) | term;
+        params.flags = flags;
         params.dielectricF0 = options.dielectricF0;
         params.pointCount = uint32_t(points.size());
         DispatchOutput result = dispatcher.output(DispatchGrid::list(points.size()));
         dispatcher.run(kernel("area_lights.cl", "shadeAreaLights", shadeAreaLightItem), result, params,
                        input);
-        const std::vector<glm::vec4> radiance = dispatcher.download(result);
-        for (std::size_t i = 0; i < points.size(); ++i)
-            (term == IBL_RT_DIFFUSE ? out[i].diffuse : out[i].specular) = glm::vec3(radiance[i]);
-    }
-    return out;
+        return dispatcher.download(result);
+    });
 }
 
 } // namespace

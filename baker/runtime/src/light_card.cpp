@@ -1,5 +1,6 @@
 // Textured rectangle lights on either backend (kernels/textured_light.cl, its work-item
 // kernels/textured_light_points.h) and the light card's loader (iblbake/runtime/runtime_light_card.h).
+#include "area_light_dispatch.h"
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/opencl/dispatch.h"
@@ -44,43 +45,25 @@ float keyFloat(const Ktx2Image& image, const std::string& key, const std::string
     return value;
 }
 
-uint32_t areaLightFlags(const RuntimeOptions& options) {
-    uint32_t flags = 0;
-    if (options.specular) flags |= IBL_RT_SPECULAR;
-    if (options.diffuse) flags |= IBL_RT_DIFFUSE;
-    if (options.diffuseModel == DiffuseModel::Disney) flags |= IBL_RT_DISNEY_DIFFUSE;
-    if (options.f90FromF0) flags |= IBL_RT_F90_FROM_F0;
-    return flags;
-}
-
-// Two dispatches, one per term, so that the 4-float output carries each on its own.
 std::vector<AreaLightResult> shadeTexturedLight(const Dispatcher& dispatcher, const AreaLight& light,
                                                 const LightCardData& card,
                                                 std::span<const ShadingPoint> points,
                                                 const RuntimeOptions& options) {
     if (light.shape != IBL_AREA_RECTANGLE) throw Error("a textured light must be a rectangle");
-    const uint32_t flags = areaLightFlags(options);
     const DeviceArray<ShadingPoint> input = dispatcher.upload("shading points", points);
     const DeviceArray<float> texels = dispatcher.upload("light card", card.texels);
-    AreaLightResult zero;
-    zero.diffuse = zero.specular = glm::vec3(0.0f);
-    std::vector<AreaLightResult> out(points.size(), zero);
-    for (uint32_t term : {uint32_t(IBL_RT_DIFFUSE), uint32_t(IBL_RT_SPECULAR)}) {
-        if ((flags & term) == 0) continue;
+    return shadeEachTerm(points.size(), options, [&](uint32_t flags) {
         TexturedLightParams params{};
         params.light = light;
         params.card = card.layout;
-        params.flags = (flags & ~uint32_t(IBL_RT_DIFFUSE | IBL_RT_SPECULAR)) | term;
+        params.flags = flags;
         params.dielectricF0 = options.dielectricF0;
         params.pointCount = uint32_t(points.size());
         DispatchOutput result = dispatcher.output(DispatchGrid::list(points.size()));
         dispatcher.run(kernel("textured_light.cl", "shadeTexturedLights", shadeTexturedLightItem), result,
                        params, input, texels);
-        const std::vector<glm::vec4> radiance = dispatcher.download(result);
-        for (std::size_t i = 0; i < points.size(); ++i)
-            (term == IBL_RT_DIFFUSE ? out[i].diffuse : out[i].specular) = glm::vec3(radiance[i]);
-    }
-    return out;
+        return dispatcher.download(result);
+    });
 }
 
 } // namespace
@@ -109,28 +92,29 @@ LightCardData lightCardData(const LightCardLayout& layout,
 LightCardData loadLightCard(const std::filesystem::path& path) {
     const std::string name = path.string();
     const Ktx2Image image = readKtx2(path);
-    if (requiredKey(image, "iblbake.product", name) != "light-card")
-        throw Error(name + ": iblbake.product is '" + image.keyValues.at("iblbake.product") +
-                    "', not light-card");
+    namespace keys = light_card_keys;
+    if (requiredKey(image, keys::kProduct, name) != keys::kProductName)
+        throw Error(name + ": " + keys::kProduct + " is '" + image.keyValues.at(keys::kProduct) + "', not " +
+                    keys::kProductName);
     LightCardLayout layout{};
     layout.width = image.pixelWidth;
     layout.height = image.pixelHeight;
-    layout.levelCount = keyCount(image, "iblbake.cardSpecularLevels", name);
-    layout.diffuseLayers = keyCount(image, "iblbake.cardDiffuseLayers", name);
-    layout.aspect = keyFloat(image, "iblbake.cardAspect", name);
-    layout.maxDistance = keyFloat(image, "iblbake.cardMaxDistance", name);
+    layout.levelCount = keyCount(image, keys::kSpecularLevels, name);
+    layout.diffuseLayers = keyCount(image, keys::kDiffuseLayers, name);
+    layout.aspect = keyFloat(image, keys::kAspect, name);
+    layout.maxDistance = keyFloat(image, keys::kMaxDistance, name);
     // The mapping's constants are this build's (light_card.h); a card baked with others cannot be read right.
-    if (keyFloat(image, "iblbake.cardMaxFootprint", name) != IBL_CARD_MAX_FOOTPRINT)
-        throw Error(name + ": iblbake.cardMaxFootprint differs from this runtime's " +
+    if (keyFloat(image, keys::kMaxFootprint, name) != IBL_CARD_MAX_FOOTPRINT)
+        throw Error(name + ": " + keys::kMaxFootprint + " differs from this runtime's " +
                     std::to_string(IBL_CARD_MAX_FOOTPRINT));
     if (layout.diffuseLayers < 2 || image.layerCount != layout.diffuseLayers + 1)
-        throw Error(name + ": " + std::to_string(image.layerCount) +
-                    " layers, but iblbake.cardDiffuseLayers " + std::to_string(layout.diffuseLayers) +
-                    " needs " + std::to_string(layout.diffuseLayers + 1));
+        throw Error(name + ": " + std::to_string(image.layerCount) + " layers, but " + keys::kDiffuseLayers +
+                    " " + std::to_string(layout.diffuseLayers) + " needs " +
+                    std::to_string(layout.diffuseLayers + 1));
     if (layout.levelCount != std::max<std::uint32_t>(1, image.levelCount) ||
         layout.levelCount != std::uint32_t(std::bit_width(std::max(layout.width, layout.height))))
-        throw Error(name + ": " + std::to_string(image.levelCount) + " levels, iblbake.cardSpecularLevels " +
-                    std::to_string(layout.levelCount) + ": a card holds every level down to 1x1");
+        throw Error(name + ": " + std::to_string(image.levelCount) + " levels, " + keys::kSpecularLevels +
+                    " " + std::to_string(layout.levelCount) + ": a card holds every level down to 1x1");
     try {
         return lightCardData(layout, image.levels);
     } catch (const Error& e) {

@@ -1,143 +1,31 @@
 // Brute-force reference of the area lights (runtime_area_lights.h): the integral of L f(v, l) <n.l> over
 // the light's surface, in fp64 with reference_math.h's material, on a midpoint grid of equal-area cells,
-// and again on the grid of half the resolution for the error estimate. Independent of the runtime's light
-// code (kernels/area_lights.h): only the AreaLight description is shared.
+// and again on the grid of half the resolution for the error estimate (reference_light_surface.h).
 #include "iblbake/runtime/runtime_area_lights.h"
-#include "reference_math.h"
+#include "reference_light_surface.h"
 
 #include <tbb/parallel_for.h>
 
-#include <cmath>
-
 namespace ibl {
-
-namespace {
-
-using namespace reference;
-
-// Shirley and Chiu's concentric map of [0, 1]^2 onto the unit disk: area-preserving, so a grid of equal
-// squares becomes cells of equal area that stay compact at the centre (a polar grid's would be slivers
-// there, too coarse for a mirror's lobe).
-glm::dvec2 concentricDisk(double s, double t) {
-    const double a = 2.0 * s - 1.0, b = 2.0 * t - 1.0;
-    if (a == 0.0 && b == 0.0) return {0.0, 0.0};
-    if (std::abs(a) > std::abs(b)) {
-        const double phi = 0.25 * kPi * (b / a);
-        return {a * std::cos(phi), a * std::sin(phi)};
-    }
-    const double phi = 0.5 * kPi - 0.25 * kPi * (a / b);
-    return {b * std::cos(phi), b * std::sin(phi)};
-}
-
-// The light's surface as n x n cells of equal measure: the direction from the point toward cell (i, j)'s
-// centre and the solid angle the cell subtends there (0 for a cell the point sees from behind).
-struct LightSurface {
-    uint32_t shape;
-    glm::dvec3 center, normal, tangent, bitangent;
-    double halfWidth, halfHeight;
-
-    // Cell (i, j) of n seen from p: returns the solid angle, writes the direction.
-    double cell(const glm::dvec3& p, uint32_t i, uint32_t j, uint32_t n, glm::dvec3& l) const {
-        const double s = (double(i) + 0.5) / double(n), t = (double(j) + 0.5) / double(n);
-        if (shape == IBL_AREA_SPHERE) {
-            // The cap visible from p, uniform in solid angle: the disk point's squared radius maps linearly
-            // to cos(theta) in [cos(sigma), 1] (area-preserving, as the concentric map).
-            const glm::dvec3 toCenter = center - p;
-            const double d = glm::length(toCenter);
-            const double cosSigma = std::sqrt(1.0 - halfWidth * halfWidth / (d * d));
-            const glm::dvec2 q = concentricDisk(s, t);
-            const double r2 = glm::dot(q, q);
-            const double cosTheta = 1.0 - r2 * (1.0 - cosSigma);
-            const double k = r2 > 0.0 ? std::sqrt((1.0 - cosTheta * cosTheta) / r2) : 0.0;
-            l = basisAround(toCenter / d).toWorld({q.x * k, q.y * k, cosTheta});
-            return 2.0 * kPi * (1.0 - cosSigma) / double(n * n);
-        }
-        double u, v, area;
-        if (shape == IBL_AREA_DISK) {
-            const glm::dvec2 q = concentricDisk(s, t) * halfWidth;
-            u = q.x, v = q.y;
-            area = kPi * halfWidth * halfWidth;
-        } else {
-            u = (2.0 * s - 1.0) * halfWidth, v = (2.0 * t - 1.0) * halfHeight;
-            area = 4.0 * halfWidth * halfHeight;
-        }
-        glm::dvec3 toPoint = center + u * tangent + v * bitangent - p;
-        double d2 = glm::dot(toPoint, toPoint);
-        l = toPoint / std::sqrt(d2);
-        double cosLight = -glm::dot(l, normal);
-        return cosLight > 0.0 ? area / double(n * n) * cosLight / d2 : 0.0;
-    }
-
-    // The angle the light spans seen from p (at most pi), from its largest half-extent.
-    double angularSize(const glm::dvec3& p) const {
-        const double d = glm::length(center - p);
-        if (shape == IBL_AREA_SPHERE) return 2.0 * std::asin(std::min(halfWidth / d, 1.0));
-        return 2.0 * std::atan(std::hypot(halfWidth, shape == IBL_AREA_DISK ? 0.0 : halfHeight) / d);
-    }
-
-    // The point receives nothing: behind a disk or rectangle (or on its plane), inside a sphere.
-    bool hidden(const glm::dvec3& p) const {
-        if (shape == IBL_AREA_SPHERE) return glm::length(p - center) <= halfWidth;
-        return glm::dot(p - center, normal) <= 0.0;
-    }
-};
-
-LightSurface lightSurface(const AreaLight& light) {
-    LightSurface s;
-    s.shape = light.shape;
-    s.center = glm::dvec3(light.position);
-    s.normal = glm::normalize(glm::dvec3(light.normal));
-    s.tangent = glm::normalize(glm::dvec3(light.tangent));
-    s.bitangent = glm::cross(s.normal, s.tangent);
-    s.halfWidth = light.halfWidth;
-    s.halfHeight = light.halfHeight;
-    return s;
-}
-
-// Sum over the n x n grid of f(v, l) <n.l> dOmega, times the light's radiance.
-ReferenceResult integrate(const LightSurface& surface, const PointMaterial& m, const glm::dvec3& p,
-                          const glm::dvec3& radiance, uint32_t n) {
-    ReferenceResult r;
-    for (uint32_t i = 0; i < n; ++i)
-        for (uint32_t j = 0; j < n; ++j) {
-            glm::dvec3 l;
-            double solidAngle = surface.cell(p, i, j, n, l);
-            double NoL = glm::dot(m.N, l);
-            if (solidAngle <= 0.0 || NoL <= 0.0) continue;
-            glm::dvec3 specular, diffuse;
-            m.evaluate(l, NoL, specular, diffuse);
-            r.specular += specular * solidAngle;
-            r.diffuse += diffuse * solidAngle;
-        }
-    r.specular *= radiance;
-    r.diffuse *= radiance;
-    return r;
-}
-
-} // namespace
 
 std::vector<AreaReference> renderAreaLightReference(const AreaLight& light,
                                                     std::span<const ShadingPoint> points,
                                                     const RuntimeOptions& options,
                                                     const AreaReferenceSettings& settings) {
+    using namespace reference;
     RuntimeOptions material = options;
     material.energyCompensation = false;
     const LightSurface surface = lightSurface(light);
     const glm::dvec3 radiance = glm::dvec3(light.color) * double(light.luminance);
+    const auto uniform = [](uint32_t, uint32_t) { return glm::dvec3(1.0); };
     std::vector<AreaReference> out(points.size());
     tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
         const glm::dvec3 p(points[k].position);
         if (surface.hidden(p)) return;
         const PointMaterial m(points[k], material, settings.minAlpha, [](double, double) { return 1.0; });
-        const double cells =
-            m.specular ? std::ceil(settings.cellsPerAlpha * surface.angularSize(p) / m.alpha) : 0.0;
-        const uint32_t n = uint32_t(std::clamp(cells, double(std::max<uint32_t>(settings.gridSize, 2)),
-                                               double(std::max(settings.maxGridSize, settings.gridSize))));
-        const ReferenceResult fine = integrate(surface, m, p, radiance, n);
-        const ReferenceResult coarse = integrate(surface, m, p, radiance, n / 2);
-        out[k].value = fine;
-        out[k].diffuseError = glm::abs(fine.diffuse - coarse.diffuse) / 3.0;
-        out[k].specularError = glm::abs(fine.specular - coarse.specular) / 3.0;
+        const uint32_t n = referenceGridSize(settings, m, surface.angularSize(p));
+        out[k] = richardson(integrateLight(surface, m, p, radiance, n, n, uniform),
+                            integrateLight(surface, m, p, radiance, n / 2, n / 2, uniform));
     });
     return out;
 }

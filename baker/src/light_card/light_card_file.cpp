@@ -1,5 +1,6 @@
 // The light card's document (its KTX2 keys) and the flow of `iblbake lightcard` (iblbake/baker/light_card.h).
 #include "iblbake/baker/light_card.h"
+#include "iblbake/runtime/runtime_light_card.h"
 
 #include <cstdio>
 
@@ -18,7 +19,8 @@ std::string floatText(double v) {
 
 Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& texture) {
     const LightCardLayout& l = card.layout;
-    return {{"iblbake.product", "light-card"},
+    namespace keys = light_card_keys;
+    return {{keys::kProduct, keys::kProductName},
             {"iblbake.cardLayout",
              "2D array; layer 0 level m: specular, the texture pre-integrated over a footprint of radius "
              "rho_m = " +
@@ -27,12 +29,12 @@ Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& 
                  "seen from distance r_k = (k/(K-1))^2 r_max, kernel 1/(1+x^2/r^2)^2; lengths in "
                  "sqrt(light area); u along the tangent, v = 0 at the +bitangent edge; normalized sum T w / "
                  "sum w over the light"},
-            {"iblbake.cardSpecularLevels", std::to_string(l.levelCount)},
-            {"iblbake.cardMaxFootprint", floatText(IBL_CARD_MAX_FOOTPRINT)},
-            {"iblbake.cardDiffuseLayers", std::to_string(l.diffuseLayers)},
-            {"iblbake.cardMaxDistance", floatText(l.maxDistance)},
+            {keys::kSpecularLevels, std::to_string(l.levelCount)},
+            {keys::kMaxFootprint, floatText(IBL_CARD_MAX_FOOTPRINT)},
+            {keys::kDiffuseLayers, std::to_string(l.diffuseLayers)},
+            {keys::kMaxDistance, floatText(l.maxDistance)},
             {"iblbake.cardSigma", floatText(IBL_CARD_SIGMA)},
-            {"iblbake.cardAspect", floatText(l.aspect)},
+            {keys::kAspect, floatText(l.aspect)},
             {"iblbake.cardNormalization", "mean luminance 1 over the light"},
             {"iblbake.cardSourceMeanLuminance", floatText(texture.sourceMeanLuminance)},
             {"iblbake.colorSpace", texture.workingColorSpace},

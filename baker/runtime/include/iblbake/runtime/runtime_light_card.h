@@ -14,6 +14,18 @@
 
 namespace ibl {
 
+// The card's KTX2 keys that the loader reads, as the baker writes them
+// (baker/src/light_card/light_card_file.cpp).
+namespace light_card_keys {
+inline constexpr const char* kProduct = "iblbake.product"; // "light-card"
+inline constexpr const char* kSpecularLevels = "iblbake.cardSpecularLevels";
+inline constexpr const char* kDiffuseLayers = "iblbake.cardDiffuseLayers";
+inline constexpr const char* kAspect = "iblbake.cardAspect";
+inline constexpr const char* kMaxDistance = "iblbake.cardMaxDistance";
+inline constexpr const char* kMaxFootprint = "iblbake.cardMaxFootprint";
+inline constexpr const char* kProductName = "light-card";
+} // namespace light_card_keys
+
 // A card in memory: its layout (read from the file's iblbake.card* keys) and its texels in the order of
 // kernels/light_card.h lightCardOffset (RGBA floats, level by level, layer by layer).
 struct LightCardData {
