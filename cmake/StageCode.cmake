@@ -78,6 +78,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
     baker/src/scene/up_to_date.cpp
     baker/src/batch baker/src/accuracy
+    baker/src/light_preview # `iblbake preview --lights`: no stage renders it
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp # moves finished files into place, decides no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes

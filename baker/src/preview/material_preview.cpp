@@ -15,32 +15,6 @@ namespace {
 
 constexpr int kRows = 2; // dielectric, metal
 
-// One shading point per ball pixel (orthographic camera on +Z looking down -Z, +Y up) of a panel
-// kPreviewColumns x kRows balls; pixels off the balls are left out and marked in `owner` with -1.
-std::vector<ShadingPoint> spherePoints(int size, std::vector<int>& owner) {
-    const int width = kPreviewColumns * size, height = kRows * size;
-    owner.assign(std::size_t(width) * height, -1);
-    std::vector<ShadingPoint> points;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x) {
-            int column = x / size, row = y / size;
-            float u = (float(x % size) + 0.5f) / float(size) * 2.0f - 1.0f;
-            float v = 1.0f - (float(y % size) + 0.5f) / float(size) * 2.0f;
-            float rr = (u * u + v * v) / 0.81f; // radius 0.9 of the cell
-            if (rr >= 1.0f) continue;
-            ShadingPoint p{};
-            p.normal = glm::vec3(u / 0.9f, v / 0.9f, std::sqrt(1.0f - rr));
-            p.view = glm::vec3(0.0f, 0.0f, 1.0f);
-            p.baseColor = row == 0 ? glm::vec3(0.8f) : glm::vec3(0.95f, 0.93f, 0.88f);
-            p.metallic = row == 0 ? 0.0f : 1.0f;
-            p.perceptualRoughness = float(column) / float(kPreviewColumns - 1);
-            p.ao = 1.0f;
-            owner[std::size_t(y) * width + x] = int(points.size());
-            points.push_back(p);
-        }
-    return points;
-}
-
 float luminance(const glm::vec3& c) {
     return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
 }
@@ -68,7 +42,12 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
                                       const std::filesystem::path& png, const std::filesystem::path& exr) {
     const int size = settings.sphereSize;
     std::vector<int> owner;
-    const std::vector<ShadingPoint> points = spherePoints(size, owner);
+    const std::vector<ShadingPoint> points =
+        previewBallPoints(size, kPreviewColumns, kRows, owner, [](ShadingPoint& p, int row, int column) {
+            p.baseColor = row == 0 ? glm::vec3(0.8f) : glm::vec3(0.95f, 0.93f, 0.88f);
+            p.metallic = row == 0 ? 0.0f : 1.0f;
+            p.perceptualRoughness = float(column) / float(kPreviewColumns - 1);
+        });
     std::vector<glm::vec4> shaded;
     if (executor.usesOpenCL()) {
         OpenCLProbeEvaluator evaluator(executor.cl(), set);
@@ -139,7 +118,12 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
     }
 
     const PreviewLayout layout = previewLayout(size, !reference.empty());
-    writePreviewGrid(png, layout, image, errorColor, owner, scale, out);
+    PreviewGridLabels labels;
+    labels.roughness = out.roughness;
+    labels.groups = {"dielectric", "metal"};
+    labels.error = {out.dielectricError, out.metalError};
+    labels.referenceError = {out.dielectricReferenceError, out.metalReferenceError};
+    writePreviewGrid(png, layout, image, errorColor, owner, scale, labels);
     out.width = layout.width;
     out.height = layout.height;
 

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <cmath>
 #include <cstdio>
 
 namespace ibl {
@@ -58,6 +59,29 @@ class Canvas {
 
 } // namespace
 
+std::vector<ShadingPoint>
+previewBallPoints(int size, int columns, int rows, std::vector<int>& owner,
+                  const std::function<void(ShadingPoint&, int row, int column)>& material) {
+    const int width = columns * size, height = rows * size;
+    owner.assign(std::size_t(width) * height, -1);
+    std::vector<ShadingPoint> points;
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            float u = (float(x % size) + 0.5f) / float(size) * 2.0f - 1.0f;
+            float v = 1.0f - (float(y % size) + 0.5f) / float(size) * 2.0f;
+            float rr = (u * u + v * v) / 0.81f; // radius 0.9 of the cell
+            if (rr >= 1.0f) continue;
+            ShadingPoint p{};
+            p.normal = glm::vec3(u / 0.9f, v / 0.9f, std::sqrt(1.0f - rr));
+            p.view = glm::vec3(0.0f, 0.0f, 1.0f);
+            p.ao = 1.0f;
+            material(p, y / size, x / size);
+            owner[std::size_t(y) * width + x] = int(points.size());
+            points.push_back(p);
+        }
+    return points;
+}
+
 int PreviewLayout::cellX(int column) const {
     return margin + labelWidth + column * columnWidth + (columnWidth - sphereSize) / 2;
 }
@@ -65,61 +89,68 @@ int PreviewLayout::cellX(int column) const {
 int PreviewLayout::cellY(int row) const {
     // Rows come in groups (runtime [, reference, error] of one material); an error row is followed by two
     // lines of per-column values (the error, the reference's own estimated error), and the groups by a gap.
-    const int perGroup = rowCount / 2, group = row / perGroup;
-    const int valueLines = rowCount == 6 ? group : 0;
+    const int perGroup = rowCount / groupCount, group = row / perGroup;
+    const int valueLines = perGroup == 3 ? group : 0;
     return headerHeight + row * sphereSize + group * groupGap + valueLines * 3 * fontSize;
 }
 
-PreviewLayout previewLayout(int sphereSize, bool withReference) {
+PreviewLayout previewLayout(int sphereSize, bool withReference, int groupCount, int columnCount) {
     PreviewLayout l;
     l.sphereSize = sphereSize;
+    l.groupCount = groupCount;
+    l.columnCount = columnCount;
     l.fontSize = std::max(12, sphereSize / 7);
     l.margin = l.fontSize;
     l.columnWidth = std::max(sphereSize, 4 * l.fontSize); // "10.0%" fits
     l.labelWidth = 13 * l.fontSize;                       // "reference dielectric" in DejaVu Sans is ~11 em
     l.headerHeight = 4 * l.fontSize;
-    l.rowCount = withReference ? 6 : 2;
+    l.rowCount = (withReference ? 3 : 1) * groupCount;
     l.groupGap = l.fontSize;
     l.legendHeight = withReference ? 5 * l.fontSize : 0;
-    l.width = 2 * l.margin + l.labelWidth + kPreviewColumns * l.columnWidth;
+    l.width = 2 * l.margin + l.labelWidth + columnCount * l.columnWidth;
     const int valueLine = withReference ? 3 * l.fontSize : 0;
     l.height = l.cellY(l.rowCount - 1) + sphereSize + valueLine + l.legendHeight + l.margin;
     return l;
 }
 
-std::vector<std::string> previewRowNames(bool withReference) {
-    if (!withReference) return {"runtime dielectric", "runtime metal"};
-    return {"runtime dielectric", "reference dielectric", "error dielectric",
-            "runtime metal",      "reference metal",      "error metal"};
+std::vector<std::string> previewRowNames(bool withReference, const std::vector<std::string>& groups) {
+    std::vector<std::string> names;
+    for (const std::string& group : groups)
+        for (const char* kind : {"runtime ", "reference ", "error "}) {
+            names.push_back(kind + group);
+            if (!withReference) break;
+        }
+    return names;
 }
 
 void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, const ImageRGBA& panels,
                       const std::vector<glm::vec3>& errorColor, const std::vector<int>& owner, float scale,
-                      const MaterialPreview& preview) {
+                      const PreviewGridLabels& labels) {
     using OIIO::ImageBufAlgo::TextAlignX;
-    const bool withReference = l.rowCount == 6;
-    const int size = l.sphereSize, panelWidth = kPreviewColumns * size;
+    const bool withReference = l.rowCount == 3 * l.groupCount;
+    const int size = l.sphereSize, panelWidth = l.columnCount * size;
     Canvas canvas(png, l.width, l.height);
     const int fs = l.fontSize;
 
     // Header: the caption, then each column's roughness.
-    canvas.text(l.cellX(0), fs, "perceptual roughness (GGX alpha = roughness^2)", fs);
-    for (int c = 0; c < kPreviewColumns; ++c) {
+    canvas.text(l.cellX(0), fs, labels.caption, fs);
+    for (int c = 0; c < l.columnCount; ++c) {
         char value[16];
-        std::snprintf(value, sizeof value, "%.1f", preview.roughness[std::size_t(c)]);
+        std::snprintf(value, sizeof value, "%.1f", labels.roughness[std::size_t(c)]);
         canvas.text(l.cellX(c) + size / 2, l.headerHeight - fs, value, fs, TextAlignX::Center);
     }
 
-    const std::vector<std::string> names = previewRowNames(withReference);
+    const std::vector<std::string> names = previewRowNames(withReference, labels.groups);
     for (int row = 0; row < l.rowCount; ++row) {
-        const int perGroup = l.rowCount / 2, material = row / perGroup, kind = row % perGroup; // 0 runtime
+        const int perGroup = l.rowCount / l.groupCount, group = row / perGroup,
+                  kind = row % perGroup; // 0 runtime
         const int top = l.cellY(row);
         canvas.text(l.margin, top + size / 2, names[std::size_t(row)], fs);
-        for (int c = 0; c < kPreviewColumns; ++c)
+        for (int c = 0; c < l.columnCount; ++c)
             canvas.fill(l.cellX(c), top, size, size, glm::vec3(0.0f));
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < panelWidth; ++x) {
-                const int panelY = material * size + y;
+                const int panelY = group * size + y;
                 const int k = owner[std::size_t(panelY) * panelWidth + x];
                 if (k < 0) continue;
                 glm::vec3 display;
@@ -133,12 +164,11 @@ void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, 
                 canvas.set(l.cellX(x / size) + x % size, top + y, display);
             }
         if (kind == 2) { // the row's per-column error
-            const std::vector<double>& error = material == 0 ? preview.dielectricError : preview.metalError;
-            const std::vector<double>& own =
-                material == 0 ? preview.dielectricReferenceError : preview.metalReferenceError;
+            const std::vector<double>& error = labels.error[std::size_t(group)];
+            const std::vector<double>& own = labels.referenceError[std::size_t(group)];
             canvas.text(l.margin, top + size + fs, "mean error", fs);
             canvas.text(l.margin, top + size + 2 * fs, "reference's own", fs);
-            for (int c = 0; c < kPreviewColumns; ++c) {
+            for (int c = 0; c < l.columnCount; ++c) {
                 canvas.text(l.cellX(c) + size / 2, top + size + fs, percent(error[std::size_t(c)]), fs,
                             TextAlignX::Center);
                 canvas.text(l.cellX(c) + size / 2, top + size + 2 * fs, percent(own[std::size_t(c)]), fs,
@@ -149,7 +179,7 @@ void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, 
 
     if (withReference) { // the error colour scale: a bar from 0 to 20% and more, with its values
         const int top = l.height - l.margin - l.legendHeight + fs;
-        const int barWidth = kPreviewColumns * l.columnWidth / 2, barHeight = fs;
+        const int barWidth = l.columnCount * l.columnWidth / 2, barHeight = fs;
         canvas.text(l.margin, top + barHeight / 2, "error scale", fs);
         for (int x = 0; x < barWidth; ++x)
             canvas.fill(l.cellX(0) + x, top, 1, barHeight,

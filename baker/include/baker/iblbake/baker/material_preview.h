@@ -72,22 +72,27 @@ struct MaterialPreview {
     int width = 0, height = 0;             // of the PNG grid
 };
 
-// The grid's geometry (all in pixels), from the ball size and whether reference and error rows are shown.
+// The grid's geometry (all in pixels), from the ball size, whether reference and error rows are shown, and
+// the groups of rows (dielectric and metal; the light preview's lights) and roughness columns.
 struct PreviewLayout {
     int sphereSize = 0, fontSize = 0, margin = 0;
+    int columnCount = kPreviewColumns;
+    int groupCount = 2;
     int columnWidth = 0;  // the ball, or wider for small balls: room for a column's labels
     int labelWidth = 0;   // the row names' column at the left
     int headerHeight = 0; // the caption and the roughness labels above the balls
-    int rowCount = 0; // 2 (runtime dielectric, runtime metal) or 6 (runtime, reference, error; each twice)
-    int groupGap = 0; // between the dielectric and the metal rows
+    int rowCount = 0;     // groupCount (runtime) or 3 x groupCount (runtime, reference, error of each group)
+    int groupGap = 0;     // between groups of rows
     int legendHeight = 0; // the error colour scale below (0 without a reference)
     int width = 0, height = 0;
     int cellX(int column) const; // left edge of a column's balls (centred in the column)
     int cellY(int row) const;    // top edge of a row's balls
 };
-PreviewLayout previewLayout(int sphereSize, bool withReference);
-// The row names, top to bottom.
-std::vector<std::string> previewRowNames(bool withReference);
+PreviewLayout previewLayout(int sphereSize, bool withReference, int groupCount = 2,
+                            int columnCount = kPreviewColumns);
+// The row names, top to bottom: "runtime G" [, "reference G", "error G"] for each group G.
+std::vector<std::string> previewRowNames(bool withReference,
+                                         const std::vector<std::string>& groups = {"dielectric", "metal"});
 
 // 0 black, 5% blue, 10% yellow, 20% and more red (display-referred).
 glm::vec3 previewErrorColor(float relativeError);
