@@ -18,6 +18,8 @@
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
+#include <iblbake/runtime/runtime_light_card.h>
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
@@ -268,6 +270,40 @@ TEST(SceneBake, RerunIsCachedAndTouchingOneCaptureRerunsOnlyItsProbe) {
 
 // The front end (cli/front_end.cpp) answers an unchanged scene without the engine (so without loading
 // OpenImageIO or starting OpenCL), and says what the engine would say; anything else needs the engine.
+// A textured light's card: baked by its light-card stage, listed in the manifest (products.lightCards) and
+// the summary's products, and a rerun up to date (the check finds the card's hash in the manifest). An
+// untextured light plans nothing and lists nothing.
+TEST(SceneBake, TexturedLightCardIsListedAndTheRerunIsUpToDate) {
+    SceneDir d("scene_light_card");
+    writeLatLong(d.dir / "window.hdr", 1.0f);
+    d.scene["lights"] =
+        json::array({{{"name", "window"}, {"texture", "window.hdr"}, {"cardSize", 16}, {"cardLayers", 2}},
+                     {{"name", "bulb"}, {"shape", "sphere"}}});
+    const fs::path scene = d.write();
+    JsonRun first = bakeJson(scene);
+    ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
+    EXPECT_EQ(statusById(first.summary).at("light-card:window"), "ran");
+    const json manifest = json::parse(readBytes(d.out() / "manifest.json"));
+    const json& cards = manifest["products"]["lightCards"];
+    ASSERT_EQ(cards.size(), 1u) << cards;
+    EXPECT_EQ(cards[0]["light"], "window");
+    EXPECT_EQ(cards[0]["file"], "lightcard_window.ktx2");
+    EXPECT_EQ(cards[0]["size"], 16);
+    EXPECT_EQ(cards[0]["diffuseLayers"], 2);
+    EXPECT_EQ(cards[0]["contentHash"].get<std::string>().size(), 32u);
+    const ibl::LightCardData card = ibl::loadLightCard(d.out() / "lightcard_window.ktx2");
+    EXPECT_EQ(card.layout.diffuseLayers, 2u);
+    EXPECT_FLOAT_EQ(card.layout.aspect, 2.0f); // the 64 x 32 texture
+    const std::vector<std::string> products = first.summary["products"];
+    EXPECT_NE(std::find(products.begin(), products.end(), (d.out() / "lightcard_window.ktx2").string()),
+              products.end());
+
+    JsonRun second = bakeJson(scene);
+    ASSERT_EQ(second.run.exitCode, 0) << second.run.err;
+    EXPECT_EQ(second.summary["upToDate"], true) << second.run.out;
+    EXPECT_EQ(second.summary["ran"], 0);
+}
+
 TEST(SceneBake, UnchangedRerunIsAnsweredWithoutTheEngineAndAsTheEngineWould) {
     SceneDir d("scene_front_end");
     d.scene["probes"] = json::array({probeJson("a", "a.hdr", {0, 1, 0})});

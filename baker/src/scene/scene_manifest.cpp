@@ -178,6 +178,25 @@ json buildManifest(const ManifestInputs& in) {
         probes.push_back(std::move(probe));
     }
     products["probes"] = probes;
+    // Textured lights' cards (light-card stages); the card's KTX2 keys hold its mapping and aspect.
+    json lightCards = json::array();
+    for (const SceneLight& l : scene.lights) {
+        auto it = stages.find("light-card:" + l.name);
+        if (it == stages.end()) continue;
+        const json& s = it->second->settings;
+        const std::string file = it->second->products.at(0);
+        lightCards.push_back(
+            {{"light", l.name},
+             {"file", file},
+             {"format", "KTX2 2D array, " + s.at("ktx2Format").get<std::string>() +
+                            ": layer 0 the specular chain by footprint radius, layers 1..K the diffuse "
+                            "layers by distance (kernels/light_card.h; keys iblbake.card*)"},
+             {"size", s.at("size")},
+             {"diffuseLayers", s.at("layers")},
+             {"normalization", "mean luminance 1 over the light: the light's colour and power scale it"},
+             {"contentHash", in.productHashes.at(file)}});
+    }
+    products["lightCards"] = lightCards;
     if (stages.count("gltf"))
         products["gltf"] =
             gltfEntry(*stages["gltf"], readJsonFile(in.entries.at("gltf") / kGltfFacts), in.productHashes);

@@ -19,7 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// File -> contentHash of every product the manifest lists (products.* and products.probes[], and the files[]
+// File -> contentHash of every product the manifest lists (products.*, products.probes[] and
+// products.lightCards[], and the files[]
 // of a product made of several: a glTF's images, a preview's EXR).
 std::map<std::string, std::string> listedHashes(const json& products) {
     std::map<std::string, std::string> out;
@@ -30,7 +31,7 @@ std::map<std::string, std::string> listedHashes(const json& products) {
                 out[f.at("file")] = f.at("contentHash");
     };
     for (const auto& [name, value] : products.items()) {
-        if (name == "probes")
+        if (name == "probes" || name == "lightCards")
             for (const json& p : value)
                 add(p);
         else
