@@ -67,7 +67,7 @@ set(IBLBAKE_STAGE_CODE_material-preview stage_runner kernel_host baker/src/scene
 # A textured light's card (lights[].texture): the texture's read and colour conversion, the bake and its file.
 set(IBLBAKE_STAGE_CODE_light-card stage_runner kernel_host kernels/light_card.cl baker/src/light_card
     baker/src/ingest/read_image.cpp baker/src/ingest/color.cpp baker/src/ingest/sanitize.cpp)
-set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/bake_scene.cpp
+set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/scene/scene_lights.cpp baker/src/scene/bake_scene.cpp
     baker/src/products)
 
 # Sources that decide no stage's bytes: planning and keys (their effect is in the key's settings and

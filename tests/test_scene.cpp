@@ -286,7 +286,8 @@ TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
     EXPECT_EQ(cardStages(ibl::planScene(parse(minimalScene()))), 0);
 
     json doc = minimalScene();
-    doc["lights"] = json::array({{{"name", "window"}, {"texture", "window.png"}, {"cardSize", 64}}});
+    doc["lights"] =
+        json::array({{{"name", "window"}, {"texture", "window.png"}, {"cardSize", 64}, {"lumens", 800}}});
     const ibl::Plan one = ibl::planScene(parse(doc));
     ASSERT_EQ(cardStages(one), 1);
     const auto card = std::find_if(one.stages.begin(), one.stages.end(),
@@ -304,7 +305,7 @@ TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
     without.insert("light-card:window");
     EXPECT_EQ(stageIds(one), without);
 
-    doc["lights"].push_back({{"name", "bulb"}, {"shape", "sphere"}});
+    doc["lights"].push_back({{"name", "bulb"}, {"shape", "sphere"}, {"luminance", 1e4}});
     const ibl::Plan analytic = ibl::planScene(parse(doc));
     EXPECT_EQ(cardStages(analytic), 1);
     EXPECT_TRUE(std::any_of(analytic.skipped.begin(), analytic.skipped.end(),
@@ -326,6 +327,24 @@ TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
          "scene.json: lights[0].cardSize: needs a texture: only textured lights have cards"},
         {{{"name", "w"}, {"textur", "w.png"}}, "scene.json: lights[0].textur: unknown key"},
         {{{"name", "a b"}}, "scene.json: lights[0].name: must be 1 to 64 of A-Z a-z 0-9 _ -"},
+        {{{"name", "w"}}, "scene.json: lights[0].lumens: or luminance (cd/m2) is required"},
+        {{{"name", "w"}, {"lumens", 10}, {"luminance", 10}},
+         "scene.json: lights[0].luminance: and lumens are both given: give one"},
+        {{{"name", "w"}, {"lumens", 0}}, "scene.json: lights[0].lumens: must be a positive number"},
+        {{{"name", "w"}, {"lumens", 10}, {"shape", "sphere"}, {"normal", {0, 0, 1}}},
+         "scene.json: lights[0].normal: a sphere light has none"},
+        {{{"name", "w"}, {"lumens", 10}, {"radius", 1}},
+         "scene.json: lights[0].radius: a rectangle light has none"},
+        {{{"name", "w"}, {"lumens", 10}, {"shape", "disk"}, {"width", 1}},
+         "scene.json: lights[0].width: a disk light has none"},
+        {{{"name", "w"}, {"lumens", 10}, {"normal", {0, 0, 0}}},
+         "scene.json: lights[0].normal: must not be the zero vector"},
+        {{{"name", "w"}, {"lumens", 10}, {"normal", {0, 0, 1}}, {"tangent", {0, 0, 2}}},
+         "scene.json: lights[0].tangent: must not be parallel to the normal"},
+        {{{"name", "w"}, {"lumens", 10}, {"height", -1}},
+         "scene.json: lights[0].height: must be a number from 0 to 1e+09, not -1"},
+        {{{"name", "w"}, {"lumens", 10}, {"color", {1, -1, 1}}},
+         "scene.json: lights[0].color: must be a number from 0 to 1e+06, not -1"},
     };
     for (const Case& c : cases) {
         json bad = minimalScene();
@@ -333,7 +352,7 @@ TEST(ScenePlan, TexturedLightsPlanOneCardStageEach) {
         EXPECT_EQ(errorOf(bad.dump()), c.expected);
     }
     json twice = minimalScene();
-    twice["lights"] = json::array({{{"name", "w"}}, {{"name", "w"}}});
+    twice["lights"] = json::array({{{"name", "w"}, {"lumens", 1}}, {{"name", "w"}, {"lumens", 1}}});
     EXPECT_EQ(errorOf(twice.dump()), "scene.json: lights[1].name: 'w' is used by an earlier light");
     json notArray = minimalScene();
     notArray["lights"] = json::object();

@@ -270,15 +270,30 @@ TEST(SceneBake, RerunIsCachedAndTouchingOneCaptureRerunsOnlyItsProbe) {
 
 // The front end (cli/front_end.cpp) answers an unchanged scene without the engine (so without loading
 // OpenImageIO or starting OpenCL), and says what the engine would say; anything else needs the engine.
-// A textured light's card: baked by its light-card stage, listed in the manifest (products.lightCards) and
-// the summary's products, and a rerun up to date (the check finds the card's hash in the manifest). An
-// untextured light plans nothing and lists nothing.
-TEST(SceneBake, TexturedLightCardIsListedAndTheRerunIsUpToDate) {
+// Scene lights: a textured light's card baked by its light-card stage, listed in the manifest
+// (products.lightCards) and the summary's products; products.lights with the geometry and both units
+// (Frostbite Table 12), from which the runtime's manifest loader builds the same AreaLights the runtime's
+// constructors make (and loads the card); a warning for a card whose aspect is not the rectangle's; a
+// rerun up to date, and one after a light's power changed not (all stages cached, the manifest rewritten).
+TEST(SceneBake, SceneLightsAreListedLoadedAndKeptUpToDate) {
     SceneDir d("scene_light_card");
-    writeLatLong(d.dir / "window.hdr", 1.0f);
-    d.scene["lights"] =
-        json::array({{{"name", "window"}, {"texture", "window.hdr"}, {"cardSize", 16}, {"cardLayers", 2}},
-                     {{"name", "bulb"}, {"shape", "sphere"}}});
+    writeLatLong(d.dir / "window.hdr", 1.0f); // 64 x 32: aspect 2
+    d.scene["lights"] = json::array({{{"name", "window"},
+                                      {"texture", "window.hdr"},
+                                      {"cardSize", 16},
+                                      {"cardLayers", 2},
+                                      {"position", {0, 2, 0}},
+                                      {"normal", {0, -1, 0}},
+                                      {"tangent", {1, 0, 0}},
+                                      {"width", 1.0},
+                                      {"height", 0.5},
+                                      {"lumens", 800}},
+                                     {{"name", "bulb"},
+                                      {"shape", "sphere"},
+                                      {"position", {1, 1, 1}},
+                                      {"radius", 0.1},
+                                      {"color", {1, 0.8, 0.6}},
+                                      {"luminance", 5e4}}});
     const fs::path scene = d.write();
     JsonRun first = bakeJson(scene);
     ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
@@ -291,17 +306,61 @@ TEST(SceneBake, TexturedLightCardIsListedAndTheRerunIsUpToDate) {
     EXPECT_EQ(cards[0]["size"], 16);
     EXPECT_EQ(cards[0]["diffuseLayers"], 2);
     EXPECT_EQ(cards[0]["contentHash"].get<std::string>().size(), 32u);
-    const ibl::LightCardData card = ibl::loadLightCard(d.out() / "lightcard_window.ktx2");
-    EXPECT_EQ(card.layout.diffuseLayers, 2u);
-    EXPECT_FLOAT_EQ(card.layout.aspect, 2.0f); // the 64 x 32 texture
     const std::vector<std::string> products = first.summary["products"];
     EXPECT_NE(std::find(products.begin(), products.end(), (d.out() / "lightcard_window.ktx2").string()),
               products.end());
+    // The card's texture is 2:1, the light 1 x 0.5: no warning.
+    EXPECT_TRUE(manifest["warnings"].empty()) << manifest["warnings"];
+
+    const json& lights = manifest["products"]["lights"];
+    ASSERT_EQ(lights.size(), 2u);
+    EXPECT_EQ(lights[0]["card"], "lightcard_window.ktx2");
+    EXPECT_NEAR(lights[0]["luminance"].get<double>(), 800.0 / (3.14159265358979 * 0.5), 1e-3); // phi/(pi A)
+    const double r2pi2 = 0.01 * 3.14159265358979 * 3.14159265358979;
+    EXPECT_NEAR(lights[1]["lumens"].get<double>(), 5e4 * 4.0 * r2pi2, 1e-2); // L = phi / (4 pi^2 r^2)
+    EXPECT_FALSE(lights[1].contains("card"));
+    const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(d.out());
+    ASSERT_EQ(loaded.lights.size(), 2u);
+    const ibl::AreaLight window =
+        ibl::rectangleAreaLight({0, 2, 0}, {0, -1, 0}, {1, 0, 0}, 1.0f, 0.5f, glm::vec3(1.0f), 800.0f);
+    const ibl::AreaLight bulb =
+        ibl::sphereAreaLight({1, 1, 1}, 0.1f, {1.0f, 0.8f, 0.6f}, lights[1]["lumens"].get<float>());
+    EXPECT_EQ(loaded.lights[0].name, "window");
+    ASSERT_TRUE(loaded.lights[0].card.has_value());
+    EXPECT_FLOAT_EQ(loaded.lights[0].card->layout.aspect, 2.0f);
+    EXPECT_FALSE(loaded.lights[1].card.has_value());
+    for (const auto& [got, expected] :
+         {std::pair{loaded.lights[0].light, window}, {loaded.lights[1].light, bulb}}) {
+        EXPECT_EQ(got.shape, expected.shape);
+        EXPECT_EQ(got.position, expected.position);
+        EXPECT_EQ(got.normal, expected.normal);
+        EXPECT_EQ(got.tangent, expected.tangent);
+        EXPECT_FLOAT_EQ(got.halfWidth, expected.halfWidth);
+        EXPECT_FLOAT_EQ(got.halfHeight, expected.halfHeight);
+        EXPECT_EQ(got.color, expected.color);
+        EXPECT_NEAR(got.luminance / expected.luminance, 1.0, 1e-6);
+    }
+    EXPECT_NEAR(loaded.lights[1].light.luminance, 5e4, 1.0);
 
     JsonRun second = bakeJson(scene);
     ASSERT_EQ(second.run.exitCode, 0) << second.run.err;
     EXPECT_EQ(second.summary["upToDate"], true) << second.run.out;
     EXPECT_EQ(second.summary["ran"], 0);
+
+    // A square light for the 2:1 card: warned; the power changed: not up to date, nothing re-baked.
+    d.scene["lights"][0]["height"] = 1.0;
+    d.scene["lights"][0]["lumens"] = 900;
+    d.write();
+    JsonRun third = bakeJson(scene);
+    ASSERT_EQ(third.run.exitCode, 0) << third.run.err;
+    EXPECT_EQ(third.summary["upToDate"], false);
+    EXPECT_EQ(third.summary["ran"], 0);
+    const json rewritten = json::parse(readBytes(d.out() / "manifest.json"));
+    EXPECT_EQ(rewritten["products"]["lights"][0]["lumens"], 900.0);
+    ASSERT_EQ(rewritten["warnings"].size(), 1u);
+    EXPECT_NE(rewritten["warnings"][0].get<std::string>().find("light 'window': its texture's aspect 2"),
+              std::string::npos)
+        << rewritten["warnings"];
 }
 
 TEST(SceneBake, UnchangedRerunIsAnsweredWithoutTheEngineAndAsTheEngineWould) {

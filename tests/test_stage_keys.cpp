@@ -41,7 +41,8 @@ ibl::Plan everyKindPlan() {
     scene["outputs"]["irradianceCube"] = true;
     scene["outputs"]["gltf"] = true;
     scene["outputs"]["preview"] = true;
-    scene["lights"] = {{{"name", "window"}, {"texture", "../rooitou_park_1k.hdr"}, {"cardSize", 16}}};
+    scene["lights"] = {
+        {{"name", "window"}, {"texture", "../rooitou_park_1k.hdr"}, {"cardSize", 16}, {"lumens", 800}}};
     return ibl::planScene(ibl::parseScene(scene.dump(), "park.json", scenes));
 }
 

@@ -1,4 +1,5 @@
 #include "iblbake/core/error.h"
+#include "iblbake/runtime/runtime_area_lights.h"
 #include "iblbake/runtime/runtime_manifest.h"
 
 #include <nlohmann/json.hpp>
@@ -36,6 +37,29 @@ LdPyramid blackLd() {
 
 DfgTable blackDfg() {
     return DfgTable{1, {0.0f, 0.0f, 0.0f}};
+}
+
+// products.lights[i]: the light of its geometry and power, its card loaded when it has one.
+ManifestLight light(const json& l, const fs::path& dir) {
+    ManifestLight out;
+    out.name = l.at("name").get<std::string>();
+    const std::string shape = l.at("shape").get<std::string>();
+    const glm::vec3 position = vec3(l.at("position")), color = vec3(l.at("color"));
+    const float lumens = l.at("lumens").get<float>();
+    if (!(lumens > 0.0f)) throw Error("light '" + out.name + "': lumens must be positive");
+    if (shape == "sphere") {
+        out.light = sphereAreaLight(position, l.at("radius").get<float>(), color, lumens);
+    } else if (shape == "disk") {
+        out.light = diskAreaLight(position, vec3(l.at("normal")), l.at("radius").get<float>(), color, lumens);
+    } else if (shape == "rectangle") {
+        out.light =
+            rectangleAreaLight(position, vec3(l.at("normal")), vec3(l.at("tangent")),
+                               l.at("width").get<float>(), l.at("height").get<float>(), color, lumens);
+    } else {
+        throw Error("light '" + out.name + "': shape '" + shape + "' is not sphere, disk or rectangle");
+    }
+    if (l.contains("card")) out.card = loadLightCard(dir / l["card"].get<std::string>());
+    return out;
 }
 
 ManifestProbeSet load(const json& m, const fs::path& dir) {
@@ -79,6 +103,8 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
         desc.fadeDistance = p.at("fadeDistance").get<float>();
         out.set.addLocalProbe(desc, loadLdKtx2(dir / p.at("file").get<std::string>()));
     }
+    for (const json& l : products.value("lights", json::array()))
+        out.lights.push_back(light(l, dir));
     out.options.specular = glossy;
     out.options.energyCompensation = materials.at("energyCompensation").get<bool>();
     out.options.diffuseModel =

@@ -6,11 +6,15 @@
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/specular.h"
 #include "iblbake/baker/sun.h"
+#include "iblbake/runtime/runtime_light_card.h"
+#include "iblbake/scene/scene_lights.h"
 #include "scene_stages.h"
 
 #include <glm/geometric.hpp>
 
 #include <cmath>
+#include <cstdio>
+#include <optional>
 
 namespace ibl {
 
@@ -117,6 +121,19 @@ json previewEntry(const PlanStage& stage, const json& facts,
         {"files", filesAfterTheFirst(stage, hashes)}};
 }
 
+// What a light's card says about the light it was baked for: a warning when its aspect is not the
+// rectangle's (the runtime stretches the card over the rectangle).
+std::optional<std::string> cardAspectWarning(const SceneLight& l, const fs::path& card) {
+    const double aspect = loadLightCard(card).layout.aspect, lightAspect = l.width / l.height;
+    if (std::abs(std::log(aspect / lightAspect)) <= 0.01) return std::nullopt;
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "light '%s': its texture's aspect %.4g differs from the light's %.4g x %.4g (%.4g): the "
+                  "card is stretched over the rectangle",
+                  l.name.c_str(), aspect, l.width, l.height, lightAspect);
+    return std::string(text);
+}
+
 } // namespace
 
 json buildManifest(const ManifestInputs& in) {
@@ -197,6 +214,7 @@ json buildManifest(const ManifestInputs& in) {
              {"contentHash", in.productHashes.at(file)}});
     }
     products["lightCards"] = lightCards;
+    products["lights"] = sceneLightsJson(scene);
     if (stages.count("gltf"))
         products["gltf"] =
             gltfEntry(*stages["gltf"], readJsonFile(in.entries.at("gltf") / kGltfFacts), in.productHashes);
@@ -210,6 +228,10 @@ json buildManifest(const ManifestInputs& in) {
         const json check = readJsonFile(in.entries.at("sun-check") / kSunInProbeFacts);
         if (check.at("detected").get<bool>()) warnings.push_back(check.at("warning"));
     }
+    for (const SceneLight& l : scene.lights)
+        if (auto it = stages.find("light-card:" + l.name); it != stages.end())
+            if (auto w = cardAspectWarning(l, in.entries.at(it->first) / it->second->products.at(0)))
+                warnings.push_back(*w);
 
     json stageKeys = json::array();
     for (const PlanStage& s : in.plan.stages)

@@ -23,6 +23,7 @@ struct ManifestInputs {
 
 nlohmann::json buildManifest(const ManifestInputs& inputs);
 
+
 inline constexpr int kManifestSchemaVersion = 1;
 
 } // namespace ibl

@@ -13,6 +13,8 @@
 #include <mip_mapping.h>
 #include <nlohmann/json.hpp>
 
+#include <glm/geometric.hpp>
+
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -366,7 +368,39 @@ SceneLight light(const json& v, const std::string& path, const fs::path& base, c
     if (!l.texture && (r.has("cardSize") || r.has("cardLayers")))
         fail(r.key(r.has("cardSize") ? "cardSize" : "cardLayers"),
              "needs a texture: only textured lights have cards");
+    // Geometry: each key only where the shape has it, so that none is silently ignored.
+    const bool sphere = l.shape == "sphere", rectangle = l.shape == "rectangle";
+    for (const char* k : {"normal", "tangent", "width", "height", "radius"}) {
+        const bool applies = std::string(k) == "radius"   ? !rectangle
+                             : std::string(k) == "normal" ? !sphere
+                                                          : rectangle;
+        if (!applies && r.has(k)) fail(r.key(k), "a " + l.shape + " light has none");
+    }
+    l.position = r.vec3("position", l.position, -kMaxDistance, kMaxDistance);
+    l.normal = r.vec3("normal", l.normal, -1e6, 1e6);
+    if (!(glm::length(l.normal) > 0.0)) fail(r.key("normal"), "must not be the zero vector");
+    l.normal = glm::normalize(l.normal);
+    l.tangent = r.vec3("tangent", l.tangent, -1e6, 1e6);
+    if (rectangle && !(glm::length(glm::cross(l.normal, l.tangent)) > 1e-6 * glm::length(l.tangent)))
+        fail(r.key("tangent"), "must not be parallel to the normal");
+    l.width = r.number("width", l.width, 0.0, kMaxDistance);
+    if (!(l.width > 0.0)) fail(r.key("width"), "must be a positive number");
+    l.height = r.number("height", l.height, 0.0, kMaxDistance);
+    if (!(l.height > 0.0)) fail(r.key("height"), "must be a positive number");
+    l.radius = r.number("radius", l.radius, 0.0, kMaxDistance);
+    if (!(l.radius > 0.0)) fail(r.key("radius"), "must be a positive number");
+    l.color = r.vec3("color", l.color, 0.0, 1e6, "3 non-negative numbers");
+    // Power: Frostbite 4.7.1's two units, exactly one (its absence told after the unknown keys).
+    const bool hasLumens = r.has("lumens"), hasLuminance = r.has("luminance");
+    if (hasLumens && hasLuminance) fail(r.key("luminance"), "and lumens are both given: give one");
+    for (const char* k : {"lumens", "luminance"})
+        if (r.has(k)) {
+            const double value = r.number(k, 0.0, 0.0, 1e15);
+            if (!(value > 0.0)) fail(r.key(k), "must be a positive number");
+            (std::string(k) == "lumens" ? l.lumens : l.luminance) = value;
+        }
     r.finish();
+    if (!hasLumens && !hasLuminance) fail(r.key("lumens"), "or luminance (cd/m2) is required");
     return l;
 }
 

@@ -6,6 +6,7 @@
 #include "iblbake/bake_state/code_identity.h"
 #include "iblbake/bake_state/content_hash.h"
 #include "iblbake/core/error.h"
+#include "iblbake/scene/scene_lights.h"
 #include "stage_keys.h"
 
 #include <nlohmann/json.hpp>
@@ -31,6 +32,7 @@ std::map<std::string, std::string> listedHashes(const json& products) {
                 out[f.at("file")] = f.at("contentHash");
     };
     for (const auto& [name, value] : products.items()) {
+        if (name == "lights") continue; // their cards are in lightCards
         if (name == "probes" || name == "lightCards")
             for (const json& p : value)
                 add(p);
@@ -69,6 +71,8 @@ std::string check(const Scene& scene, const BakeOptions& options, UpToDate& out)
             return "stage " + plan.stages[i].id + " has new inputs or settings";
         out.keys.push_back(key);
     }
+    if (manifest.at("products").value("lights", json::array()) != sceneLightsJson(scene))
+        return "the scene's lights changed";
     const std::map<std::string, std::string> hashes = listedHashes(manifest.at("products"));
     for (const PlanStage& stage : plan.stages)
         for (const std::string& product : stage.products) {

@@ -58,12 +58,21 @@ struct SceneProbe {
 
 // lights[]: the scene's area lights. The runtime evaluates them (kernels/area_lights.h); a textured one
 // (a rectangle with a texture) needs its light card baked (kernels/light_card.h), one card stage each.
+// Geometry in the scene's units (metres); power as Frostbite 4.7.1: exactly one of `lumens` (luminous
+// power) and `luminance` (cd/m2 of the emitting surface), the other following from Table 12.
 struct SceneLight {
     std::string name;                // [A-Za-z0-9_-], unique; names the card lightcard_<name>.ktx2
     std::string shape = "rectangle"; // sphere, disk, rectangle
     std::optional<std::filesystem::path> texture; // rectangles only: the emission image
     int cardSize = 256;                           // the card's level 0, a power of two (LightCardSettings)
     int cardLayers = 8;                           // its diffuse layers
+    glm::dvec3 position{0.0};                     // the centre
+    glm::dvec3 normal{0.0, -1.0, 0.0};            // disk, rectangle: the emitting side (normalized)
+    glm::dvec3 tangent{1.0, 0.0, 0.0};            // rectangle: the width's axis (made perpendicular)
+    double width = 1.0, height = 1.0;             // rectangle
+    double radius = 0.5;                          // sphere, disk
+    glm::dvec3 color{1.0};                        // linear RGB in the working space, scales the emission
+    std::optional<double> lumens, luminance;      // exactly one is given
 };
 
 enum class SceneDiffuseModel { Lambert, Disney };

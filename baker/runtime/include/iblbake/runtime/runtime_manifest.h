@@ -3,11 +3,23 @@
 #pragma once
 
 #include "iblbake/runtime/runtime.h"
+#include "iblbake/runtime/runtime_light_card.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace ibl {
+
+// One of the scene's area lights (products.lights[]): its AreaLight (sphereAreaLight, diskAreaLight or
+// rectangleAreaLight of its geometry, colour and lumens) and, when textured, its card (loadLightCard):
+// shade it with shadeAreaLightCpu / shadeTexturedLightCpu or their OpenCL forms.
+struct ManifestLight {
+    std::string name;
+    AreaLight light{};
+    std::optional<LightCardData> card;
+};
 
 struct ManifestProbeSet {
     ProbeSet set;
@@ -16,6 +28,7 @@ struct ManifestProbeSet {
     RuntimeOptions options;
     double calibrationFactor = 1.0; // what the bake multiplied its inputs by
     std::string runtimeProfile;
+    std::vector<ManifestLight> lights; // products.lights, in the scene's order
 };
 
 // `path`: manifest.json or the bake directory holding it. Product paths resolve against its directory.
