@@ -42,8 +42,9 @@ Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& 
 }
 
 Ktx2WriteStats bakeLightCardFile(const std::filesystem::path& texture, const std::filesystem::path& output,
-                                 const LightCardSettings& settings, const Executor& executor) {
-    const LightCardTexture emission = readLightCardTexture(texture, settings);
+                                 const LightCardSettings& settings, const Executor& executor,
+                                 const std::string& workingColorSpace) {
+    const LightCardTexture emission = readLightCardTexture(texture, settings, "", workingColorSpace);
     const LightCard card = bakeLightCard(emission.emission, emission.aspect, settings, executor);
     return writeKtx2Array(output, card.levels, settings.format, lightCardKeyValues(card, emission));
 }

@@ -213,8 +213,10 @@ json buildManifest(const ManifestInputs& in) {
              {"normalization", "mean luminance 1 over the light: the light's colour and power scale it"},
              {"contentHash", in.productHashes.at(file)}});
     }
-    products["lightCards"] = lightCards;
-    products["lights"] = sceneLightsJson(scene);
+    if (!scene.lights.empty()) { // absent, as other products that were not needed
+        products["lights"] = sceneLightsJson(scene);
+        products["lightCards"] = lightCards;
+    }
     if (stages.count("gltf"))
         products["gltf"] =
             gltfEntry(*stages["gltf"], readJsonFile(in.entries.at("gltf") / kGltfFacts), in.productHashes);

@@ -365,11 +365,8 @@ void runLightCard(const StageContext& c) {
     settings.diffuseLayers = s.at("layers").get<int>();
     settings.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
     forInput(c, [&] {
-        const LightCardTexture texture = readLightCardTexture(c.stage.inputs.at(0).file, settings, "",
-                                                              s.at("workingColorSpace").get<std::string>());
-        const LightCard card = bakeLightCard(texture.emission, texture.aspect, settings, *c.executor);
-        writeKtx2Array(c.outputDirectory / c.stage.products.at(0), card.levels, settings.format,
-                       lightCardKeyValues(card, texture));
+        bakeLightCardFile(c.stage.inputs.at(0).file, c.outputDirectory / c.stage.products.at(0), settings,
+                          *c.executor, s.at("workingColorSpace").get<std::string>());
     });
 }
 

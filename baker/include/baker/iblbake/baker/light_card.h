@@ -55,8 +55,10 @@ LightCard bakeLightCard(const ImageRGBA& emission, float aspect, const LightCard
 // normalization and the colour spaces.
 Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& texture);
 
-// The flow of `iblbake lightcard`: read, bake, write (all or nothing). Returns what the writer changed.
+// The flow of `iblbake lightcard` and a scene's light-card stage: read (in `workingColorSpace`), bake,
+// write (all or nothing). Returns what the writer changed.
 Ktx2WriteStats bakeLightCardFile(const std::filesystem::path& texture, const std::filesystem::path& output,
-                                 const LightCardSettings& settings, const Executor& executor);
+                                 const LightCardSettings& settings, const Executor& executor,
+                                 const std::string& workingColorSpace = "lin_rec709");
 
 } // namespace ibl
