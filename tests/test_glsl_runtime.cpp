@@ -58,7 +58,9 @@ json localProbeJson(const ibl::LocalProbe& probe) {
             {"proxy", volumeJson(probe.proxy)},
             {"influence", volumeJson(probe.influence)},
             {"captureOffset", vec3Json(probe.captureOffset)},
-            {"fadeDistance", probe.fadeDistance}};
+            {"fadeDistance", probe.fadeDistance},
+            {"hasVisibility", probe.hasVisibility},
+            {"visibilityOffset", probe.visibilityOffset}};
 }
 
 void writeFloats(const fs::path& file, const std::vector<float>& values) {
