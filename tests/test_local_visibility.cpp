@@ -6,6 +6,12 @@
 #include "room_test_support.h"
 #include "runtime_test_support.h"
 
+#include <iblbake/core/error.h>
+#include <iblbake/ktx2/ktx2.h>
+
+#include <filesystem>
+#include <unistd.h>
+
 #include <cstring>
 #include <limits>
 #include <random>
@@ -367,6 +373,54 @@ TEST(VisibilityHardCases, TransparentNaNNegativeAndAboveOne) {
     LdPyramid distantWithVisibility =
         ldPyramidFromChain(chain, MipMapping::Frostbite, ChainAlpha::PremultipliedVisibility);
     EXPECT_THROW(ProbeSet(distantWithVisibility, dfgTableFromImage(dfgLut()), ShCoefficients{}), Error);
+}
+
+// ------------------------------------------------------------------------------------------------
+// KTX2: the key "iblbake.visibility" says the alpha is a premultiplied visibility; files without it read
+// as before.
+
+TEST(VisibilityKtx2, KeyReadsTheAlphaAsVisibilityAndOlderFilesReadAsBefore) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("iblbake_visibility_ktx2_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    CubeMapChain chain;
+    for (int n = 8; n >= 1; n /= 2) {
+        CubeMap level(n);
+        for (int f = 0; f < 6; ++f)
+            for (glm::vec4& texel : level.faces[f].pixels) {
+                const float v = float((f + n) % 3) * 0.5f; // 0, 0.5, 1: exact in half floats
+                texel = glm::vec4(glm::vec3(0.25f, 0.5f, 0.75f) * v, v);
+            }
+        chain.levels.push_back(level);
+    }
+    writeKtx2Cube(dir / "visible.ktx2", chain, Ktx2Format::RGBA16F,
+                  {{kVisibilityKey, kVisibilityPremultipliedAlpha}});
+    writeKtx2Cube(dir / "older.ktx2", chain, Ktx2Format::RGBA16F, {});
+    writeKtx2Cube(dir / "unknown.ktx2", chain, Ktx2Format::RGBA16F, {{kVisibilityKey, "straight"}});
+    writeKtx2Cube(dir / "packed.ktx2", chain, Ktx2Format::B10G11R11,
+                  {{kVisibilityKey, kVisibilityPremultipliedAlpha}});
+
+    LdPyramid expected =
+        ldPyramidFromChain(chain, MipMapping::Frostbite, ChainAlpha::PremultipliedVisibility);
+    LdPyramid visible = loadLdKtx2(dir / "visible.ktx2");
+    ASSERT_FALSE(visible.visibility.empty());
+    EXPECT_EQ(visible.visibility, expected.visibility);
+    EXPECT_EQ(visible.data, expected.data);
+    LdPyramid older = loadLdKtx2(dir / "older.ktx2");
+    EXPECT_TRUE(older.visibility.empty()) << "no key: the alpha is not read, as before";
+    EXPECT_EQ(older.data, ldPyramidFromChain(chain).data);
+    for (const char* name : {"unknown.ktx2", "packed.ktx2"}) {
+        try {
+            loadLdKtx2(dir / name);
+            ADD_FAILURE() << name << " loaded";
+        } catch (const Error& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(name), std::string::npos) << what;
+            EXPECT_NE(what.find(kVisibilityKey), std::string::npos) << what;
+            std::printf("%s\n", what.c_str());
+        }
+    }
+    std::filesystem::remove_all(dir);
 }
 
 } // namespace

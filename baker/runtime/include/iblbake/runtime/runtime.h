@@ -111,6 +111,12 @@ SunDisk sunDiskFrom(const Light& light) {
 // comes from its "iblbake.roughnessMapping" key (Frostbite when absent), sunInLevel0 from
 // "iblbake.sunInLevel0". LD chains and irradiance cubes come back in radiance: their texels divided by
 // the file's "iblbake.storageScale" (iblbake/ktx2/storage_scale.h; 1 when absent).
+// A local probe's chain with a visibility has the key "iblbake.visibility" = "premultiplied-alpha": A is
+// the visibility, RGB colour x visibility (ChainAlpha::PremultipliedVisibility), in an RGBA format. Files
+// without the key (every bake before visibility existed) read as before; another value, or the key on a
+// format without alpha, throws ibl::Error naming the file and the key.
+inline constexpr const char* kVisibilityKey = "iblbake.visibility";
+inline constexpr const char* kVisibilityPremultipliedAlpha = "premultiplied-alpha";
 LdPyramid loadLdKtx2(const std::filesystem::path& path);
 DfgTable loadDfgKtx2(const std::filesystem::path& path);
 // The baker's irradiance cube (`iblbake diffuse --irradiance-cube`: one level of E / pi).
