@@ -7,7 +7,8 @@
 //   directions     specular dominant direction (Listing 22), optional diffuse one (Listing 23)
 //   occlusion      specular occlusion (Listing 26), horizon occlusion (Filament 5.6.2.1)
 //   local probes   parallax correction and distance-based roughness (parallax.h, Appendix F), composed
-//                  with the distant probe by the alpha rule of Frostbite 4.9.5
+//                  with the distant probe by the alpha rule of Frostbite 4.9.5; alpha = influence weight
+//                  x the probe's texel visibility (4.9.1.2) where the probe has one
 //   sun            disk light of Listing 6: punctual for diffuse, representative point for specular
 // Roughness naming (DESIGN.md): `perceptualRoughness` r is what artists set, `alpha` = r^2. Frostbite's
 // listings call r "linearRoughness" and alpha "roughness"; Listings 22, 23 and 26 take alpha.
@@ -77,6 +78,12 @@ IBL_STRUCT(LocalProbe) {
     ProbeVolume influence; // where the probe applies
     vec3 captureOffset;    // capture point = proxy.center + offset along the proxy's axes
     float fadeDistance;    // soft transition width inside the influence boundary
+    // Texel visibility (Frostbite 4.9.1.2, "the visibility of surrounding objects into the alpha channel"):
+    // when hasVisibility != 0, a scalar pyramid of the LD chain's layout at visibilityOffset in the local
+    // buffer (cubeSampleLodScalar), and the LD chain holds colour x visibility (premultiplied). 0: every
+    // texel visible, the LD chain is the colour, the probe composes as by influence alone.
+    uint32_t hasVisibility;
+    uint32_t visibilityOffset;
 };
 
 // Everything of one evaluation that is the same for every point (a kernel argument by value: 4-byte
@@ -123,6 +130,35 @@ IBL_FN float ldLodForRoughness(LdChain ld, float perceptualRoughness) {
 // Trilinear LD in direction d (non-zero, need not be unit) for a perceptual roughness.
 IBL_FN vec3 sampleLd(IBL_FLOAT_BUFFER data, LdChain ld, vec3 d, float perceptualRoughness) {
     return cubeSampleLod(data + ld.dataOffset, ld.shape, d, ldLodForRoughness(ld, perceptualRoughness));
+}
+
+// A scalar pyramid (one float per texel: a local probe's visibility) has the layout of cube_sample.h with
+// one float where the RGB pyramid has three, so its texel index is the RGB float index / 3 (every term of
+// cubeBorderedTexelIndex is a multiple of 3). Bilinear and trilinear reads with the RGB reads' weights.
+IBL_FN float cubeSampleLevelScalar(IBL_FLOAT_BUFFER pyramid, CubePyramidLayout shape, uint level,
+                                   CubeCoord c) {
+    uint size = cubeLevelFaceSize(shape, level);
+    float n = IBL_FLOAT(size);
+    float x = c.s * n - 0.5f, y = c.t * n - 0.5f;
+    float x0f = clamp(floor(x), -1.0f, n - 1.0f), y0f = clamp(floor(y), -1.0f, n - 1.0f);
+    float fx = clamp(x - x0f, 0.0f, 1.0f), fy = clamp(y - y0f, 0.0f, 1.0f);
+    uint i00 = cubeBorderedTexelIndex(shape, level, c.face, IBL_INT(x0f), IBL_INT(y0f)) / 3u;
+    uint i10 = i00 + 1u, i01 = i00 + size + 2u, i11 = i01 + 1u;
+    float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
+    return w00 * IBL_READ(pyramid, i00) + w10 * IBL_READ(pyramid, i10) + w01 * IBL_READ(pyramid, i01) +
+           w11 * IBL_READ(pyramid, i11);
+}
+
+IBL_FN float cubeSampleLodScalar(IBL_FLOAT_BUFFER pyramid, CubePyramidLayout shape, vec3 d, float lod) {
+    CubeCoord c = cubeCoordFromDirection(d);
+    float maxLevel = IBL_FLOAT(shape.levelCount - 1u);
+    lod = clamp(lod, 0.0f, maxLevel);
+    float l0f = floor(lod);
+    uint l0 = IBL_UINT(l0f);
+    uint l1 = min(l0 + 1u, shape.levelCount - 1u);
+    float f = lod - l0f;
+    return cubeSampleLevelScalar(pyramid, shape, l0, c) * (1.0f - f) +
+           cubeSampleLevelScalar(pyramid, shape, l1, c) * f;
 }
 
 // Bilinear DFG LUT (DESIGN.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped to the
@@ -300,13 +336,22 @@ IBL_STRUCT(ProbeSample) {
     float alpha;
 };
 
-// Appendix F for one local probe: parallax-corrected, distance-based-rough LD and the influence weight.
+// Below this visibility a texel counts as fully transparent: the un-premultiplication divides by it.
+#define IBL_MIN_VISIBILITY 1e-6f
+
+// Appendix F for one local probe: parallax-corrected, distance-based-rough LD and the probe's alpha.
 // dominantR is unit. As in Listings F.1/F.2 the lookup direction is lerp(localR, dominantR, r) with localR
 // the unnormalized capture-to-intersection vector (metres): the pull toward the uncorrected direction is
 // r / (r + (1 - r) |localR|), so it depends on the scene's scale, as in the listings (normalizing localR
 // first moved reflections near walls by up to a wall pattern's period at r = 0.2-0.3 in our glossy-floor
 // test). The distance-based roughness chooses the LD level only: the DFG term and the energy compensation
 // keep the material's roughness (the BRDF's albedo does not change with the footprint).
+// alpha = influence weight x visibility, the visibility read like the LD (same direction, same level):
+// the fade scales how much of the lobe the probe covers wherever it covers it, the texel visibility says
+// where it covers it (a sky texel is 0 at any weight). radiance is the un-premultiplied colour LD / v, so
+// that 4.9.5's rgb += radiance a adds LD w for the first probe and LD / v of the lobe's still uncovered
+// part a for the next ones. Without visibility: alpha = weight and the LD as it is (the same operations as
+// before visibility existed, so such probes give the same bits).
 IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_FLOAT_BUFFER localLd, vec3 position,
                                       vec3 dominantR, float perceptualRoughness, uint flags) {
     ProbeSample s;
@@ -324,12 +369,22 @@ IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_FLOAT_BUFFER localLd
         vec3 dir = v3safeNormalize(v3lerp(localR, dominantR, perceptualRoughness), dominantR);
         s.radiance = sampleLd(localLd, probe.ld, dir, localRoughness);
         s.alpha = weight;
+        if (probe.hasVisibility != 0u) {
+            float visibility =
+                saturate(cubeSampleLodScalar(localLd + probe.visibilityOffset, probe.ld.shape, dir,
+                                             ldLodForRoughness(probe.ld, localRoughness)));
+            bool visible = visibility >= IBL_MIN_VISIBILITY;
+            s.radiance = visible ? v3scale(s.radiance, 1.0f / visibility) : v3(0.0f, 0.0f, 0.0f);
+            s.alpha = visible ? weight * visibility : 0.0f;
+        }
     }
     return s;
 }
 
-// Frostbite 4.9.5 medium and large range: local probes in order while alpha < 1, each adding
-// a = saturate(probe.alpha - alpha) of itself; then the distant probe with the remaining 1 - alpha.
+// Frostbite 4.9.5 medium and large range: local probes in order (smallest influence first) while alpha < 1,
+// each adding a = saturate(probe.alpha - alpha) of itself; then the distant probe with the remaining
+// 1 - alpha. As the text says, overlapping probes are taken to cover the same part of the lobe (ten probes
+// of alpha 0.1 give 0.1, not 1) and the result depends on the order.
 IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd,
                                      IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
                                      IBL_FLOAT_BUFFER localLd, vec3 position, vec3 dominantR,

@@ -58,7 +58,9 @@ json localProbeJson(const ibl::LocalProbe& probe) {
             {"proxy", volumeJson(probe.proxy)},
             {"influence", volumeJson(probe.influence)},
             {"captureOffset", vec3Json(probe.captureOffset)},
-            {"fadeDistance", probe.fadeDistance}};
+            {"fadeDistance", probe.fadeDistance},
+            {"hasVisibility", probe.hasVisibility},
+            {"visibilityOffset", probe.visibilityOffset}};
 }
 
 void writeFloats(const fs::path& file, const std::vector<float>& values) {
@@ -292,4 +294,34 @@ TEST_F(GlslRuntime, SunInLevel0AgreesWithTheCppRuntime) {
     const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba32f"));
     ASSERT_TRUE(loaded.set.distantLd().sunInLevel0);
     expectAgreement(dir, loaded.set, loaded.options);
+}
+
+// A local probe with a texel visibility (4.9.1.2) in front of the bake's probe: a window band of visibility
+// 0 fading to 1, colour premultiplied, every level; evaluated first (smaller influence), so the composition
+// hands parts of the lobes on to the room probe and the distant one.
+TEST_F(GlslRuntime, LocalVisibilityAgreesWithTheCppRuntime) {
+    const fs::path dir = testDir("local_visibility");
+    const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba16f"));
+    ibl::ProbeSet set = loaded.set;
+    ibl::CubeMapChain chain;
+    for (int n = 32; n >= 1; n /= 2) {
+        ibl::CubeMap level(n);
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < n; ++y)
+                for (int x = 0; x < n; ++x) {
+                    const glm::vec3 d = glm::normalize(glm::vec3(ibl::cubeFaceDirection(
+                        f, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n))));
+                    const float visibility = std::clamp(0.5f + 2.0f * d.x, 0.0f, 1.0f);
+                    level.faces[f].at(x, y) = glm::vec4((0.5f + 0.5f * d) * visibility, visibility);
+                }
+        chain.levels.push_back(level);
+    }
+    ibl::LocalProbeDesc desc;
+    desc.proxy = ibl::boxVolume(glm::vec3(1, 1, 0), glm::vec3(2.5f, 1.5f, 2.5f));
+    desc.fadeDistance = 0.5f;
+    ASSERT_EQ(set.addLocalProbe(desc, ibl::ldPyramidFromChain(chain, ibl::MipMapping::Frostbite,
+                                                              ibl::ChainAlpha::PremultipliedVisibility)),
+              0u);
+    ASSERT_EQ(set.localProbes()[0].hasVisibility, 1u);
+    expectAgreement(dir, set, loaded.options);
 }

@@ -13,7 +13,8 @@ namespace ibl {
 static_assert(sizeof(vec3) == 12, "vec3 must be 3 packed floats as in OpenCL C's struct");
 static_assert(sizeof(ShadingPoint) == 60, "ShadingPoint must match kernels/probe.h");
 static_assert(sizeof(ProbeVolume) == 64, "ProbeVolume must match kernels/parallax.h");
-static_assert(sizeof(LocalProbe) == 160 && offsetof(LocalProbe, fadeDistance) == 156,
+static_assert(sizeof(LocalProbe) == 168 && offsetof(LocalProbe, fadeDistance) == 156 &&
+                  offsetof(LocalProbe, visibilityOffset) == 164,
               "LocalProbe must match kernels/probe.h");
 static_assert(sizeof(RuntimeParams) == 192 && offsetof(RuntimeParams, sh) == 68 &&
                   offsetof(RuntimeParams, irradiance) == 176,

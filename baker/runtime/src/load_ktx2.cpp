@@ -38,7 +38,16 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
     auto it = image.keyValues.find("iblbake.roughnessMapping");
     try {
         if (it != image.keyValues.end()) mapping = parseStoredMipMapping(it->second);
-        LdPyramid pyramid = ldPyramidFromChain(chain, mapping);
+        ChainAlpha alpha = ChainAlpha::Ignore; // files without the key (older bakes): RGB is the colour
+        if (auto visibility = image.keyValues.find(kVisibilityKey); visibility != image.keyValues.end()) {
+            if (visibility->second != kVisibilityPremultipliedAlpha)
+                throw Error(std::string(kVisibilityKey) + " " + quotedForMessage(visibility->second) +
+                            " is not " + kVisibilityPremultipliedAlpha);
+            if (image.vkFormat != 97u && image.vkFormat != 109u) // RGBA16F, RGBA32F (ktx2.h)
+                throw Error(std::string(kVisibilityKey) + ": the format has no alpha channel");
+            alpha = ChainAlpha::PremultipliedVisibility;
+        }
+        LdPyramid pyramid = ldPyramidFromChain(chain, mapping, alpha);
         auto sun = image.keyValues.find("iblbake.sunInLevel0");
         pyramid.sunInLevel0 = sun != image.keyValues.end() && sun->second == "true";
         return pyramid;

@@ -13,7 +13,7 @@ MipMapping parseStoredMipMapping(const std::string& text) {
     throw Error("LD roughness mapping " + quotedForMessage(text) + " is neither frostbite nor linear");
 }
 
-LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping) {
+LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping, ChainAlpha alpha) {
     if (chain.levels.empty()) throw Error("LD chain: no levels");
     const int base = chain.levels[0].faceSize;
     if (base <= 0 || (base & (base - 1)) != 0 || base > 8192)
@@ -27,6 +27,8 @@ LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping) {
     pyramid.layout.baseFaceSize = uint32_t(base);
     pyramid.layout.levelCount = uint32_t(chain.levels.size());
     pyramid.data.assign(cubePyramidFloatCount(pyramid.layout), 0.0f);
+    if (alpha == ChainAlpha::PremultipliedVisibility)
+        pyramid.visibility.assign(cubePyramidFloatCount(pyramid.layout) / 3u, 0.0f);
     for (uint32_t m = 0; m < pyramid.layout.levelCount; ++m) {
         const CubeMap& level = chain.levels[m];
         const int n = base >> m;
@@ -38,7 +40,24 @@ LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping) {
                 throw Error("LD chain: level " + std::to_string(m) + " has a face that is not " +
                             std::to_string(n) + "x" + std::to_string(n));
         storeBorderedLevel(level, m, pyramid.layout, pyramid.data.data());
+        if (alpha == ChainAlpha::PremultipliedVisibility)
+            forEachBorderedTexel(level, m, pyramid.layout, [&](std::uint32_t o, const glm::vec4& v) {
+                const bool inRange = v.w >= 0.0f && v.w <= 1.0f; // false for NaN
+                pyramid.visibility[o / 3u] = inRange ? v.w : (v.w > 1.0f ? 1.0f : 0.0f);
+            });
     }
+    // Visible everywhere is no visibility: the probe then composes by its influence weight alone, with the
+    // same operations (and bits) as a probe that never had one, where reading a pyramid of ones would give
+    // bilinear sums of 1 - 2^-24 here and there.
+    bool allVisible = true;
+    if (alpha == ChainAlpha::PremultipliedVisibility)
+        for (const CubeMap& level : chain.levels)
+            for (const ImageRGBA& face : level.faces)
+                for (const glm::vec4& v : face.pixels) {
+                    pyramid.visibilityTexelsClamped += !(v.w >= 0.0f && v.w <= 1.0f);
+                    allVisible = allVisible && v.w == 1.0f;
+                }
+    if (allVisible) pyramid.visibility.clear();
     return pyramid;
 }
 
@@ -92,6 +111,9 @@ ProbeSet::ProbeSet(LdPyramid distantLd, DfgTable dfg, ShCoefficients sh)
         throw Error("probe set: the distant LD pyramid is empty or inconsistent with its layout");
     if (dfg_.size == 0 || dfg_.data.size() != 3 * std::size_t(dfg_.size) * dfg_.size)
         throw Error("probe set: the DFG table is empty or inconsistent with its size");
+    if (!distant_.visibility.empty())
+        throw Error(
+            "probe set: the distant LD pyramid has a visibility; the distant probe is the background");
     distantData_ = distant_.data;
 }
 
@@ -115,7 +137,9 @@ void ProbeSet::setIrradianceCube(const CubeMap& irradianceOverPi) {
 std::size_t ProbeSet::addLocalProbe(const LocalProbeDesc& desc, const LdPyramid& ld) {
     if (ld.layout.levelCount == 0 || ld.data.size() != cubePyramidFloatCount(ld.layout))
         throw Error("probe set: a local LD pyramid is empty or inconsistent with its layout");
-    if (localData_.size() + ld.data.size() > std::size_t(UINT32_MAX))
+    if (!ld.visibility.empty() && ld.visibility.size() != ld.data.size() / 3u)
+        throw Error("probe set: a local visibility pyramid is inconsistent with its LD layout");
+    if (localData_.size() + ld.data.size() + ld.visibility.size() > std::size_t(UINT32_MAX))
         throw Error("probe set: local LD data exceeds 2^32 floats");
     LocalProbe p{};
     p.ld.shape = ld.layout;
@@ -126,6 +150,9 @@ std::size_t ProbeSet::addLocalProbe(const LocalProbeDesc& desc, const LdPyramid&
     p.captureOffset = desc.captureOffset;
     p.fadeDistance = desc.fadeDistance;
     localData_.insert(localData_.end(), ld.data.begin(), ld.data.end());
+    p.hasVisibility = ld.visibility.empty() ? 0u : 1u;
+    p.visibilityOffset = p.hasVisibility != 0u ? uint32_t(localData_.size()) : 0u;
+    localData_.insert(localData_.end(), ld.visibility.begin(), ld.visibility.end());
     // Smallest influence first; an invalid volume (size 0, weight 0 everywhere) sorts first and costs one
     // test. upper_bound keeps equal sizes in the order of addition.
     float size = volumeSize(p.influence);

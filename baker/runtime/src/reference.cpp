@@ -52,6 +52,17 @@ struct ReferenceLighting::Data {
     double sunCos = 1.0, sunSolidAngle = 0.0;
     ProbeVolume proxy{};
     glm::vec3 captureOffset{0.0f};
+    // projectedWithVisibility: the capture's visibility (a scalar pyramid beside env) and the distant map
+    // seen where it is below 1.
+    bool background = false;
+    LdPyramid distant;
+
+    // 1 - the bilinear visibility of the capture in direction l (0 without visibility).
+    double transparency(const glm::dvec3& l) const {
+        if (env.visibility.empty()) return 0.0;
+        return 1.0 - double(cubeSampleLevelScalar(env.visibility.data(), env.layout, 0,
+                                                  cubeCoordFromDirection(vec3(l))));
+    }
 
     glm::dvec3 environment(const glm::dvec3& l) const {
         vec3 c = cubeSampleLevel(env.data.data(), env.layout, 0, cubeCoordFromDirection(vec3(l)));
@@ -90,10 +101,10 @@ ReferenceLighting::~ReferenceLighting() = default;
 
 namespace {
 
-LdPyramid baseLevelPyramid(const CubeMap& cube) {
+LdPyramid baseLevelPyramid(const CubeMap& cube, ChainAlpha alpha = ChainAlpha::Ignore) {
     CubeMapChain chain;
     chain.levels.push_back(cube);
-    return ldPyramidFromChain(chain);
+    return ldPyramidFromChain(chain, MipMapping::Frostbite, alpha);
 }
 
 } // namespace
@@ -156,11 +167,35 @@ ReferenceLighting ReferenceLighting::projected(const CubeMap& capture, const Pro
     return r;
 }
 
+ReferenceLighting ReferenceLighting::projectedWithVisibility(const CubeMap& premultipliedCapture,
+                                                             const ProbeVolume& proxy,
+                                                             const glm::vec3& captureOffset,
+                                                             const CubeMap& distant) {
+    auto d = std::make_shared<Data>();
+    d->projected = true;
+    d->env = baseLevelPyramid(premultipliedCapture, ChainAlpha::PremultipliedVisibility);
+    d->faceSize = premultipliedCapture.faceSize;
+    d->proxy = proxy;
+    d->captureOffset = captureOffset;
+    d->background = true;
+    d->distant = baseLevelPyramid(distant);
+    ReferenceLighting r;
+    r.data_ = d;
+    return r;
+}
+
 glm::dvec3 ReferenceLighting::radiance(const glm::vec3& position, const glm::dvec3& l) const {
     const Data& d = *data_;
     if (d.projected) {
         ParallaxHit h = parallaxCorrect(d.proxy, d.captureOffset, position, vec3(l));
-        return d.environment(h.hit ? glm::dvec3(h.direction) : l);
+        const glm::dvec3 towardProxy = h.hit ? glm::dvec3(h.direction) : l;
+        glm::dvec3 c = d.environment(towardProxy);
+        if (d.background) {
+            vec3 far =
+                cubeSampleLevel(d.distant.data.data(), d.distant.layout, 0, cubeCoordFromDirection(vec3(l)));
+            c += d.transparency(towardProxy) * glm::dvec3(far);
+        }
+        return c;
     }
     glm::dvec3 c = d.environment(l);
     if (d.inSun(l)) c += d.sunRadiance;

@@ -72,11 +72,8 @@ void buildClusters(BrightTexels& bright, int faceSize) {
 
 } // namespace
 
-BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels) {
+BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels) {
     const int n = source.faceSize;
-    BrightSplit split;
-    split.residual = source;
-
     double weighted = 0.0, totalSolidAngle = 0.0;
     struct Candidate {
         float lum;
@@ -102,13 +99,25 @@ BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint3
         limit = candidates[maxTexels].lum;
         candidates.resize(maxTexels);
     }
-    split.thresholdLuminance = limit;
-    for (const Candidate& c : candidates) {
+    BrightChoice choice;
+    choice.thresholdLuminance = limit;
+    for (const Candidate& c : candidates)
+        choice.texels.push_back({c.face, c.x, c.y, limit / c.lum});
+    return choice;
+}
+
+BrightSplit applyBrightSplit(const CubeMap& cube, const BrightChoice& choice) {
+    const int n = cube.faceSize;
+    BrightSplit split;
+    split.residual = cube;
+    split.thresholdLuminance = choice.thresholdLuminance;
+    for (const BrightChoice::Texel& c : choice.texels) {
         glm::vec4& texel = split.residual.faces[c.face].at(c.x, c.y);
-        glm::vec4 kept = texel * (limit / c.lum);
+        glm::vec4 kept = texel * c.scale;
         glm::vec3 excess = glm::vec3(texel - kept);
         kept.w = texel.w;
         texel = kept;
+        if (excess == glm::vec3(0.0f)) continue; // a companion's transparent texel: nothing to integrate
         vec3 d = glm::normalize(cubeFaceDirection(c.face, (c.x + 0.5f) / n, (c.y + 0.5f) / n));
         split.bright.entries.insert(split.bright.entries.end(),
                                     {d.x, d.y, d.z, cubeTexelSolidAngle(c.x, c.y, n), excess.x, excess.y,
@@ -116,6 +125,10 @@ BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint3
     }
     buildClusters(split.bright, n);
     return split;
+}
+
+BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels) {
+    return applyBrightSplit(source, chooseBrightTexels(source, threshold, maxTexels));
 }
 
 } // namespace ibl

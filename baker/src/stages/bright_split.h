@@ -22,8 +22,26 @@ struct BrightSplit {
     float thresholdLuminance = 0.0f;
 };
 
+// Which texels a split takes out and the factor that scales each down to the threshold luminance.
+struct BrightChoice {
+    struct Texel {
+        int face, x, y;
+        float scale; // threshold luminance / the texel's luminance
+    };
+    std::vector<Texel> texels;
+    float thresholdLuminance = 0.0f;
+};
+
 // threshold: multiple of the solid-angle-weighted mean luminance; at most maxTexels texels are split
-// off (the brightest; the threshold rises when more exceed it). residual + excess == source exactly.
+// off (the brightest; the threshold rises when more exceed it).
+BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels);
+
+// Splits `cube` at the chosen texels: residual RGB = RGB x scale there (A kept), the excess listed. residual
+// + excess == cube exactly. A cube other than the one chosen from is split at the same texels by the same
+// factors (a capture's visibility, so that it is filtered with its colour's weights).
+BrightSplit applyBrightSplit(const CubeMap& cube, const BrightChoice& choice);
+
+// applyBrightSplit(source, chooseBrightTexels(source, threshold, maxTexels)).
 BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels);
 
 } // namespace ibl

@@ -120,14 +120,20 @@ int levelCountFor(int faceSize, const SpecularSettings& s) {
     return s.levels > 0 ? std::min(s.levels, full) : full;
 }
 
-CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
-                          std::vector<SpecularLevelTiming>* timings) {
+namespace {
+
+void checkSpecularSource(const CubeMap& source) {
     if (!isPowerOfTwo(source.faceSize) || source.faceSize > 8192)
         throw Error("specular: face size " + std::to_string(source.faceSize) +
                     " is not a power of two up to 8192");
+}
+
+// The chain of `source` whose bright texels `split` took out (split.residual is what is sampled).
+CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
+                               const SpecularSettings& settings, const Executor& executor,
+                               std::vector<SpecularLevelTiming>* timings) {
     const int levelCount = levelCountFor(source.faceSize, settings);
     const std::uint32_t samples = samplesFor(settings);
-    BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
     CubePyramid pyramid = buildCubePyramid(split.residual);
     const float maxLod = float(pyramid.layout.levelCount - 1);
     const Dispatcher dispatcher(executor);
@@ -171,6 +177,51 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
                      .count()});
     }
     return chain;
+}
+
+} // namespace
+
+CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
+                          std::vector<SpecularLevelTiming>* timings) {
+    checkSpecularSource(source);
+    return bakeSpecularSplit(source,
+                             splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels),
+                             settings, executor, timings);
+}
+
+VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const SpecularSettings& settings,
+                                           const Executor& executor) {
+    checkSpecularSource(premultiplied);
+    VisibilityChain result;
+    CubeMap source = premultiplied, visibility(premultiplied.faceSize);
+    bool allVisible = true;
+    for (int f = 0; f < 6; ++f)
+        for (std::size_t i = 0; i < source.faces[f].pixels.size(); ++i) {
+            glm::vec4& texel = source.faces[f].pixels[i];
+            const bool inRange = texel.w >= 0.0f && texel.w <= 1.0f; // false for NaN
+            result.clampedTexels += !inRange;
+            if (!inRange) texel = texel.w > 1.0f ? glm::vec4(glm::vec3(texel), 1.0f) : glm::vec4(0.0f);
+            allVisible = allVisible && texel.w == 1.0f;
+            visibility.faces[f].pixels[i] = glm::vec4(texel.w, texel.w, texel.w, 1.0f);
+        }
+    // Visible everywhere: the capture is one without visibility, baked as such (the same bytes).
+    if (allVisible) {
+        result.chain = bakeSpecular(source, settings, executor);
+        return result;
+    }
+    // The visibility is split at the colour's bright texels by the colour's factors, so that the sampled and
+    // the exact paths weigh both alike.
+    BrightChoice choice = chooseBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
+    result.chain = bakeSpecularSplit(source, applyBrightSplit(source, choice), settings, executor, nullptr);
+    CubeMapChain visible =
+        bakeSpecularSplit(visibility, applyBrightSplit(visibility, choice), settings, executor, nullptr);
+    for (std::size_t m = 0; m < result.chain.levels.size(); ++m)
+        for (int f = 0; f < 6; ++f)
+            for (std::size_t i = 0; i < result.chain.levels[m].faces[f].pixels.size(); ++i)
+                result.chain.levels[m].faces[f].pixels[i].w =
+                    std::clamp(visible.levels[m].faces[f].pixels[i].x, 0.0f, 1.0f);
+    result.hasVisibility = true;
+    return result;
 }
 
 } // namespace ibl

@@ -9,6 +9,7 @@
 
 #include <mip_mapping.h>
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -57,6 +58,22 @@ struct SpecularLevelTiming {
 // Bakes the chain from a source cube whose face size is the output's (a power of two).
 CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
                           std::vector<SpecularLevelTiming>* timings = nullptr);
+
+// A local probe's capture with its visibility (Frostbite 4.9.1.2: alpha 1 for the close surroundings, 0 for
+// sky the composition fetches from farther probes), premultiplied: RGB = colour x visibility, A = the
+// visibility (OpenEXR's associated alpha). The chain holds the same: each level's RGB is the LD of colour x
+// visibility, its A the LD of the visibility, filtered with the same weights (one sample table per level,
+// the visibility split at the colour's bright texels by the colour's factors), so LD / A is the average
+// colour of the visible part of the lobe and a transparent texel adds nothing to its neighbours. Alpha NaN
+// or < 0 makes a texel transparent (RGBA 0), > 1 is taken as 1 (colour kept); both counted. A capture that
+// is visible everywhere is baked as bakeSpecular bakes it (hasVisibility false, the same bytes).
+struct VisibilityChain {
+    CubeMapChain chain;
+    bool hasVisibility = false;
+    std::size_t clampedTexels = 0;
+};
+VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const SpecularSettings& settings,
+                                           const Executor& executor);
 
 // Level 0 is the unconvolved source. A chain baked from the residual of a sun extraction gets the cube from
 // before the extraction back as level 0 when `format` stores every texel of it unclamped: always, since a

@@ -17,11 +17,13 @@ struct CubePyramid {
     std::vector<float> data;
 };
 
-// Copies level `index` of a pyramid with `layout` into `data`, filling each face's border with the texel
-// of the neighbouring face that the border texel's centre direction falls on. Header-only, so that the
+// Visits every texel of level `index` of a pyramid with `layout`, borders included: visit(o, v) with o the
+// texel's RGB float index (cubeBorderedTexelIndex) and v its value, each face's border being the texel of
+// the neighbouring face that the border texel's centre direction falls on. Header-only, so that the
 // runtime module (which does not link the baker) builds its pyramids the same way.
-inline void storeBorderedLevel(const CubeMap& level, std::uint32_t index, const CubePyramidLayout& layout,
-                               float* data) {
+template <class Visit>
+void forEachBorderedTexel(const CubeMap& level, std::uint32_t index, const CubePyramidLayout& layout,
+                          Visit visit) {
     const int n = level.faceSize;
     for (int face = 0; face < 6; ++face)
         for (int y = -1; y <= n; ++y)
@@ -36,11 +38,18 @@ inline void storeBorderedLevel(const CubeMap& level, std::uint32_t index, const 
                         sy = std::clamp(int(c.t * float(n)), 0, n - 1);
                     v = level.faces[c.face].at(sx, sy);
                 }
-                std::uint32_t o = cubeBorderedTexelIndex(layout, index, face, x, y);
-                data[o] = v.x;
-                data[o + 1] = v.y;
-                data[o + 2] = v.z;
+                visit(cubeBorderedTexelIndex(layout, index, face, x, y), v);
             }
+}
+
+// Copies the RGB of level `index` into the pyramid `data` (3 floats per texel).
+inline void storeBorderedLevel(const CubeMap& level, std::uint32_t index, const CubePyramidLayout& layout,
+                               float* data) {
+    forEachBorderedTexel(level, index, layout, [&](std::uint32_t o, const glm::vec4& v) {
+        data[o] = v.x;
+        data[o + 1] = v.y;
+        data[o + 2] = v.z;
+    });
 }
 
 // The next level of a box-filtered pyramid: each texel averages 2x2 texels of `above` (a 1x1 face stays).

@@ -7,7 +7,8 @@
 // baseColor metallic, diffuse colour = (1 - metallic) baseColor) lit by
 //   - the distant probe: LD chain (split-sum specular) + DFG LUT + SH L2 irradiance (+ optional sun),
 //   - local probes: LD chain + proxy (sphere or oriented box) + influence volume, specular only (Frostbite
-//     4.9.3: local probes carry no diffuse), composed with the distant probe by the 4.9.5 alpha rule.
+//     4.9.3: local probes carry no diffuse), optionally a texel visibility (4.9.1.2), composed with the
+//     distant probe by the 4.9.5 alpha rule (alpha = influence weight x visibility).
 #pragma once
 
 #include "iblbake/core/cubemap.h"
@@ -47,11 +48,27 @@ struct LdPyramid {
     // kernels/probe.h IBL_RT_SUN_IN_LEVEL0): the sun's disk light then fades out where level 0 is read.
     bool sunInLevel0 = false;
     std::vector<float> data;
+    // A local probe's texel visibility (Frostbite 4.9.1.2: 1 where the texel is the close surroundings, 0
+    // where it is sky to be fetched from farther probes): empty for none (every texel visible), else a
+    // scalar pyramid of `layout` (cubePyramidFloatCount(layout) / 3 floats, kernels/probe.h
+    // cubeSampleLodScalar) in [0, 1], and `data` holds colour x visibility (premultiplied: the filtered
+    // product is what a linear pre-filter of an RGBA capture gives without dividing, and a window texel
+    // adds nothing to the wall colour beside it). A chain whose visibility is 1 at every texel gets none.
+    std::vector<float> visibility;
+    // Visibility texels that were NaN, negative or above 1 when the pyramid was built (stored as 0, 0, 1).
+    std::size_t visibilityTexelsClamped = 0;
+};
+
+// How ldPyramidFromChain reads the chain's fourth channel.
+enum class ChainAlpha {
+    Ignore,                  // RGB is the colour; the pyramid has no visibility
+    PremultipliedVisibility, // A is the visibility, RGB colour x visibility (what an alpha bake writes)
 };
 
 // Level m of the chain must have face size max(1, base >> m) with a power-of-two base (what bakeSpecular
 // writes); the chain may stop before 1x1. Throws ibl::Error otherwise.
-LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping = MipMapping::Frostbite);
+LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping = MipMapping::Frostbite,
+                             ChainAlpha alpha = ChainAlpha::Ignore);
 
 // The DFG LUT, 3 floats per texel (DFG1, DFG2, Disney), DESIGN.md layout.
 struct DfgTable {
@@ -94,6 +111,12 @@ SunDisk sunDiskFrom(const Light& light) {
 // comes from its "iblbake.roughnessMapping" key (Frostbite when absent), sunInLevel0 from
 // "iblbake.sunInLevel0". LD chains and irradiance cubes come back in radiance: their texels divided by
 // the file's "iblbake.storageScale" (iblbake/ktx2/storage_scale.h; 1 when absent).
+// A local probe's chain with a visibility has the key "iblbake.visibility" = "premultiplied-alpha": A is
+// the visibility, RGB colour x visibility (ChainAlpha::PremultipliedVisibility), in an RGBA format. Files
+// without the key (every bake before visibility existed) read as before; another value, or the key on a
+// format without alpha, throws ibl::Error naming the file and the key.
+inline constexpr const char* kVisibilityKey = "iblbake.visibility";
+inline constexpr const char* kVisibilityPremultipliedAlpha = "premultiplied-alpha";
 LdPyramid loadLdKtx2(const std::filesystem::path& path);
 DfgTable loadDfgKtx2(const std::filesystem::path& path);
 // The baker's irradiance cube (`iblbake diffuse --irradiance-cube`: one level of E / pi).
@@ -114,6 +137,7 @@ struct LocalProbeDesc {
 
 class ProbeSet {
   public:
+    // The distant probe is the background of the composition: a distant pyramid with a visibility throws.
     ProbeSet(LdPyramid distantLd, DfgTable dfg, ShCoefficients sh);
 
     // Diffuse from an irradiance cube holding E / pi (what `iblbake diffuse --irradiance-cube` writes)
@@ -126,10 +150,10 @@ class ProbeSet {
     void clearSun() { sun_.reset(); }
     const std::optional<SunDisk>& sun() const { return sun_; }
 
-    // Adds a local probe whose LD chain was captured at the desc's capture point (in world orientation).
-    // Probes are evaluated from the smallest influence volume to the largest (Frostbite 4.9.5: "from small
-    // to big volumes"); equal sizes keep the order of addition. Returns the probe's evaluation index at
-    // the time of the call.
+    // Adds a local probe whose LD chain was captured at the desc's capture point (in world orientation),
+    // with the chain's visibility if it has one. Probes are evaluated from the smallest influence volume to
+    // the largest (Frostbite 4.9.5: "from small to big volumes"); equal sizes keep the order of addition.
+    // Returns the probe's evaluation index at the time of the call.
     std::size_t addLocalProbe(const LocalProbeDesc& desc, const LdPyramid& ld);
 
     const LdPyramid& distantLd() const { return distant_; }
@@ -139,7 +163,7 @@ class ProbeSet {
     const DfgTable& dfg() const { return dfg_; }
     const ShCoefficients& sh() const { return sh_; }
     const std::vector<LocalProbe>& localProbes() const { return local_; } // evaluation order
-    const std::vector<float>& localLdData() const { return localData_; }  // all local pyramids
+    const std::vector<float>& localLdData() const { return localData_; }  // local pyramids, visibilities
 
   private:
     LdPyramid distant_;

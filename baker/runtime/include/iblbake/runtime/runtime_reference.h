@@ -29,6 +29,13 @@ class ReferenceLighting {
     // misses the proxy (P outside it) sees the capture in direction l.
     static ReferenceLighting projected(const CubeMap& capture, const ProbeVolume& proxy,
                                        const glm::vec3& captureOffset);
+    // The same with the capture's visibility (Frostbite 4.9.1.2; RGB colour x visibility, A the visibility,
+    // as bakeSpecularWithVisibility takes it) and a distant map behind: from direction l, the capture's
+    // bilinear RGB toward the proxy plus (1 - its bilinear visibility there) x the distant map in l. What the
+    // 4.9.5 composition of one local probe of influence weight 1 and the distant probe approximates.
+    static ReferenceLighting projectedWithVisibility(const CubeMap& premultipliedCapture,
+                                                     const ProbeVolume& proxy, const glm::vec3& captureOffset,
+                                                     const CubeMap& distant);
 
     ReferenceLighting(const ReferenceLighting&);
     ReferenceLighting& operator=(const ReferenceLighting&);
