@@ -1,5 +1,6 @@
-// Splits a source cube into a residual with its bright texels scaled down to a threshold luminance and
-// the sparse excess of those texels (the list kernels/ld.h integrates exactly).
+// Splits a source cube into a residual with its bright texels scaled down (to the mean luminance, or to the
+// threshold when there are more than maxTexels) and the sparse excess of those texels (the list kernels/ld.h
+// integrates exactly).
 #pragma once
 
 #include "iblbake/core/cubemap.h"
