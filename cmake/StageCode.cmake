@@ -80,7 +80,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/batch baker/src/accuracy
     baker/src/light_preview # `iblbake preview --lights`: no stage renders it
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
-    baker/src/io/output_set.cpp # moves finished files into place, decides no bytes
+    baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
     baker/src/stages/specular_reference.cpp baker/src/stages/specular_settings.cpp
     kernels/dispatch_check.cl kernels/dispatch_check.h # dispatch_check: the dispatch helper's test kernel

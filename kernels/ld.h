@@ -72,7 +72,7 @@ IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayo
 // Bright texels are taken out of the pre-filtered source and integrated exactly: with a sun 10^5 times
 // brighter than the sky, the few samples of filtered importance sampling that land near it decide the
 // result (noise, ghosts), and the long GGX tail carries visible energy even at low roughness. The source
-// is split linearly, L = R + B: R is the source with bright texels scaled down to the threshold (filtered
+// is split linearly, L = R + B: R is the source with bright texels scaled down (bright_split.h; filtered
 // importance sampling handles it well), B the sparse excess, whose contribution
 // sum_b B_b integral_texel D(h) NoL dl / W(alpha) is summed here over every bright texel.
 // A list entry has 10 floats: centre direction (3), solid angle, excess radiance (3), face, x, y.
@@ -159,29 +159,95 @@ IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, f
     return weight;
 }
 
+// Footprint-averaged bright texels. Where the lobe is narrower than an output texel, LD at the texel centre
+// sees a sub-texel sun or misses it: a level's energy then depends on where the sun falls (at a cube edge /
+// corner, 0.50 / 1.36 of the source's at 64 px) and a rotating map pulses. Such a texel t stores LD averaged
+// over its own solid angle Omega_t instead, whose bright part is
+//   sum_b B_b integral_b G_t(l) dl / (Omega_t W),  G_t(l) = integral_t D(h) (n.l) dn,
+// since D(h) (n.l), h = normalize(n + l), is symmetric in n and l: G_t is the lobe around l integrated over
+// the output texel, and summed over every t it is W for every l, so a level keeps its source's energy.
+// "Narrower": the lobe's reflected directions (about 2 alpha wide) under one texel (2 / n face-plane units).
+IBL_FN bool ldFootprintApplies(float alpha, uint outputFaceSize) {
+    return 2.0f * alpha < 2.0f / (float)outputFaceSize;
+}
+
+// integral_b G_t(l) dl for bright entry e and output texel t (face, corner (u0, v0), face-plane size
+// outSize, centre direction tCentre, solid angle omegaT).
+// - Near t with a lobe under a quarter of t: b in S x S patches, each its solid angle times
+//   narrowLobeTexelWeight's closed form of G_t around its centre; G_t varies over about alpha near t's
+//   edges, so S = 4 source texel / alpha, up to 8 (S = 2 left 0.34% at a 4-px level of a 16-px sky).
+// - Near t with a wider lobe: t in S x S patches, each its solid angle times the lobe around its centre over
+//   b (brightTexelWeight), S ~ 2 outSize / alpha (2 to 8).
+// - Farther than three texels: the point value at t's centre times Omega_t.
+IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, float outSize, float omegaT,
+                                   IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
+    vec3 d = v3(e[0], e[1], e[2]);
+    float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(tCentre, d)));
+    float weight = 0.0f;
+    if (narrowLobeClosedFormApplies(alpha, outSize, angle)) {
+        int S = (int)clamp(ceil(4.0f * sourceTexelSize / alpha), 1.0f, 8.0f);
+        int sourceFace = (int)e[7];
+        float step = sourceTexelSize / (float)S;
+        float bu = -1.0f + e[8] * sourceTexelSize, bv = -1.0f + e[9] * sourceTexelSize;
+        for (int j = 0; j < S; ++j)
+            for (int k = 0; k < S; ++k) {
+                float pu = bu + (float)k * step, pv = bv + (float)j * step;
+                vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
+                                                       0.5f * (pv + 0.5f * step + 1.0f)));
+                weight += cubePatchSolidAngle(pu, pv, step) *
+                          narrowLobeTexelWeight(frameFromNormal(l), face, u0, v0, outSize, alpha);
+            }
+        return weight;
+    }
+    if (angle >= 3.0f * outSize)
+        return omegaT * brightTexelWeight(tCentre, frameFromNormal(tCentre), e, alpha, sourceTexelSize);
+    int S = (int)clamp(ceil(2.0f * outSize / alpha), 2.0f, 8.0f);
+    float step = outSize / (float)S;
+    for (int j = 0; j < S; ++j)
+        for (int k = 0; k < S; ++k) {
+            float pu = u0 + (float)k * step, pv = v0 + (float)j * step;
+            vec3 n = v3normalize(
+                cubeFaceDirection(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f)));
+            weight += cubePatchSolidAngle(pu, pv, step) *
+                      brightTexelWeight(n, frameFromNormal(n), e, alpha, sourceTexelSize);
+        }
+    return weight;
+}
+
 // Bright texels are grouped into clusters (IBL_BRIGHT_CLUSTER_FLOATS each: centroid direction (3),
 // angular radius, bound on sum of excess * solid angle (max over channels), first entry, entry count,
 // unused). A cluster whose largest possible contribution, D at its nearest point times its energy,
 // stays under `skipBelow` is skipped: the caller sets skipBelow to 1e-3 of the texel's sampled value
-// divided by the cluster count, so all skipped clusters together change a texel by under 0.1%.
+// divided by the cluster count, so all skipped clusters together change a texel by under 0.1%. The bright
+// part of output texel (face, x, y) of an n-texel level: at its centre, or over its footprint where
+// ldFootprintApplies.
 #define IBL_BRIGHT_CLUSTER_FLOATS 8
 
-IBL_FN vec3 brightTexelsLd(vec3 n, IBL_GLOBAL const float* clusters, uint clusterCount,
-                           IBL_GLOBAL const float* bright, float alpha, float invLobeIntegral,
-                           uint sourceFaceSize, float skipBelow) {
+IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const float* clusters,
+                           uint clusterCount, IBL_GLOBAL const float* bright, float alpha,
+                           float invLobeIntegral, uint sourceFaceSize, float skipBelow) {
     float texelSize = 2.0f / (float)sourceFaceSize;
-    Frame frame = frameFromNormal(n);
+    vec3 centre = cubeTexelDirection(face, x, y, n);
+    Frame frame = frameFromNormal(centre);
+    int footprint = ldFootprintApplies(alpha, n);
+    float outSize = 2.0f / (float)n, u0 = -1.0f + (float)x * outSize, v0 = -1.0f + (float)y * outSize;
+    float omegaT = cubePatchSolidAngle(u0, v0, outSize);
+    // A footprint reaches half a diagonal (~0.71 outSize radians or less) from its centre.
+    float reach = footprint ? 0.71f * outSize : 0.0f;
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint c = 0; c < clusterCount; ++c) {
         const IBL_GLOBAL float* cl = clusters + IBL_BRIGHT_CLUSTER_FLOATS * c;
-        float angle = acos(clamp(n.x * cl[0] + n.y * cl[1] + n.z * cl[2], -1.0f, 1.0f));
-        float nearest = fmax(angle - cl[3], 0.0f); // nearest angle to any member
+        float angle = acos(clamp(centre.x * cl[0] + centre.y * cl[1] + centre.z * cl[2], -1.0f, 1.0f));
+        float nearest = fmax(angle - cl[3] - reach, 0.0f); // nearest angle to any member
         float bound = D_GGX(cos(0.5f * nearest), alpha) * cl[4] * invLobeIntegral; // D falls with theta_h
         if (bound < skipBelow) continue;
         uint first = (uint)cl[5], count = (uint)cl[6];
         for (uint i = first; i < first + count; ++i) {
             const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
-            float weight = brightTexelWeight(n, frame, e, alpha, texelSize);
+            float weight = footprint ? brightFootprintWeight(centre, face, u0, v0, outSize, omegaT, e, alpha,
+                                                             texelSize) /
+                                           omegaT
+                                     : brightTexelWeight(centre, frame, e, alpha, texelSize);
             r += weight * e[4];
             g += weight * e[5];
             b += weight * e[6];
@@ -210,7 +276,7 @@ IBL_FN void ldBrightItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL
                          IBL_GLOBAL const float* bright) {
     float skipBelow = brightSkipThreshold(loadTexel(out, t), params.brightCount);
     addToTexel(out, t,
-               brightTexelsLd(cubeWorkItemDirection(t, params.faceSize), clusters, params.brightCount, bright,
+               brightTexelsLd((int)t.face, t.x, t.y, params.faceSize, clusters, params.brightCount, bright,
                               params.alpha, params.invLobeIntegral, params.source.baseFaceSize, skipBelow));
 }
 

@@ -1,45 +1,20 @@
 // writeAccuracyReports (iblbake/accuracy/accuracy.h): the three reports appear together or not at all.
 #include "iblbake/accuracy/accuracy.h"
-#include "iblbake/core/error.h"
 #include "iblbake/ktx2/atomic_file.h"
-
-#include <unistd.h>
+#include "iblbake/ktx2/output_set.h"
 
 namespace ibl {
 
-namespace {
-
-namespace fs = std::filesystem;
-
-void writeText(const fs::path& file, const std::string& text) {
-    writeFileBytes(file, text);
-}
-
-} // namespace
-
-void writeAccuracyReports(const fs::path& directory, const AccuracyRun& run) {
-    const fs::path target = fs::absolute(directory);
-    fs::create_directories(target.parent_path());
-    const fs::path temp =
-        target.parent_path() / (target.filename().string() + ".tmp-" + std::to_string(getpid()));
-    fs::remove_all(temp);
-    fs::create_directory(temp);
-    try {
-        writeText(temp / "report.json", accuracyJson(run));
-        writeText(temp / "report.md", accuracyMarkdown(run));
-        writeText(temp / "report.html", accuracyHtml(run));
-        if (!fs::exists(target)) {
-            fs::rename(temp, target);
-            return;
-        }
-        for (const char* name : {"report.json", "report.md", "report.html"})
-            fs::rename(temp / name, target / name);
-        fs::remove(temp);
-    } catch (...) {
-        std::error_code ignored;
-        fs::remove_all(temp, ignored);
-        throw;
-    }
+void writeAccuracyReports(const std::filesystem::path& directory, const AccuracyRun& run) {
+    OutputSet outputs;
+    const std::filesystem::path target = std::filesystem::absolute(directory);
+    outputs.createDirectories(target.parent_path(), "accuracy reports");
+    outputs.writeDirectory(target, [&](const std::filesystem::path& temporary) {
+        writeFileBytes(temporary / "report.json", accuracyJson(run));
+        writeFileBytes(temporary / "report.md", accuracyMarkdown(run));
+        writeFileBytes(temporary / "report.html", accuracyHtml(run));
+    });
+    outputs.commit();
 }
 
 } // namespace ibl

@@ -186,7 +186,9 @@ AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int
     stage.name = "specular";
     stage.title = "Specular LD chain";
     stage.knobs = {"faceSize", "samples", "lodBias"};
-    stage.reference = "referenceSpecularLevel: every source texel, solid-angle weighted, fp64, per level";
+    stage.reference =
+        "referenceSpecularLevel: every source texel, solid-angle weighted, fp64, per level; bright texels "
+        "over the output texel's footprint where the lobe is under a quarter texel wide";
     stage.errorMetric = "worst level's relative mean absolute error: max over levels m >= 1 of sum |level - "
                         "reference| / sum |reference| over texels and RGB";
     stage.maxErrorMetric = "largest |level - reference| of any texel and channel over that channel's mean "

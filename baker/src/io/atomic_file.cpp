@@ -1,7 +1,7 @@
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/temporary_path.h"
 
-#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -24,13 +24,7 @@ void checkOutputFile(const fs::path& target) {
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
     checkOutputFile(target_);
-    const fs::path dir = target_.parent_path().empty() ? fs::path(".") : target_.parent_path();
-    static std::atomic<unsigned> counter{0};
-    std::string name = "."; // built by appending: GCC 12 warns (-Wrestrict) on "." + std::string&&
-    name += target_.stem().string();
-    name +=
-        ".tmp" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + target_.extension().string();
-    temp_ = dir / name;
+    temp_ = temporaryPathBeside(target_);
 }
 
 AtomicFile::~AtomicFile() {

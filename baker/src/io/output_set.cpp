@@ -1,10 +1,7 @@
 #include "iblbake/ktx2/output_set.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/temporary_path.h"
 #include "iblbake/ktx2/atomic_file.h"
-
-#include <atomic>
-#include <random>
-#include <unistd.h>
 
 namespace ibl {
 
@@ -46,22 +43,14 @@ void OutputSet::createDirectories(const fs::path& directory, const std::string& 
         throw OutputError(what + ": " + directory.string() + ": is not a directory");
 }
 
-fs::path OutputSet::temporaryBeside(const fs::path& target) const {
-    static std::atomic<unsigned long long> counter{0};
-    thread_local std::mt19937_64 random{std::random_device{}()};
-    std::string name = "."; // built by appending: GCC 12 warns (-Wrestrict) on "." + std::string&&
-    name += target.stem().string();
-    name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" +
-            std::to_string(random() & 0xffffffu) + target.extension().string();
-    return target.parent_path() / name;
-}
-
 void OutputSet::run(const Staged& staged, const std::function<void(const fs::path&)>& write) {
     const std::string temporary = staged.temporary.string(), target = staged.target.string();
     try {
         write(staged.temporary);
     } catch (const OutputError& e) {
         throw OutputError(replaceAll(e.what(), temporary, target));
+    } catch (const SettingError& e) { // keeps its setting, for the caller to name as a flag or scene key
+        throw SettingError(e.setting(), replaceAll(e.what(), temporary, target));
     } catch (const Error& e) {
         throw Error(replaceAll(e.what(), temporary, target));
     }
@@ -69,7 +58,7 @@ void OutputSet::run(const Staged& staged, const std::function<void(const fs::pat
 
 void OutputSet::writeFile(const fs::path& target, const std::function<void(const fs::path&)>& write) {
     checkOutputFile(target);
-    staged_.push_back({temporaryBeside(target), target, false});
+    staged_.push_back({temporaryPathBeside(target), target, false});
     run(staged_.back(), write);
 }
 
@@ -77,7 +66,7 @@ void OutputSet::writeDirectory(const fs::path& target, const std::function<void(
     std::error_code ec;
     if (fs::exists(target, ec) && !fs::is_directory(target, ec))
         throw OutputError(target.string() + ": is not a directory");
-    const fs::path temporary = temporaryBeside(target);
+    const fs::path temporary = temporaryPathBeside(target);
     if (!fs::create_directory(temporary, ec))
         throw OutputError(target.string() + ": cannot create it: " + ec.message());
     staged_.push_back({temporary, target, true});

@@ -1,13 +1,12 @@
 #include "program_binaries.h"
+#include "iblbake/core/temporary_path.h"
 
 #include <xxhash.h>
 
-#include <atomic>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iterator>
-#include <unistd.h>
 
 namespace ibl::ocl {
 
@@ -82,9 +81,7 @@ bool writeProgramBinary(const fs::path& directory, const std::string& key, const
     std::error_code ec;
     fs::create_directories(directory, ec);
     const fs::path target = fileFor(directory, key);
-    static std::atomic<unsigned> counter{0};
-    const fs::path temporary =
-        directory / ("." + key + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    const fs::path temporary = temporaryPathBeside(target);
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
         out.write(kMagic, sizeof kMagic);

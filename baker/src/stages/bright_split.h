@@ -1,5 +1,6 @@
-// Splits a source cube into a residual with its bright texels scaled down to a threshold luminance and
-// the sparse excess of those texels (the list kernels/ld.h integrates exactly).
+// Splits a source cube into a residual with its bright texels scaled down (to the mean luminance, or to the
+// threshold when there are more than maxTexels) and the sparse excess of those texels (the list kernels/ld.h
+// integrates exactly).
 #pragma once
 
 #include "iblbake/core/cubemap.h"
@@ -22,11 +23,12 @@ struct BrightSplit {
     float thresholdLuminance = 0.0f;
 };
 
-// Which texels a split takes out and the factor that scales each down to the threshold luminance.
+// Which texels a split takes out and the factor that scales each down to the luminance it keeps (the mean,
+// or the threshold when more than maxTexels exceed it).
 struct BrightChoice {
     struct Texel {
         int face, x, y;
-        float scale; // threshold luminance / the texel's luminance
+        float scale; // kept luminance / the texel's luminance
     };
     std::vector<Texel> texels;
     float thresholdLuminance = 0.0f;

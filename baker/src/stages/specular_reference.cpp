@@ -2,6 +2,7 @@
 // Used by tests and the accuracy report, never by a production path.
 #include "iblbake/baker/specular.h"
 
+#include "bright_split.h"
 #include "iblbake/runtime/runtime_reference.h" // brightTexels
 
 #include <ld.h>
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 namespace ibl {
 
@@ -65,11 +67,100 @@ double texelWeight(const glm::dvec3& nrm, int f, int x, int y, int w, double alp
     return weight;
 }
 
+// A source texel and its radiance, as the references integrate it exactly.
+struct SourceTexel {
+    int face, x, y;
+    glm::dvec3 radiance;
+};
+
+std::vector<SourceTexel> texelList(const CubeMap& source, std::span<const std::size_t> indices) {
+    const std::size_t w = std::size_t(source.faceSize);
+    std::vector<SourceTexel> out;
+    for (std::size_t k : indices)
+        out.push_back({int(k / (w * w)), int(k % w), int(k % (w * w) / w),
+                       glm::dvec3(source.faces[k / (w * w)].pixels[k % (w * w)])});
+    return out;
+}
+
+// What the bake averages over an output texel where ldFootprintApplies (kernels/ld.h): the excess of its
+// bright texels (bright_split.h, at SpecularSettings' threshold and count); the residual is taken at the
+// texel's centre, like every texel of other levels.
+struct FootprintSplit {
+    CubeMap residual;
+    std::vector<SourceTexel> excess;
+};
+
+FootprintSplit footprintSplit(const CubeMap& source) {
+    const SpecularSettings defaults;
+    BrightSplit split = splitBrightTexels(source, defaults.brightThreshold, defaults.maxBrightTexels);
+    FootprintSplit out{std::move(split.residual), {}};
+    for (std::size_t i = 0; i < split.bright.entries.size(); i += IBL_BRIGHT_ENTRY_FLOATS) {
+        const float* e = &split.bright.entries[i];
+        out.excess.push_back({int(e[7]), int(e[8]), int(e[9]), glm::dvec3(e[4], e[5], e[6])});
+    }
+    return out;
+}
+
+// The part of output texel (face, x, y) of an n-texel level that `texels` (of a w-texel source) give: the
+// sums of radiance x weight and of the weights, at the texel's centre, or with `overFootprint` averaged over
+// the texel. The footprint mean of a texel b is integral_b G_t(l) dl / Omega_t with G_t(l) = integral_t
+// pi D NoL dn (the kernel is symmetric in n and l): texelWeight with the output texel as "the texel" around
+// l, on an S x S grid of b, S = 4 source texel / alpha up to 16 (G_t changes over about alpha at t's edges).
+// `coarse` halves the grids (the error estimate: where a grid does not resolve alpha the rule converges only
+// linearly, so the estimate is the whole difference).
+struct TexelsPart {
+    glm::dvec3 radiance{0.0};
+    double weight = 0.0;
+};
+
+TexelsPart texelsPart(int w, std::span<const SourceTexel> texels, int face, int x, int y, int n, double alpha,
+                      bool overFootprint, bool coarse) {
+    const double gridFactor = coarse ? 20.0 : 40.0;
+    const glm::dvec3 centre = texelCentre(face, x, y, n);
+    const double sourceStep = 2.0 / w;
+    const int S = std::clamp(int(std::ceil((coarse ? 2.0 : 4.0) * sourceStep / alpha)), 1, coarse ? 8 : 16);
+    const double step = sourceStep / S;
+    auto patch = [](double u, double v, double size) {
+        return std::abs(areaElement(u, v) - areaElement(u, v + size) - areaElement(u + size, v) +
+                        areaElement(u + size, v + size));
+    };
+    const double texelOmega = patch(-1.0 + 2.0 * x / n, -1.0 + 2.0 * y / n, 2.0 / n);
+    TexelsPart sum;
+    for (const SourceTexel& b : texels) {
+        const double cosAngle = glm::dot(centre, texelCentre(b.face, b.x, b.y, w));
+        if (cosAngle <= -0.1) continue;
+        double weight = 0.0;
+        if (!overFootprint) {
+            const double angle = std::acos(std::clamp(cosAngle, -1.0, 1.0));
+            weight = texelWeight(centre, b.face, b.x, b.y, w, alpha, angle, gridFactor);
+        } else {
+            for (int j = 0; j < S; ++j)
+                for (int i = 0; i < S; ++i) {
+                    const double u = -1.0 + b.x * sourceStep + i * step,
+                                 v = -1.0 + b.y * sourceStep + j * step;
+                    const glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(
+                        b.face, float(0.5 * (u + 0.5 * step + 1.0)), float(0.5 * (v + 0.5 * step + 1.0)))));
+                    const double angle = std::acos(std::clamp(glm::dot(l, centre), -1.0, 1.0));
+                    weight += patch(u, v, step) * texelWeight(l, face, x, y, n, alpha, angle, gridFactor);
+                }
+            weight /= texelOmega;
+        }
+        sum.radiance += weight * b.radiance;
+        sum.weight += weight;
+    }
+    return sum;
+}
+
 } // namespace
 
-CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness) {
-    const int w = source.faceSize, n = outputFaceSize;
+CubeMap referenceSpecularLevel(const CubeMap& original, int outputFaceSize, float perceptualRoughness) {
+    const int w = original.faceSize, n = outputFaceSize;
     const double alpha = std::max(double(perceptualRoughness) * perceptualRoughness, 1e-6);
+    // Where the bake averages its bright texels' excess over the output texel, so does the reference; the
+    // rest (everything, elsewhere) at the output texel's centre.
+    const bool overFootprint = ldFootprintApplies(float(alpha), std::uint32_t(n));
+    const FootprintSplit split = overFootprint ? footprintSplit(original) : FootprintSplit{original, {}};
+    const CubeMap& source = split.residual;
     const std::size_t faceTexels = std::size_t(w) * w;
     std::vector<glm::dvec3> centres(6 * faceTexels);
     for (int f = 0; f < 6; ++f)
@@ -84,7 +175,7 @@ CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float 
             glm::dvec3 nrm =
                 glm::normalize(glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / n, (y + 0.5f) / n)));
             glm::dvec3 sum(0.0);
-            double weightSum = 0.0;
+            double weightSum = 0.0; // the whole lobe at the centre: the excess needs no weight of its own
             for (std::size_t k = 0; k < centres.size(); ++k) {
                 double cosAngle = glm::dot(nrm, centres[k]);
                 if (cosAngle <= -0.1) continue; // entirely below the horizon
@@ -94,20 +185,25 @@ CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float 
                 sum += weight * glm::dvec3(source.faces[f].pixels[std::size_t(texel)]);
                 weightSum += weight;
             }
+            sum += texelsPart(w, split.excess, face, x, y, n, alpha, true, false).radiance;
             out.faces[face].at(x, y) = glm::vec4(glm::vec3(sum / weightSum), 1.0f);
         }
     });
     return out;
 }
 
-LdTexelReference referenceSpecularTexels(const CubeMap& source, int outputFaceSize, float perceptualRoughness,
-                                         std::span<const CubeTexel> texels) {
-    const int w = source.faceSize, n = outputFaceSize;
+LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFaceSize,
+                                         float perceptualRoughness, std::span<const CubeTexel> texels) {
+    const int w = original.faceSize, n = outputFaceSize;
     const double alpha = std::max(double(perceptualRoughness) * perceptualRoughness, 1e-6);
     const double a2 = alpha * alpha;
-    const std::vector<std::size_t> bright = brightTexels(source);
+    const bool overFootprint = ldFootprintApplies(float(alpha), std::uint32_t(n));
+    const FootprintSplit split = overFootprint ? footprintSplit(original) : FootprintSplit{original, {}};
+    const CubeMap& source = split.residual;
+    const std::vector<std::size_t> brightIndices = brightTexels(source);
+    const std::vector<SourceTexel> bright = texelList(source, brightIndices);
     std::vector<char> isBright(6 * std::size_t(w) * w, 0);
-    for (std::size_t k : bright)
+    for (std::size_t k : brightIndices)
         isBright[k] = 1;
     // GGX sampling of h around the normal: cos theta_h from the CDF variable xi.
     auto cosHalf = [&](double xi) { return std::sqrt((1.0 - xi) / (1.0 + (a2 - 1.0) * xi)); };
@@ -118,20 +214,16 @@ LdTexelReference referenceSpecularTexels(const CubeMap& source, int outputFaceSi
     tbb::parallel_for(std::size_t(0), texels.size(), [&](std::size_t k) {
         const CubeTexel& t = texels[k];
         const glm::dvec3 nrm = texelCentre(t.face, t.x, t.y, n);
-        glm::dvec3 fine(0.0), coarse(0.0);
-        double brightWeight = 0.0; // normalized as referenceSpecularLevel: by the weights' own sum
-        for (std::size_t b : bright) {
-            const int f = int(b / (std::size_t(w) * w)), texel = int(b % (std::size_t(w) * w));
-            const glm::dvec3 c = texelCentre(f, texel % w, texel / w, w);
-            const double cosAngle = glm::dot(nrm, c);
-            if (cosAngle <= -0.1) continue;
-            const double angle = std::acos(std::clamp(cosAngle, -1.0, 1.0));
-            const glm::dvec3 radiance(source.faces[f].pixels[std::size_t(texel)]);
-            const double weight = texelWeight(nrm, f, texel % w, texel / w, w, alpha, angle);
-            fine += radiance * weight;
-            brightWeight += weight;
-            coarse += radiance * texelWeight(nrm, f, texel % w, texel / w, w, alpha, angle, 20.0);
-        }
+        // The bright texels exactly at the centre, and the bake's bright excess over the footprint where it
+        // averages it, normalized as referenceSpecularLevel: by the lobe's weights at the centre.
+        const TexelsPart centre = texelsPart(w, bright, t.face, t.x, t.y, n, alpha, false, false);
+        const glm::dvec3 excess =
+            texelsPart(w, split.excess, t.face, t.x, t.y, n, alpha, true, false).radiance;
+        const glm::dvec3 fine = centre.radiance + excess;
+        const glm::dvec3 coarse =
+            texelsPart(w, bright, t.face, t.x, t.y, n, alpha, false, true).radiance +
+            texelsPart(w, split.excess, t.face, t.x, t.y, n, alpha, true, true).radiance;
+        const double brightWeight = centre.weight;
         // The dim rest: GGX samples of h around the normal, two halves under different rotations.
         const glm::dvec3 up = std::abs(nrm.z) < 0.999 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
         const glm::dvec3 tx = glm::normalize(glm::cross(up, nrm)), ty = glm::cross(nrm, tx);

@@ -112,9 +112,9 @@ std::string accuracyJson(const AccuracyRun& run);
 std::string accuracyMarkdown(const AccuracyRun& run);
 std::string accuracyHtml(const AccuracyRun& run);
 
-// Writes report.json, report.md and report.html into `directory` so that no reader sees a partial report:
-// into a temporary sibling renamed to `directory`, or, when it exists, each report by a rename of its own
-// (its other files stay). Throws ibl::Error when a report cannot be written.
+// Writes report.json, report.md and report.html into `directory` (created with its parents) all three or
+// none (OutputSet): into a temporary sibling renamed to `directory`, or, when it exists, each report by a
+// rename of its own (its other files stay). Throws ibl::OutputError when a report cannot be written.
 void writeAccuracyReports(const std::filesystem::path& directory, const AccuracyRun& run);
 
 } // namespace ibl

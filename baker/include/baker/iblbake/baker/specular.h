@@ -86,15 +86,18 @@ VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const S
 bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format,
                      bool clampToFormat = false);
 
-// Brute-force reference for one level: every source texel, solid-angle weighted, fp64 accumulation.
+// Brute-force reference for one level: every source texel, solid-angle weighted, fp64 accumulation. Where
+// the bake averages bright texels over an output texel's footprint (kernels/ld.h ldFootprintApplies: the
+// lobe under a quarter texel wide), the reference does too: the source's bright texels (runtime_reference.h
+// brightTexels) on a grid of 4 x 4 points per source texel inside the output texel, the rest at its centre.
 CubeMap referenceSpecularLevel(const CubeMap& source, int outputFaceSize, float perceptualRoughness);
 
 // The same integral at chosen texels of an output level, fast enough for production sizes (the accuracy
 // report at 256 px): the source's bright texels (runtime_reference.h brightTexels) weighted exactly as
 // referenceSpecularLevel weights them, the dim rest by 2 x 2048 stratified GGX samples (two independent
 // halves), normalized like it by the weights' sum (the bright ones' plus the dim samples' share).
-// errorEstimate (per texel and channel): half the halves' difference plus the bright weights' change at half
-// the grid.
+// errorEstimate (per texel and channel): half the halves' difference plus the bright part's change at half
+// the grids (the footprint's and each texel's).
 struct CubeTexel {
     int face, x, y;
 };

@@ -42,7 +42,6 @@ class OutputSet {
         std::filesystem::path temporary, target;
         bool directory = false;
     };
-    std::filesystem::path temporaryBeside(const std::filesystem::path& target) const;
     void run(const Staged& staged, const std::function<void(const std::filesystem::path&)>& write);
 
     std::vector<Staged> staged_;
