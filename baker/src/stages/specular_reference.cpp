@@ -105,8 +105,8 @@ FootprintSplit footprintSplit(const CubeMap& source) {
 // sums of radiance x weight and of the weights, at the texel's centre, or with `overFootprint` averaged over
 // the texel. The footprint mean of a texel b is integral_b G_t(l) dl / Omega_t with G_t(l) = integral_t
 // pi D NoL dn (the kernel is symmetric in n and l): texelWeight with the output texel as "the texel" around
-// l, on an S x S grid of b, S = 4 source texel / alpha up to 16 (G_t changes over about alpha at t's edges).
-// `coarse` halves the grids (the error estimate: where a grid does not resolve alpha the rule converges only
+// l, on an S x S grid of b, S = 4 source texel / alpha up to 64 (G_t changes over about alpha at t's
+// edges), 2 x 2 beyond two texels. `coarse` halves the grids (the error estimate: where a grid does not resolve alpha the rule converges only
 // linearly, so the estimate is the whole difference).
 struct TexelsPart {
     glm::dvec3 radiance{0.0};
@@ -118,8 +118,7 @@ TexelsPart texelsPart(int w, std::span<const SourceTexel> texels, int face, int 
     const double gridFactor = coarse ? 20.0 : 40.0;
     const glm::dvec3 centre = texelCentre(face, x, y, n);
     const double sourceStep = 2.0 / w;
-    const int S = std::clamp(int(std::ceil((coarse ? 2.0 : 4.0) * sourceStep / alpha)), 1, coarse ? 8 : 16);
-    const double step = sourceStep / S;
+    const int S = std::clamp(int(std::ceil((coarse ? 2.0 : 4.0) * sourceStep / alpha)), 1, coarse ? 32 : 64);
     auto patch = [](double u, double v, double size) {
         return std::abs(areaElement(u, v) - areaElement(u, v + size) - areaElement(u + size, v) +
                         areaElement(u + size, v + size));
@@ -134,8 +133,11 @@ TexelsPart texelsPart(int w, std::span<const SourceTexel> texels, int face, int 
             const double angle = std::acos(std::clamp(cosAngle, -1.0, 1.0));
             weight = texelWeight(centre, b.face, b.x, b.y, w, alpha, angle, gridFactor);
         } else {
-            for (int j = 0; j < S; ++j)
-                for (int i = 0; i < S; ++i) {
+            // Farther than two output texels from t, G_t is smooth over b: a 2 x 2 grid of b suffices.
+            const int grid = cosAngle > std::cos(2.0 * (2.0 / n + sourceStep)) ? S : std::min(S, 2);
+            const double step = sourceStep / grid;
+            for (int j = 0; j < grid; ++j)
+                for (int i = 0; i < grid; ++i) {
                     const double u = -1.0 + b.x * sourceStep + i * step,
                                  v = -1.0 + b.y * sourceStep + j * step;
                     const glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(
