@@ -137,9 +137,9 @@ bool tapsAgree(int n, glm::vec3 d, bool window, int wall) {
     return true;
 }
 
-TEST(SceneVisibility, MirrorsThroughTheWindowGetTheDistantMapAndTheOthersTheWall) {
-    SceneDir d("scene_visibility_room");
-    writeLatLongExr(d.capture(), 512, 256, 4, [](glm::vec3 v) { return roomCapture(v, false); });
+// Bakes the scene, loads it through the manifest and shades mirror points: those whose lookups see only the
+// window get the distant map, those that see one wall that wall.
+void expectMirrorsThroughTheWindow(const SceneDir& d) {
     const BakeSummary summary = d.bake();
     ASSERT_TRUE(summary.ok) << summary.error;
     const json probe = d.probeEntry();
@@ -203,6 +203,30 @@ TEST(SceneVisibility, MirrorsThroughTheWindowGetTheDistantMapAndTheOthersTheWall
         throughWindow, worstWindow, onWall, worstWall);
     EXPECT_GT(throughWindow, 200);
     EXPECT_GT(onWall, 1500);
+}
+
+TEST(SceneVisibility, MirrorsThroughTheWindowGetTheDistantMapAndTheOthersTheWall) {
+    SceneDir d("scene_visibility_room");
+    writeLatLongExr(d.capture(), 512, 256, 4, [](glm::vec3 v) { return roomCapture(v, false); });
+    expectMirrorsThroughTheWindow(d);
+}
+
+// The same room with the visibility as a separate mask (probes[].visibilityMask, a one-channel image) and a
+// capture whose window holds the frozen sky: the mask replaces it by the distant probe's radiance.
+TEST(SceneVisibility, AVisibilityMaskImageDoesWhatTheCapturesAlphaDoes) {
+    SceneDir d("scene_visibility_mask");
+    writeLatLongExr(d.capture(), 512, 256, 3, [](glm::vec3 v) { return roomCapture(v, true); });
+    writeLatLongExr(d.dir / "mask.exr", 512, 256, 1,
+                    [](glm::vec3 v) { return glm::vec4(roomCapture(v, false).w); });
+    d.scene["probes"][0]["visibilityMask"] = "mask.exr";
+    expectMirrorsThroughTheWindow(d);
+    // A mask of another size is refused naming the mask.
+    writeLatLongExr(d.dir / "mask.exr", 256, 128, 1, [](glm::vec3) { return glm::vec4(1.0f); });
+    const BakeSummary refused = d.bake();
+    EXPECT_FALSE(refused.ok);
+    EXPECT_NE(refused.error.find("mask.exr: the visibility mask is 256x128, but "), std::string::npos)
+        << refused.error;
+    EXPECT_NE(refused.error.find("room.exr is 512x256"), std::string::npos) << refused.error;
 }
 
 // A capture whose alpha is 1 everywhere bakes the bytes of the same capture without alpha, and the manifest

@@ -66,6 +66,14 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
             file, [&](const ingest::RawImage& header) { ingest::resolveLayout(header, settings.layout); },
             settings.readAlpha));
 
+    if (!settings.visibilityMask.empty()) {
+        if (!settings.readAlpha || settings.visibilityMask.size() != files.size())
+            throw SettingError("visibilityMask",
+                               "needs one mask per input file (" + std::to_string(files.size()) + ")");
+        for (std::size_t i = 0; i < images.size(); ++i)
+            ingest::takeVisibilityMask(images[i], ingest::readImage(settings.visibilityMask[i]));
+    }
+
     SourceEnvironment env;
     IngestReport& report = env.report;
     const ingest::RawImage& first = images.front();

@@ -64,6 +64,10 @@ void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t
 // pixel limit: OpenEXR sizes memory from each of these while it reads the header (exr_header.cpp).
 void checkExrHeader(const std::filesystem::path& file, const std::string& name);
 
+// A visibility mask's channel R as `image`'s A (IngestSettings::visibilityMask): the colour becomes straight
+// (unassociatedAlpha). Throws ibl::Error naming the mask when its size is not the image's.
+void takeVisibilityMask(RawImage& image, const RawImage& mask);
+
 // ---- layout (layout.cpp) ----
 // The layout of a single image: `requested` if not Auto (checked against the size), else detected from
 // metadata and aspect ratio. Throws ibl::Error naming the file when it cannot tell or the size does not fit.

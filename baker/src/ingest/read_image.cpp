@@ -61,6 +61,17 @@ int pickAlpha(const OIIO::ImageSpec& spec, const std::array<int, 3>& rgb) {
 
 } // namespace
 
+void takeVisibilityMask(RawImage& image, const RawImage& mask) {
+    if (mask.pixels.width != image.pixels.width || mask.pixels.height != image.pixels.height)
+        throw Error(mask.file + ": the visibility mask is " + std::to_string(mask.pixels.width) + "x" +
+                    std::to_string(mask.pixels.height) + ", but " + image.file + " is " +
+                    std::to_string(image.pixels.width) + "x" + std::to_string(image.pixels.height));
+    for (std::size_t i = 0; i < image.pixels.pixels.size(); ++i)
+        image.pixels.pixels[i].w = mask.pixels.pixels[i].x;
+    image.hasAlpha = true;
+    image.unassociatedAlpha = true;
+}
+
 void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t height) {
     const std::uint64_t maxPixels = limits::maxImagePixels();
     if (height <= maxPixels / width) return;

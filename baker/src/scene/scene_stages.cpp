@@ -99,10 +99,12 @@ IngestSettings ingestSettings(const json& s) {
     return ingest;
 }
 
-std::vector<fs::path> inputFiles(const PlanStage& stage) {
+// The stage's input files, or with `keyPart` those whose scene key holds it (a probe's ".visibilityMask").
+std::vector<fs::path> inputFiles(const PlanStage& stage, const std::string& keyPart = "", bool with = true) {
     std::vector<fs::path> files;
     for (const PlanInput& in : stage.inputs)
-        files.push_back(in.file);
+        if (keyPart.empty() || (in.keyPath.find(keyPart) != std::string::npos) == with)
+            files.push_back(in.file);
     return files;
 }
 
@@ -322,6 +324,7 @@ void runProbe(const StageContext& c) {
         EnvironmentSettings settings;
         settings.ingest = ingestSettings(s);
         settings.ingest.readAlpha = true; // a capture's alpha is its visibility (Frostbite 2014 4.9.1.2)
+        settings.ingest.visibilityMask = inputFiles(c.stage, ".visibilityMask");
         if (s.at("calibration").at("source") == "environment") {
             const json envCalibration = readJsonFile(c.dependencies.at("environment") / kCalibrationFile);
             settings.calibration.source = CalibrationSource::Scale;
@@ -329,7 +332,8 @@ void runProbe(const StageContext& c) {
         } else {
             settings.calibration = calibrationSettings(s.at("calibration"));
         }
-        const PreparedEnvironment prepared = prepareEnvironment(inputFiles(c.stage), settings);
+        const PreparedEnvironment prepared =
+            prepareEnvironment(inputFiles(c.stage, ".visibilityMask", false), settings);
         const SourceEnvironment& env = prepared.env;
         json source = {{"file", fs::path(env.report.file).filename().string()}};
         addLatLongPixels(source, env.report.latLongPixels);

@@ -64,6 +64,11 @@ struct IngestSettings {
     // conversion) and resampled with it by the same exact-area weights. false: alpha is ignored (every
     // texel 1), as for the distant environment.
     bool readAlpha = false;
+    // With readAlpha: the visibility as separate images, one per input file and of its size, replacing the
+    // file's alpha. Channel R (a grey image's only one) as stored, no colour conversion (a coverage, not a
+    // colour; an 8-bit file's 0-255 read as 0-1); the input's colour is then straight, premultiplied by it
+    // after its colour conversion. Empty: the file's own alpha channel, if any.
+    std::vector<std::filesystem::path> visibilityMask;
 };
 
 struct IngestReport {
