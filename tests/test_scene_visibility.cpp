@@ -109,10 +109,10 @@ struct SceneDir {
     ~SceneDir() { fs::remove_all(dir); }
     fs::path capture() const { return dir / "room.exr"; }
     fs::path out() const { return dir / "out"; }
-    BakeSummary bake() const {
+    BakeSummary bake(Backend backend = Backend::Cpu) const {
         writeText(dir / "scene.json", scene.dump(2));
         BakeOptions options;
-        options.backend = Backend::Cpu;
+        options.backend = backend;
         ProgressSink silent;
         return bakeScene(loadSceneFile(dir / "scene.json"), options, silent);
     }
@@ -227,6 +227,33 @@ TEST(SceneVisibility, AVisibilityMaskImageDoesWhatTheCapturesAlphaDoes) {
     EXPECT_NE(refused.error.find("mask.exr: the visibility mask is 256x128, but "), std::string::npos)
         << refused.error;
     EXPECT_NE(refused.error.find("room.exr is 512x256"), std::string::npos) << refused.error;
+}
+
+// The probe-ld stage on OpenCL and on the CPU: the colour x visibility and the visibility of every level
+// agree.
+TEST(SceneVisibility, OpenClAndCpuBakesAgree) {
+    std::vector<LdPyramid> pyramids;
+    for (Backend backend : {Backend::OpenCL, Backend::Cpu}) {
+        SceneDir d(std::string("scene_visibility_backend_") + (backend == Backend::Cpu ? "cpu" : "opencl"));
+        writeLatLongExr(d.capture(), 256, 128, 4, [](glm::vec3 v) { return roomCapture(v, false); });
+        const BakeSummary summary = d.bake(backend);
+        ASSERT_TRUE(summary.ok) << summary.error;
+        if (backend == Backend::OpenCL && summary.backend != "opencl") GTEST_SKIP() << "no OpenCL device";
+        pyramids.push_back(loadLdKtx2(d.out() / "probe_room.ktx2"));
+    }
+    const LdPyramid &cl = pyramids[0], &cpu = pyramids[1];
+    ASSERT_EQ(cl.data.size(), cpu.data.size());
+    ASSERT_EQ(cl.visibility.size(), cpu.visibility.size());
+    ASSERT_FALSE(cpu.visibility.empty());
+    double colour = 0.0, visibility = 0.0;
+    for (std::size_t i = 0; i < cpu.data.size(); ++i)
+        colour = std::max(colour, double(std::abs(cl.data[i] - cpu.data[i])));
+    for (std::size_t i = 0; i < cpu.visibility.size(); ++i)
+        visibility = std::max(visibility, double(std::abs(cl.visibility[i] - cpu.visibility[i])));
+    std::printf("scene probe, OpenCL vs CPU: colour x visibility %.2g, visibility %.2g (max abs)\n", colour,
+                visibility);
+    EXPECT_LT(colour, 2e-3); // fp16 storage: a wall colour near 1 rounds at 5e-4
+    EXPECT_LT(visibility, 2e-3);
 }
 
 // A capture whose alpha is 1 everywhere bakes the bytes of the same capture without alpha, and the manifest
