@@ -55,6 +55,10 @@
 // - Area lights: shading points on the light, on its plane, behind it, inside a sphere light, at grazing
 //     normals and views, zero vectors: AreaLights.HardCasesAreFinite (finite and >= 0, exactly 0 where the
 //     brute force is).
+// - A local probe capture's alpha (issue 16): SceneVisibility.AlphaNanNegativeAndOverOneAreRepairedAndCounted
+//     (NaN and negative -> transparent, > 1 -> 1, counted in the manifest and the bake report, the loaded
+//     set finite), SceneVisibility.AlphaZeroEverywhereIsTransparent (the distant probe alone at every point),
+//     SpecularVisibilityHardCases.* (the filter's own).
 #include "test_support.h"
 
 #include <iblbake/baker/calibration.h>

@@ -101,7 +101,21 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
         desc.influence = volume(p.at("influence"));
         desc.captureOffset = vec3(p.at("captureOffset"));
         desc.fadeDistance = p.at("fadeDistance").get<float>();
-        out.set.addLocalProbe(desc, loadLdKtx2(dir / p.at("file").get<std::string>()));
+        const std::string file = p.at("file").get<std::string>();
+        LdPyramid ld = loadLdKtx2(dir / file);
+        // The visibility itself comes from the file (its key iblbake.visibility); the manifest says which
+        // convention it is in, and a probe without "visibility" (every manifest before visibility existed)
+        // must have none. A recorded visibility whose stored texels are all 1 (fp16 rounding of a faint one)
+        // loads as none, which is what it is.
+        if (p.contains("visibility")) {
+            const json& v = p["visibility"];
+            if (v.at("convention") != kVisibilityPremultipliedAlpha || v.at("channel") != "A")
+                throw Error("products.probes: " + file + ": visibility is not premultiplied-alpha in A");
+        } else if (!ld.visibility.empty()) {
+            throw Error("products.probes: " + file +
+                        ": the file has a visibility the manifest does not record");
+        }
+        out.set.addLocalProbe(desc, std::move(ld));
     }
     for (const json& l : products.value("lights", json::array()))
         out.lights.push_back(light(l, dir));

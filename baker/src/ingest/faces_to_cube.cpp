@@ -30,15 +30,17 @@ std::vector<double> uniformEdges(int n) {
 }
 
 // A square region of an image, optionally turned by 180 degrees, as a face in our orientation.
-SourceFace regionFace(const ImageRGBA& image, int x0, int y0, int size, bool turn180) {
+SourceFace regionFace(const ImageRGBA& image, int x0, int y0, int size, bool turn180, bool withAlpha) {
     SourceFace f;
     f.cols = f.rows = size;
     f.values.resize(std::size_t(size) * std::size_t(size));
+    if (withAlpha) f.alpha.resize(f.values.size());
     for (int r = 0; r < size; ++r)
         for (int c = 0; c < size; ++c) {
             const int x = turn180 ? size - 1 - c : c, y = turn180 ? size - 1 - r : r;
-            f.values[std::size_t(r) * std::size_t(size) + std::size_t(c)] =
-                glm::vec3(image.at(x0 + x, y0 + y));
+            const std::size_t cell = std::size_t(r) * std::size_t(size) + std::size_t(c);
+            f.values[cell] = glm::vec3(image.at(x0 + x, y0 + y));
+            if (withAlpha) f.alpha[cell] = image.at(x0 + x, y0 + y).w;
         }
     f.edgesA = f.edgesB = uniformEdges(size);
     return f;
@@ -69,14 +71,14 @@ void overlaps(const std::vector<double>& edges, double lo, double hi, std::vecto
 
 } // namespace
 
-SourceFaces facesFromLayout(const std::vector<RawImage>& images, EnvLayout layout) {
+SourceFaces facesFromLayout(const std::vector<RawImage>& images, EnvLayout layout, bool withAlpha) {
     SourceFaces faces;
     if (layout == EnvLayout::SixFiles) {
         if (images.size() != 6)
             throw Error("six-files layout needs 6 files, got " + std::to_string(images.size()));
         for (int f = 0; f < 6; ++f) {
             const ImageRGBA& im = images[std::size_t(f)].pixels;
-            faces[std::size_t(f)] = regionFace(im, 0, 0, im.width, false);
+            faces[std::size_t(f)] = regionFace(im, 0, 0, im.width, false, withAlpha);
         }
         return faces;
     }
@@ -112,12 +114,12 @@ SourceFaces facesFromLayout(const std::vector<RawImage>& images, EnvLayout layou
     }
     for (int f = 0; f < 6; ++f) {
         const Place& p = place[std::size_t(f)];
-        faces[std::size_t(f)] = regionFace(im, p.col * size, p.row * size, size, p.turn180);
+        faces[std::size_t(f)] = regionFace(im, p.col * size, p.row * size, size, p.turn180, withAlpha);
     }
     return faces;
 }
 
-SourceFaces facesFromExrCube(const RawImage& image) {
+SourceFaces facesFromExrCube(const RawImage& image, bool withAlpha) {
     const ImageRGBA& im = image.pixels;
     // Pixel indices relative to the data window's corner: ImfEnvmap's dataWindowForFace() does the same.
     const IMATH_NAMESPACE::Box2i window(IMATH_NAMESPACE::V2i(0, 0),
@@ -142,6 +144,7 @@ SourceFaces facesFromExrCube(const RawImage& image) {
         SourceFace& out = faces[std::size_t(f)];
         out.cols = out.rows = m;
         out.values.assign(std::size_t(m) * std::size_t(m), glm::vec3(-1.0f));
+        if (withAlpha) out.alpha.assign(out.values.size(), 0.0f);
         out.edgesA = out.edgesB = edges;
         std::vector<char> filled(out.values.size(), 0);
         for (int py = 0; py < m; ++py)
@@ -163,6 +166,7 @@ SourceFaces facesFromExrCube(const RawImage& image) {
                     throw Error(image.file + ": ImfEnvmap cube-face mapping out of range");
                 const std::size_t cell = std::size_t(ib) * std::size_t(m) + std::size_t(ia);
                 out.values[cell] = glm::vec3(im.at(x, y));
+                if (withAlpha) out.alpha[cell] = im.at(x, y).w;
                 filled[cell] = 1;
             }
         if (std::find(filled.begin(), filled.end(), 0) != filled.end())
@@ -198,18 +202,21 @@ CubeMap resampleFacesToCube(const SourceFaces& faces, int faceSize) {
                     for (std::size_t x = 0; x < nx; ++x)
                         e[y * nx + x] = areaElement(xs[x], ys[y]);
                 glm::dvec3 energy(0.0);
-                double area = 0.0;
+                double area = 0.0, alphaEnergy = 0.0;
                 for (std::size_t y = 0; y + 1 < ys.size(); ++y)
                     for (std::size_t x = 0; x + 1 < nx; ++x) {
                         const double omega =
                             e[y * nx + x] - e[(y + 1) * nx + x] - e[y * nx + x + 1] + e[(y + 1) * nx + x + 1];
-                        const glm::vec3& v =
-                            src.values[std::size_t(rws[y]) * std::size_t(src.cols) + std::size_t(cols[x])];
-                        energy += omega * glm::dvec3(v);
+                        const std::size_t cell =
+                            std::size_t(rws[y]) * std::size_t(src.cols) + std::size_t(cols[x]);
+                        energy += omega * glm::dvec3(src.values[cell]);
+                        if (!src.alpha.empty()) alphaEnergy += omega * double(src.alpha[cell]);
                         area += omega;
                     }
                 const glm::dvec3 value = area > 0.0 ? energy / area : glm::dvec3(0.0);
-                cube.faces[std::size_t(face)].at(i, j) = glm::vec4(glm::vec3(value), 1.0f);
+                const float alpha =
+                    src.alpha.empty() ? 1.0f : resampledAlpha(area > 0.0 ? alphaEnergy / area : 0.0);
+                cube.faces[std::size_t(face)].at(i, j) = glm::vec4(glm::vec3(value), alpha);
             }
         }
     });

@@ -1,4 +1,5 @@
-// The ingest pipeline: read -> repair -> colour-convert -> repair -> resample into the source cube.
+// The ingest pipeline: read -> repair (colour; alpha when read) -> colour-convert -> repair -> premultiply
+// (unassociated alpha) -> resample into the source cube.
 // Non-finite values are repaired before the colour matrix (which would smear an Inf into NaNs across
 // channels); negatives are repaired on both sides of it, since a gamut change can create them.
 #include "iblbake/baker/ingest.h"
@@ -32,6 +33,12 @@ void add(IngestReport& report, const ingest::RepairCounts& n) {
     report.negativeRepaired += n.negative;
 }
 
+void add(IngestReport& report, const ingest::AlphaRepairCounts& n) {
+    report.alphaNanRepaired += n.nan;
+    report.alphaNegativeRepaired += n.negative;
+    report.alphaOverOneRepaired += n.overOne;
+}
+
 } // namespace
 
 SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& files,
@@ -56,7 +63,16 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     // A size the layout cannot take is refused from the header, before the pixels are read.
     for (const auto& file : files)
         images.push_back(ingest::readImage(
-            file, [&](const ingest::RawImage& header) { ingest::resolveLayout(header, settings.layout); }));
+            file, [&](const ingest::RawImage& header) { ingest::resolveLayout(header, settings.layout); },
+            settings.readAlpha));
+
+    if (!settings.visibilityMask.empty()) {
+        if (!settings.readAlpha || settings.visibilityMask.size() != files.size())
+            throw SettingError("visibilityMask",
+                               "needs one mask per input file (" + std::to_string(files.size()) + ")");
+        for (std::size_t i = 0; i < images.size(); ++i)
+            ingest::takeVisibilityMask(images[i], ingest::readImage(settings.visibilityMask[i]));
+    }
 
     SourceEnvironment env;
     IngestReport& report = env.report;
@@ -73,27 +89,39 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
         ingest::resolveLayout(image, report.layout); // six files: each must be square
     }
 
+    const double rotate = double(settings.rotateDegrees) * std::numbers::pi / 180.0;
     report.inputColorSpace = ingest::resolveInputColorSpace(first, settings.inputColorSpace);
     const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace); // also checks linearity
     report.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);
     for (auto& image : images) {
         add(report, ingest::sanitize(image.pixels));
+        if (image.hasAlpha) add(report, ingest::sanitizeAlpha(image.pixels));
         ingest::convertColor(image.pixels, report.inputColorSpace, report.workingColorSpace, image.file);
         add(report, ingest::sanitize(image.pixels));
+        if (image.unassociatedAlpha) ingest::premultiplyAlpha(image.pixels);
         report.maxLuminanceIn = std::max(report.maxLuminanceIn, ingest::maxLuminance(image.pixels, weights));
     }
+    // A visibility of 1 everywhere is none: the capture then ingests, and bakes, as one without alpha.
+    report.hasAlpha = std::any_of(images.begin(), images.end(), [](const ingest::RawImage& image) {
+        return image.hasAlpha && ingest::hasAlphaBelowOne(image.pixels);
+    });
+    if (report.hasAlpha && report.layout != EnvLayout::LatLong && rotate != 0.0)
+        throw SettingError("rotateDegrees", first.file +
+                                                ": a cube-layout capture with alpha cannot be rotated "
+                                                "(the rotation resamples colour only); rotate a "
+                                                "lat-long capture instead");
 
-    const double rotate = double(settings.rotateDegrees) * std::numbers::pi / 180.0;
     if (report.layout == EnvLayout::LatLong) {
         report.faceSize = settings.sourceFaceSize > 0 ? settings.sourceFaceSize
                                                       : defaultLatLongFaceSize(first.pixels.width);
         report.latLongPixels = ingest::resolveLatLongPixels(first, settings.latLongPixels);
         env.cube = ingest::resampleLatLongToCubeRotated(first.pixels, report.faceSize, *report.latLongPixels,
-                                                        rotate);
+                                                        rotate, report.hasAlpha);
     } else {
-        const ingest::SourceFaces faces = report.layout == EnvLayout::ExrCube
-                                              ? ingest::facesFromExrCube(first)
-                                              : ingest::facesFromLayout(images, report.layout);
+        const ingest::SourceFaces faces =
+            report.layout == EnvLayout::ExrCube
+                ? ingest::facesFromExrCube(first, report.hasAlpha)
+                : ingest::facesFromLayout(images, report.layout, report.hasAlpha);
         report.faceSize =
             settings.sourceFaceSize > 0 ? settings.sourceFaceSize : ingest::sourceFaceSizeOf(faces);
         env.cube = ingest::resampleFacesToCube(faces, report.faceSize);

@@ -35,7 +35,9 @@ inline FaceFrame faceFrame(int face) {
 // ---- reading (read_image.cpp) ----
 struct RawImage {
     std::string file;
-    ImageRGBA pixels;                  // R, G, B of the file's level 0 (grey replicated), alpha = 1
+    ImageRGBA pixels;                  // R, G, B of the file's level 0 (grey replicated), A (1 if not read)
+    bool hasAlpha = false;             // A was read from the file's alpha channel
+    bool unassociatedAlpha = false;    // the file's colour is not premultiplied by its alpha (PNG, some TIFF)
     std::string colorSpace;            // oiio:ColorSpace, "" if absent
     std::vector<float> chromaticities; // EXR chromaticities (8 values) if present
     std::string textureFormat;         // OIIO "textureformat" (from the EXR envmap attribute), "" if absent
@@ -46,9 +48,11 @@ struct RawImage {
 // Reads level 0 of the first subimage. Throws ibl::Error "<file>: ..." when it cannot, when it is no
 // regular file, or when its header claims more pixels than limits::maxImagePixels(). `checkHeader`, when
 // given, sees the image with its size and metadata before any pixel is read (pixels.pixels still empty),
-// so that a size that cannot work (a layout that does not fit) is refused without reading the file.
+// so that a size that cannot work (a layout that does not fit) is refused without reading the file. With
+// `readAlpha`, the file's alpha channel (OIIO's alpha_channel, else one named "A"), if it has one, is read
+// into A as stored.
 RawImage readImage(const std::filesystem::path& file,
-                   const std::function<void(const RawImage&)>& checkHeader = nullptr);
+                   const std::function<void(const RawImage&)>& checkHeader = nullptr, bool readAlpha = false);
 
 // Throws ibl::Error "<name>: WxH is N pixels, more than the limit of M (IBLBAKE_MAX_IMAGE_PIXELS)" when a
 // width x height image (both >= 1) is over limits::maxImagePixels().
@@ -59,6 +63,10 @@ void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t
 // claiming more than its attribute holds, a chunkCount the file cannot hold and a dataWindow over the
 // pixel limit: OpenEXR sizes memory from each of these while it reads the header (exr_header.cpp).
 void checkExrHeader(const std::filesystem::path& file, const std::string& name);
+
+// A visibility mask's channel R as `image`'s A (IngestSettings::visibilityMask): the colour becomes straight
+// (unassociatedAlpha). Throws ibl::Error naming the mask when its size is not the image's.
+void takeVisibilityMask(RawImage& image, const RawImage& mask);
 
 // ---- layout (layout.cpp) ----
 // The layout of a single image: `requested` if not Auto (checked against the size), else detected from
@@ -87,6 +95,15 @@ struct RepairCounts {
 // NaN -> 0, +Inf -> largest finite value of the image (65504 if none), -Inf and negatives -> 0 (RGB only).
 RepairCounts sanitize(ImageRGBA& image);
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
+struct AlphaRepairCounts {
+    std::uint64_t nan = 0, negative = 0, overOne = 0;
+};
+// Alpha (IngestReport::hasAlpha): NaN and negatives -> RGBA 0, over 1 -> 1 (colour kept), per pixel.
+AlphaRepairCounts sanitizeAlpha(ImageRGBA& image);
+// Whether any pixel's A is not 1.
+bool hasAlphaBelowOne(const ImageRGBA& image);
+// Colour of unassociated alpha premultiplied by it (after the colour conversion, which needs it straight).
+void premultiplyAlpha(ImageRGBA& image);
 
 // ---- cube faces (faces_to_cube.cpp) ----
 // One face of a cube-like input, already in our face's orientation: cell (c, r) spans face-plane
@@ -95,22 +112,29 @@ float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
 struct SourceFace {
     int cols = 0, rows = 0;
     std::vector<glm::vec3> values; // row-major, rows along b
+    std::vector<float> alpha;      // the same cells' A, empty when the input has no alpha
     std::vector<double> edgesA, edgesB;
 };
 using SourceFaces = std::array<SourceFace, 6>;
 
-// Faces of a strip, cross or six-file input (uniform cells, faces already in our orientation).
-SourceFaces facesFromLayout(const std::vector<RawImage>& images, EnvLayout layout);
+// Faces of a strip, cross or six-file input (uniform cells, faces already in our orientation); with
+// `withAlpha`, SourceFace::alpha too.
+SourceFaces facesFromLayout(const std::vector<RawImage>& images, EnvLayout layout, bool withAlpha = false);
 // Faces of an OpenEXR cube map (ImfEnvmap CubeMap): pixel centres span the face edge to edge.
-SourceFaces facesFromExrCube(const RawImage& image);
-// Exact area-weighted resampling: each texel gets the solid-angle average of the source cells over it.
+SourceFaces facesFromExrCube(const RawImage& image, bool withAlpha = false);
+// Exact area-weighted resampling: each texel gets the solid-angle average of the source cells over it
+// (colour, and alpha when the faces carry it, else A = 1).
 CubeMap resampleFacesToCube(const SourceFaces& faces, int faceSize);
 int sourceFaceSizeOf(const SourceFaces& faces);
 
 // ---- lat-long (latlong_to_cube.cpp) ----
-// resampleLatLongToCube with the environment rotated by `rotateRadians` about +Y (see IngestSettings).
+// resampleLatLongToCube with the environment rotated by `rotateRadians` about +Y (see IngestSettings);
+// with `withAlpha`, A is resampled with the same weights as colour (else A = 1).
 CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
-                                     double rotateRadians);
+                                     double rotateRadians, bool withAlpha = false);
+// A resampled alpha as stored: clamped to [0, 1], and within 1e-6 of 0 or 1 taken as that (the exact-area
+// average of cells that are all 1 may round to 0.99999994; it should not make a visible texel partial).
+float resampledAlpha(double alpha);
 
 // ---- rotation of a cube (rotate_cube.cpp) ----
 // Rotates about +Y by supersampled bilinear lookups (approximate; used only for cube inputs).

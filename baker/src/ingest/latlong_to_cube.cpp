@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 
 namespace ibl {
 
@@ -127,19 +128,26 @@ class LatLongGrid {
         return c;
     }
 
-    // Integral of column c over z in [zLo, zHi], per channel.
-    glm::dvec3 integrate(int c, double zLo, double zHi) const {
+    // Integral of column c over z in [zLo, zHi], per channel: RGB (Value = dvec3) or RGBA (dvec4).
+    template <class Value>
+    Value integrate(int c, double zLo, double zHi) const {
         const int rTop = row(zHi), rBottom = row(zLo);
-        if (rTop == rBottom) return value(c, rTop) * (zHi - zLo);
-        glm::dvec3 sum = value(c, rTop) * (zHi - zEdge(rTop + 1));
+        if (rTop == rBottom) return value<Value>(c, rTop) * (zHi - zLo);
+        Value sum = value<Value>(c, rTop) * (zHi - zEdge(rTop + 1));
         for (int r = rTop + 1; r < rBottom; ++r)
-            sum += value(c, r) * (zEdge(r) - zEdge(r + 1));
-        return sum + value(c, rBottom) * (zEdge(rBottom) - zLo);
+            sum += value<Value>(c, r) * (zEdge(r) - zEdge(r + 1));
+        return sum + value<Value>(c, rBottom) * (zEdge(rBottom) - zLo);
     }
 
   private:
     double zEdge(int r) const { return zEdge_[std::size_t(r)]; }
-    glm::dvec3 value(int c, int r) const { return glm::dvec3(glm::vec3(image_.at(c, r))); }
+    template <class Value>
+    Value value(int c, int r) const {
+        if constexpr (std::is_same_v<Value, glm::dvec4>)
+            return glm::dvec4(image_.at(c, r));
+        else
+            return glm::dvec3(glm::vec3(image_.at(c, r)));
+    }
     // Row r spans z in [zEdge(r + 1), zEdge(r)]. The first guess only has to be near: the loops make it
     // exact.
     int row(double z) const {
@@ -158,8 +166,9 @@ class LatLongGrid {
     std::vector<double> uEdge_, zEdge_;
 };
 
+template <class Value>
 struct TexelIntegral {
-    glm::dvec3 energy{0.0};
+    Value energy{0.0};
     double area = 0.0;
 };
 
@@ -167,8 +176,10 @@ struct TexelIntegral {
 // per-face grid: neighbouring texels share corners, so atan2 runs once per corner, not four times per texel.
 using CornerLongitudes = std::array<double, 4>;
 
-TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
-                             const CornerLongitudes& corners, double rotate, std::vector<double>& cuts) {
+template <class Value>
+TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
+                                    const CornerLongitudes& corners, double rotate,
+                                    std::vector<double>& cuts) {
     // Longitude range of the texel: its corners' longitudes unwrapped around one of them (a texel that
     // holds no pole spans less than pi); a texel that holds a pole inside sees every longitude.
     cuts.clear();
@@ -213,7 +224,7 @@ TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, co
     cuts.push_back(phiMax);
     std::sort(cuts.begin(), cuts.end());
 
-    TexelIntegral sum;
+    TexelIntegral<Value> sum;
     for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         const double p0 = std::max(cuts[i], phiMin), p1 = std::min(cuts[i + 1], phiMax);
         if (!(p1 - p0 > 1e-15)) continue;
@@ -225,7 +236,7 @@ TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, co
             if (!clipMeridian(frame, sq, mid + half * kNodes[k], zLo, zHi)) continue;
             const double w = half * kWeights[k];
             sum.area += w * (zHi - zLo);
-            sum.energy += w * grid.integrate(column, zLo, zHi);
+            sum.energy += w * grid.integrate<Value>(column, zLo, zHi);
         }
     }
     return sum;
@@ -233,8 +244,14 @@ TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, co
 
 } // namespace
 
+float resampledAlpha(double alpha) {
+    constexpr double kSnap = 1e-6;
+    if (!(alpha > kSnap)) return 0.0f; // NaN cannot come from repaired pixels, but is transparent too
+    return alpha >= 1.0 - kSnap ? 1.0f : float(alpha);
+}
+
 CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
-                                     double rotateRadians) {
+                                     double rotateRadians, bool withAlpha) {
     if (latlong.width <= 0 || latlong.height <= 0) throw Error("lat-long resampling: empty image");
     if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
     if (placement == LatLongPixels::Auto) throw Error("lat-long resampling: internal: unresolved placement");
@@ -263,9 +280,16 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
                 const Square sq{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step,
                                 -1.0 + (j + 1) * step};
                 const CornerLongitudes phis = {below[i], above[i], below[i + 1], above[i + 1]};
-                const TexelIntegral t = integrateTexel(grid, frame, sq, phis, rotateRadians, cuts);
-                const glm::dvec3 v = t.area > 0.0 ? t.energy / t.area : glm::dvec3(0.0);
-                cube.faces[std::size_t(face)].at(i, j) = glm::vec4(glm::vec3(v), 1.0f);
+                glm::vec4& texel = cube.faces[std::size_t(face)].at(i, j);
+                if (withAlpha) {
+                    const auto t = integrateTexel<glm::dvec4>(grid, frame, sq, phis, rotateRadians, cuts);
+                    const glm::dvec4 v = t.area > 0.0 ? t.energy / t.area : glm::dvec4(0.0);
+                    texel = glm::vec4(glm::vec3(glm::dvec3(v)), resampledAlpha(v.w));
+                } else {
+                    const auto t = integrateTexel<glm::dvec3>(grid, frame, sq, phis, rotateRadians, cuts);
+                    const glm::dvec3 v = t.area > 0.0 ? t.energy / t.area : glm::dvec3(0.0);
+                    texel = glm::vec4(glm::vec3(v), 1.0f);
+                }
             }
         }
     });

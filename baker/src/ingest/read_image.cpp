@@ -1,5 +1,5 @@
 // Reading an environment image with OpenImageIO: any format it reads, level 0 of the first subimage
-// (tiled and MIP-mapped files included), R, G, B only (alpha ignored, one channel read as grey).
+// (tiled and MIP-mapped files included), R, G, B (one channel read as grey) and, when asked, A.
 #include "../io/muted_stderr.h"
 #include "ingest_internal.h"
 
@@ -53,7 +53,24 @@ bool readRows(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, int y0, int y1,
     return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, begin, end, OIIO::TypeDesc::FLOAT, data);
 }
 
+// The file's alpha channel: OIIO's alpha_channel, else one named "A"; -1 if none or it is also a colour.
+int pickAlpha(const OIIO::ImageSpec& spec, const std::array<int, 3>& rgb) {
+    const int alpha = spec.alpha_channel >= 0 ? spec.alpha_channel : findChannel(spec, "A");
+    return std::find(rgb.begin(), rgb.end(), alpha) == rgb.end() ? alpha : -1;
+}
+
 } // namespace
+
+void takeVisibilityMask(RawImage& image, const RawImage& mask) {
+    if (mask.pixels.width != image.pixels.width || mask.pixels.height != image.pixels.height)
+        throw Error(mask.file + ": the visibility mask is " + std::to_string(mask.pixels.width) + "x" +
+                    std::to_string(mask.pixels.height) + ", but " + image.file + " is " +
+                    std::to_string(image.pixels.width) + "x" + std::to_string(image.pixels.height));
+    for (std::size_t i = 0; i < image.pixels.pixels.size(); ++i)
+        image.pixels.pixels[i].w = mask.pixels.pixels[i].x;
+    image.hasAlpha = true;
+    image.unassociatedAlpha = true;
+}
 
 void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t height) {
     const std::uint64_t maxPixels = limits::maxImagePixels();
@@ -65,13 +82,14 @@ void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t
                 limits::kMaxImagePixelsVariable + ")");
 }
 
-RawImage readImage(const std::filesystem::path& file,
-                   const std::function<void(const RawImage&)>& checkHeader) {
+RawImage readImage(const std::filesystem::path& file, const std::function<void(const RawImage&)>& checkHeader,
+                   bool readAlpha) {
     const std::string name = printableForMessage(file.string());
     requireRegularFile(file);   // before OIIO probes formats: a device or FIFO would never end
     checkExrHeader(file, name); // before OpenEXR sizes memory from the header's claims
 
-    // Alpha is ignored, so colour must not be premultiplied by it (OIIO would do so for PNG and TIFF).
+    // Colour as stored: OIIO would premultiply unassociated alpha (PNG, TIFF), which is wrong where alpha is
+    // ignored, and where it is read the premultiplication must follow the colour conversion (ingest.cpp).
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
     MutedStderr muted;
@@ -109,8 +127,13 @@ RawImage readImage(const std::filesystem::path& file,
     // image, whose memory is reserved but taken only as rows arrive: a truncated file that claims a huge
     // size fails at its first missing strip having used little, and no second full copy is ever made.
     const std::array<int, 3> rgb = pickChannels(spec);
-    const int first = *std::min_element(rgb.begin(), rgb.end());
-    const int span = *std::max_element(rgb.begin(), rgb.end()) - first + 1;
+    const int alpha = readAlpha ? pickAlpha(spec, rgb) : -1;
+    raw.hasAlpha = alpha >= 0;
+    raw.unassociatedAlpha = raw.hasAlpha && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
+    std::vector<int> channels(rgb.begin(), rgb.end());
+    if (raw.hasAlpha) channels.push_back(alpha);
+    const int first = *std::min_element(channels.begin(), channels.end());
+    const int span = *std::max_element(channels.begin(), channels.end()) - first + 1;
     const bool together = span <= limits::kMaxChannelsRead;
     const int rowStep = std::max(1, spec.tile_height);
     const int stripRows = rowStep * std::max(1, int(kStripPixels / (std::uint64_t(spec.width) * rowStep)));
@@ -122,8 +145,8 @@ RawImage readImage(const std::filesystem::path& file,
             const std::size_t offset = raw.pixels.pixels.size();
             const std::size_t n = std::size_t(y1 - y0) * std::size_t(spec.width);
             raw.pixels.pixels.resize(offset + n, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-            for (int c = 0; c < (together ? 1 : 3); ++c) {
-                const int begin = together ? first : rgb[std::size_t(c)];
+            for (int c = 0; c < (together ? 1 : int(channels.size())); ++c) {
+                const int begin = together ? first : channels[std::size_t(c)];
                 const int end = together ? first + span : begin + 1;
                 strip.resize(n * std::size_t(end - begin));
                 if (!readRows(*in, spec, y0, y1, begin, end, strip.data()))
@@ -132,7 +155,8 @@ RawImage readImage(const std::filesystem::path& file,
                     const float* p = &strip[i * std::size_t(end - begin)];
                     glm::vec4& out = raw.pixels.pixels[offset + i];
                     if (together)
-                        out = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first], 1.0f);
+                        out = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first],
+                                        raw.hasAlpha ? p[alpha - first] : 1.0f);
                     else
                         out[c] = p[0];
                 }

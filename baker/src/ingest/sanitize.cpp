@@ -3,6 +3,7 @@
 #include "ingest_internal.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
@@ -61,6 +62,47 @@ RepairCounts sanitize(ImageRGBA& image) {
             a.negative += b.negative;
             return a;
         });
+}
+
+// A transparent texel holds nothing (RGBA 0), as bakeSpecularWithVisibility repairs one: colour premultiplied
+// by a NaN or negative visibility has no meaning to keep.
+AlphaRepairCounts sanitizeAlpha(ImageRGBA& image) {
+    return tbb::parallel_reduce(
+        Range(0, image.pixels.size(), 4096), AlphaRepairCounts{},
+        [&](const Range& r, AlphaRepairCounts n) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                glm::vec4& p = image.pixels[i];
+                if (std::isnan(p.w)) {
+                    p = glm::vec4(0.0f);
+                    ++n.nan;
+                } else if (p.w < 0.0f) {
+                    p = glm::vec4(0.0f);
+                    ++n.negative;
+                } else if (p.w > 1.0f) {
+                    p.w = 1.0f;
+                    ++n.overOne;
+                }
+            }
+            return n;
+        },
+        [](AlphaRepairCounts a, const AlphaRepairCounts& b) {
+            a.nan += b.nan;
+            a.negative += b.negative;
+            a.overOne += b.overOne;
+            return a;
+        });
+}
+
+bool hasAlphaBelowOne(const ImageRGBA& image) {
+    return std::any_of(image.pixels.begin(), image.pixels.end(),
+                       [](const glm::vec4& p) { return p.w != 1.0f; });
+}
+
+void premultiplyAlpha(ImageRGBA& image) {
+    tbb::parallel_for(std::size_t(0), image.pixels.size(), [&](std::size_t i) {
+        glm::vec4& p = image.pixels[i];
+        p = glm::vec4(glm::vec3(p) * p.w, p.w);
+    });
 }
 
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& w) {

@@ -61,6 +61,43 @@ LdManifestFacts ldManifestFactsFromJson(const json& j) {
     }
 }
 
+json probeVisibilityFactsToJson(const ProbeVisibilityFacts& f) {
+    return {{"visibility", f.visibility},
+            {"alphaRepaired",
+             {{"nan", f.alphaNanRepaired},
+              {"negative", f.alphaNegativeRepaired},
+              {"overOne", f.alphaOverOneRepaired}}}};
+}
+
+ProbeVisibilityFacts probeVisibilityFactsFromJson(const json& j) {
+    try {
+        ProbeVisibilityFacts f;
+        f.visibility = j.at("visibility").get<bool>();
+        const json& repaired = j.at("alphaRepaired");
+        f.alphaNanRepaired = repaired.at("nan").get<std::uint64_t>();
+        f.alphaNegativeRepaired = repaired.at("negative").get<std::uint64_t>();
+        f.alphaOverOneRepaired = repaired.at("overOne").get<std::uint64_t>();
+        return f;
+    } catch (const json::exception& e) {
+        throw Error(std::string("probe visibility facts: ") + e.what());
+    }
+}
+
+void addProbeVisibilityToManifest(json& entry, const ProbeVisibilityFacts& f) {
+    if (f.visibility)
+        entry["visibility"] = {
+            {"convention", "premultiplied-alpha"},
+            {"channel", "A"},
+            {"meaning",
+             "A = the capture's visibility filtered like RGB (1: close surroundings, 0: sky the "
+             "composition takes from the next probe or the distant one, Frostbite 2014 4.9.5); RGB = "
+             "LD of colour x visibility; KTX2 key iblbake.visibility = premultiplied-alpha"}};
+    if (f.alphaNanRepaired + f.alphaNegativeRepaired + f.alphaOverOneRepaired > 0)
+        entry["alphaRepaired"] = {{"nan", f.alphaNanRepaired},
+                                  {"negative", f.alphaNegativeRepaired},
+                                  {"overOne", f.alphaOverOneRepaired}};
+}
+
 json ldManifestEntry(const LdManifestFacts& facts, const std::string& contentHash) {
     json entry = ldManifestFactsToJson(facts);
     entry["contentHash"] = contentHash;

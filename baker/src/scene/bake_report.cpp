@@ -28,6 +28,20 @@ std::string ldChain(const json& p) {
                   p.at("roughnessMapping").get<std::string>().c_str());
 }
 
+// A local probe's chain, its visibility and the alpha values its ingest repaired (absent in older manifests).
+std::string localProbe(const json& p) {
+    std::string text = ldChain(p);
+    if (p.contains("visibility")) text += ", visibility in A (premultiplied)";
+    if (p.contains("alphaRepaired")) {
+        const json& r = p["alphaRepaired"];
+        text += format(", alpha repaired: %llu NaN, %llu negative, %llu over 1",
+                       (unsigned long long)r.at("nan").get<std::uint64_t>(),
+                       (unsigned long long)r.at("negative").get<std::uint64_t>(),
+                       (unsigned long long)r.at("overOne").get<std::uint64_t>());
+    }
+    return text;
+}
+
 std::string describe(const std::string& name, const json& p, const std::string& units) {
     if (name == "dfg")
         return format("DFG LUT %dx%d %s, %d samples", p.at("size").get<int>(), p.at("size").get<int>(),
@@ -96,7 +110,7 @@ void addManifestReport(BakeSummary& summary) {
                             describe(name, products[name], m.at("units").get<std::string>())));
         for (const json& p : products.at("probes"))
             summary.report.push_back(
-                product("probe:" + p.at("name").get<std::string>(), p, dir, "local " + ldChain(p)));
+                product("probe:" + p.at("name").get<std::string>(), p, dir, "local " + localProbe(p)));
         for (const char* name : {"gltf", "preview"})
             if (products.contains(name))
                 summary.report.push_back(

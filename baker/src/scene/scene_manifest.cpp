@@ -182,6 +182,8 @@ json buildManifest(const ManifestInputs& in) {
         const std::string file = it->second->products.at(0);
         json probe = ldManifestEntry(probeFacts(*it->second, file), in.productHashes.at(file));
         addStorage(probe, it->first);
+        addProbeVisibilityToManifest(probe, probeVisibilityFactsFromJson(readJsonFile(
+                                                in.entries.at(it->first) / kProbeVisibilityFacts)));
         probe["name"] = p.name;
         probe["position"] = vec3Json(p.position);
         probe["proxy"] = volumeJson(p.proxy);

@@ -284,6 +284,12 @@ SceneProbe probe(const json& v, const std::string& path, const fs::path& base, c
     p.capture = files(r, "capture", base);
     p.layout = r.choice("layout", "auto", kLayouts);
     checkLayoutFileCount(r, "layout", p.layout, p.capture.size());
+    if (r.has("visibilityMask")) {
+        p.visibilityMask = files(r, "visibilityMask", base);
+        if (p.visibilityMask.size() != p.capture.size())
+            fail(r.key("visibilityMask"),
+                 "needs one file per capture file (" + std::to_string(p.capture.size()) + ")");
+    }
     p.colorSpace = r.string("colorSpace", "");
     p.rotationDegrees = r.number("rotation", 0.0, -kMaxDegrees, kMaxDegrees);
     p.latLongPixels = r.choice("latlongPixels", "auto", kLatLongPixels);

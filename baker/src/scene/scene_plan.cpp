@@ -241,6 +241,9 @@ Plan planScene(const Scene& scene) {
                         {"probe_" + p.name + ".ktx2"},
                         true,
                         ""};
+            for (PlanInput& mask :
+                 inputsOf(p.visibilityMask, "probes[" + std::to_string(i) + "].visibilityMask"))
+                s.inputs.push_back(std::move(mask));
             s.settings["layout"] = p.layout;
             s.settings["colorSpace"] = p.colorSpace;
             s.settings["workingColorSpace"] = env.workingColorSpace;

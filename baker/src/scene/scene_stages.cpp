@@ -1,4 +1,5 @@
 #include "scene_stages.h"
+#include "../io/ktx2_format.h"
 
 #include "iblbake/baker/calibration.h"
 #include "iblbake/baker/dfg_lut.h"
@@ -15,6 +16,7 @@
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
+#include "iblbake/runtime/runtime.h"
 
 #include <nlohmann/json.hpp>
 
@@ -97,10 +99,12 @@ IngestSettings ingestSettings(const json& s) {
     return ingest;
 }
 
-std::vector<fs::path> inputFiles(const PlanStage& stage) {
+// The stage's input files, or with `keyPart` those whose scene key holds it (a probe's ".visibilityMask").
+std::vector<fs::path> inputFiles(const PlanStage& stage, const std::string& keyPart = "", bool with = true) {
     std::vector<fs::path> files;
     for (const PlanInput& in : stage.inputs)
-        files.push_back(in.file);
+        if (keyPart.empty() || (in.keyPath.find(keyPart) != std::string::npos) == with)
+            files.push_back(in.file);
     return files;
 }
 
@@ -208,16 +212,25 @@ void runSunInProbe(const StageContext& c) {
 
 // Bakes and writes an LD chain (the distant environment's or a local probe's). With `withSun`, level 0 may
 // keep the sun's pixels (specular.h keepSunInLevel0); returns the chain's manifest facts.
+// With `visibility` (a local probe's capture whose alpha is not 1 everywhere), the chain carries it
+// (specular.h bakeSpecularWithVisibility) and the file says so (KTX2 key iblbake.visibility).
 LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                              const CachedCalibration& calibration, const std::string& product,
-                             const fs::path& file, const CubeMap* withSun = nullptr) {
+                             const fs::path& file, const CubeMap* withSun = nullptr,
+                             bool visibility = false) {
     const json& s = c.stage.settings;
     SpecularSettings settings;
     settings.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
     settings.quality = parseQuality(s.at("quality").get<std::string>());
     settings.integratedLevels = s.at("integratedLevels").get<int>();
-    CubeMapChain chain = bakeSpecular(source, settings, *c.executor);
     const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    if (visibility && !ktx2::formatInfo(format).hasAlpha)
+        throw SettingError("outputs.ktx2Format", s.at("ktx2Format").get<std::string>() +
+                                                     " has no alpha channel for the visibility of " +
+                                                     calibration.sourceFile().value_or("the capture") +
+                                                     " (use rgba16f or rgba32f)");
+    CubeMapChain chain = visibility ? bakeSpecularWithVisibility(source, settings, *c.executor).chain
+                                    : bakeSpecular(source, settings, *c.executor);
     LdChainProduct ld;
     ld.product = product;
     ld.mapping = settings.mapping;
@@ -234,6 +247,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     const ProductStorage storage = chooseProductStorage(chain, format, clampToFormat);
     Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
     keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
+    if (visibility) keyValues.emplace_back(kVisibilityKey, kVisibilityPremultipliedAlpha);
     writeProductCube(file, chain, format, keyValues, storage);
     writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(storage));
     LdManifestFacts facts;
@@ -309,6 +323,8 @@ void runProbe(const StageContext& c) {
     forInput(c, [&] {
         EnvironmentSettings settings;
         settings.ingest = ingestSettings(s);
+        settings.ingest.readAlpha = true; // a capture's alpha is its visibility (Frostbite 2014 4.9.1.2)
+        settings.ingest.visibilityMask = inputFiles(c.stage, ".visibilityMask");
         if (s.at("calibration").at("source") == "environment") {
             const json envCalibration = readJsonFile(c.dependencies.at("environment") / kCalibrationFile);
             settings.calibration.source = CalibrationSource::Scale;
@@ -316,7 +332,8 @@ void runProbe(const StageContext& c) {
         } else {
             settings.calibration = calibrationSettings(s.at("calibration"));
         }
-        const PreparedEnvironment prepared = prepareEnvironment(inputFiles(c.stage), settings);
+        const PreparedEnvironment prepared =
+            prepareEnvironment(inputFiles(c.stage, ".visibilityMask", false), settings);
         const SourceEnvironment& env = prepared.env;
         json source = {{"file", fs::path(env.report.file).filename().string()}};
         addLatLongPixels(source, env.report.latLongPixels);
@@ -324,7 +341,14 @@ void runProbe(const StageContext& c) {
             {{"colorSpace", env.report.workingColorSpace}, {"source", source}},
             prepared.record,
             std::nullopt};
-        writeLdChain(c, env.cube, calibration, "local-probe-ld", c.outputDirectory / "ld.ktx2");
+        writeLdChain(c, env.cube, calibration, "local-probe-ld", c.outputDirectory / "ld.ktx2", nullptr,
+                     env.report.hasAlpha);
+        ProbeVisibilityFacts facts;
+        facts.visibility = env.report.hasAlpha;
+        facts.alphaNanRepaired = env.report.alphaNanRepaired;
+        facts.alphaNegativeRepaired = env.report.alphaNegativeRepaired;
+        facts.alphaOverOneRepaired = env.report.alphaOverOneRepaired;
+        writeJsonFile(c.outputDirectory / kProbeVisibilityFacts, probeVisibilityFactsToJson(facts));
     });
 }
 

@@ -40,6 +40,9 @@ inline constexpr const char* kCalibrationFile = "calibration.json";
 // Beside the specular stage's chain: its manifest facts (products.h ldManifestFactsToJson, with
 // sunInLevel0), so that the manifest needs nothing else from the entry.
 inline constexpr const char* kLdManifestFacts = "manifest_facts.json";
+// Beside a local probe's chain: whether it carries a visibility and the alpha values its ingest repaired
+// (products.h probeVisibilityFactsToJson).
+inline constexpr const char* kProbeVisibilityFacts = "visibility_facts.json";
 // Beside every KTX2 product of a stage (specular, irradiance, local probe): how it was stored
 // (products.h productStorageToJson), for the manifest and the bake summary.
 inline constexpr const char* kStorageFile = "storage.json";

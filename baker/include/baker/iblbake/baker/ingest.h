@@ -58,6 +58,17 @@ struct IngestSettings {
     // Where a lat-long's pixels sit (latlong_pixels.h): Auto = OpenExr for a file carrying OpenEXR's envmap
     // = latlong attribute, else pixel centres. Not used by cube layouts.
     LatLongPixels latLongPixels = LatLongPixels::Auto;
+    // Read the file's alpha channel as a visibility (a local probe's capture, Frostbite 2014 4.9.1.2: 1 for
+    // the close surroundings, 0 for sky). Colour is then taken as premultiplied by it (OpenEXR's associated
+    // alpha; a file that declares unassociated alpha, e.g. PNG, is premultiplied after its colour
+    // conversion) and resampled with it by the same exact-area weights. false: alpha is ignored (every
+    // texel 1), as for the distant environment.
+    bool readAlpha = false;
+    // With readAlpha: the visibility as separate images, one per input file and of its size, replacing the
+    // file's alpha. Channel R (a grey image's only one) as stored, no colour conversion (a coverage, not a
+    // colour; an 8-bit file's 0-255 read as 0-1); the input's colour is then straight, premultiplied by it
+    // after its colour conversion. Empty: the file's own alpha channel, if any.
+    std::vector<std::filesystem::path> visibilityMask;
 };
 
 struct IngestReport {
@@ -74,10 +85,18 @@ struct IngestReport {
     int faceSize = 0;            // of the source cube
     // The placement a lat-long input was read with (Centre or OpenExr); nothing for cube layouts.
     std::optional<LatLongPixels> latLongPixels;
+    // With readAlpha: whether the cube carries a visibility (the file has an alpha channel and some value of
+    // it, after repair, is not 1; a file whose alpha is 1 everywhere ingests as one without alpha), and the
+    // alpha values repaired, counted per pixel: NaN and negatives (-Inf included) make the pixel transparent
+    // (RGBA 0, as bakeSpecularWithVisibility takes them), values over 1 (+Inf included) become 1.
+    bool hasAlpha = false;
+    std::uint64_t alphaNanRepaired = 0, alphaNegativeRepaired = 0, alphaOverOneRepaired = 0;
 };
 
 struct SourceEnvironment {
-    CubeMap cube; // working-space linear RGB, alpha = 1
+    // Working-space linear RGB; A = 1, or with IngestReport::hasAlpha the visibility in [0, 1] and RGB
+    // premultiplied by it.
+    CubeMap cube;
     IngestReport report;
 };
 

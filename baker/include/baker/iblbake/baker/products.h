@@ -173,6 +173,20 @@ nlohmann::json ldManifestEntry(const LdManifestFacts& facts, const std::string& 
 nlohmann::json ldManifestFactsToJson(const LdManifestFacts& facts);
 LdManifestFacts ldManifestFactsFromJson(const nlohmann::json& json);
 
+// A local probe's visibility (Frostbite 2014 4.9.1.2; ingest.h IngestSettings::readAlpha): whether its chain
+// carries one, and the alpha values of its capture repaired on ingest (ingest.h IngestReport). The probe
+// stage's cache record; its reader throws ibl::Error naming the entry.
+struct ProbeVisibilityFacts {
+    bool visibility = false;
+    std::uint64_t alphaNanRepaired = 0, alphaNegativeRepaired = 0, alphaOverOneRepaired = 0;
+};
+nlohmann::json probeVisibilityFactsToJson(const ProbeVisibilityFacts& facts);
+ProbeVisibilityFacts probeVisibilityFactsFromJson(const nlohmann::json& json);
+// The manifest's keys of a local probe (README "Manifest"): with a visibility, "visibility" {"convention":
+// "premultiplied-alpha", "channel": "A", "meaning"}; with repaired alpha values, "alphaRepaired" {"nan",
+// "negative", "overOne"}; nothing for a capture without alpha (every manifest before visibility existed).
+void addProbeVisibilityToManifest(nlohmann::json& probeEntry, const ProbeVisibilityFacts& facts);
+
 // From the diffuse document: sh.irradiance, its convention, sh.window {name, parameter, searched,
 // bandFactors}.
 nlohmann::json diffuseManifestEntry(const nlohmann::json& diffuseDocument, const std::string& contentHash);

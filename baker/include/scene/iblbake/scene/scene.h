@@ -44,6 +44,9 @@ struct SceneVolume {
 struct SceneProbe {
     std::string name; // [A-Za-z0-9_-], unique; names the product probe_<name>.ktx2
     std::vector<std::filesystem::path> capture;
+    // The visibility as a separate image (one per capture file, the same size), replacing the capture's
+    // alpha; empty: the capture's own alpha, if any (README "Schema").
+    std::vector<std::filesystem::path> visibilityMask;
     std::string layout = "auto";
     std::string colorSpace;
     double rotationDegrees = 0.0;

@@ -32,6 +32,9 @@ struct ManifestProbeSet {
 };
 
 // `path`: manifest.json or the bake directory holding it. Product paths resolve against its directory.
+// A local probe gets its visibility from its file (loadLdKtx2, key iblbake.visibility); the manifest's
+// products.probes[].visibility must name the convention (premultiplied-alpha in A), and a probe without it
+// (every manifest before visibility existed) must have none.
 // Throws ibl::Error "<manifest>: <key>: <problem>" for a malformed manifest or a product that cannot be read.
 ManifestProbeSet loadProbeSetFromManifest(const std::filesystem::path& path);
 
