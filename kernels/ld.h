@@ -175,8 +175,9 @@ IBL_FN bool ldFootprintApplies(float alpha, uint outputFaceSize) {
 // outSize, centre direction tCentre, solid angle omegaT).
 // - Near t with a lobe under a quarter of t: b in S x S patches, each its solid angle times
 //   narrowLobeTexelWeight's closed form of G_t around its centre; G_t varies over about alpha near t's
-//   edges, so S = 4 source texel / alpha, up to 32: the midpoint rule converges only linearly across an
-//   edge it does not resolve (up to 8, the texels beside a sun on rooitou's 32-px level 1 read 1.2% off).
+//   edges, so S = 4 source texel / alpha, up to 16, for the bright texels within about a texel of t (the
+//   midpoint rule converges only linearly across an edge it does not resolve: up to 8, the texels beside
+//   a sun on rooitou's 32-px level 1 read 1.2% off), and 1 beyond.
 // - Near t with a wider lobe: t in S x S patches, each its solid angle times the lobe around its centre over
 //   b (brightTexelWeight), S ~ 2 outSize / alpha (2 to 8).
 // - Farther than three texels: the point value at t's centre times Omega_t.
@@ -186,7 +187,10 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
     float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(tCentre, d)));
     float weight = 0.0f;
     if (narrowLobeClosedFormApplies(alpha, outSize, angle)) {
-        int S = (int)clamp(ceil(4.0f * sourceTexelSize / alpha), 1.0f, 32.0f);
+        // Only a bright texel touching t (or a texel away) has t's edges across it.
+        int S = angle < outSize + sourceTexelSize
+                    ? (int)clamp(ceil(4.0f * sourceTexelSize / alpha), 1.0f, 16.0f)
+                    : 1;
         int sourceFace = (int)e[7];
         float step = sourceTexelSize / (float)S;
         float bu = -1.0f + e[8] * sourceTexelSize, bv = -1.0f + e[9] * sourceTexelSize;
