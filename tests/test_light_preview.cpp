@@ -20,8 +20,8 @@ using namespace ibl;
 namespace fs = std::filesystem;
 
 // The built-in card on 16-px balls. Bounds, the measurement with margin (the README's table; 48-px balls
-// measure the same within 0.2%): the uniform lights 2.5% per column (measured <= 1.8%: the highlight's ring at
-// roughness 0.3-0.4, the representative point), the textured card 3% (measured <= 2.25%; its diffuse at
+// measure the same within 0.2%): the uniform lights 2.5% per column (measured <= 1.8%: the highlight's ring
+// at roughness 0.3-0.4, the representative point), the textured card 3% (measured <= 2.25%; its diffuse at
 // the horizon adds the lower-right crescent); the brute force's own estimate 0.1% (measured <= 0.011%).
 TEST(LightPreview, RuntimeAgainstTheBruteForce) {
     const fs::path dir = ibl::test::freshTempDir("light_preview");

@@ -23,7 +23,6 @@ struct ManifestInputs {
 
 nlohmann::json buildManifest(const ManifestInputs& inputs);
 
-
 inline constexpr int kManifestSchemaVersion = 1;
 
 } // namespace ibl

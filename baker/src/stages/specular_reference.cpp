@@ -106,8 +106,8 @@ FootprintSplit footprintSplit(const CubeMap& source) {
 // the texel. The footprint mean of a texel b is integral_b G_t(l) dl / Omega_t with G_t(l) = integral_t
 // pi D NoL dn (the kernel is symmetric in n and l): texelWeight with the output texel as "the texel" around
 // l, on an S x S grid of b, S = 4 source texel / alpha up to 64 (G_t changes over about alpha at t's
-// edges), 2 x 2 beyond two texels. `coarse` halves the grids (the error estimate: where a grid does not resolve alpha the rule converges only
-// linearly, so the estimate is the whole difference).
+// edges), 2 x 2 beyond two texels. `coarse` halves the grids (the error estimate: where a grid does not
+// resolve alpha the rule converges only linearly, so the estimate is the whole difference).
 struct TexelsPart {
     glm::dvec3 radiance{0.0};
     double weight = 0.0;
