@@ -168,6 +168,44 @@ TEST_F(HostileInputs, OpenExrHeaderClaimsAreRefusedBeforeOpenExrTakesMemory) {
                                            "chunk offsets, more than the rest of the file holds"});
 }
 
+// Found by fuzz/image_header.cpp: a small tiled OpenEXR whose tiledesc claims huge tiles; OpenEXR 3.1
+// allocates a tile's decoding buffer when it opens the file. The claim is held to the pixel limit.
+TEST_F(HostileInputs, OpenExrTilesLargerThanThePixelLimitAreRefused) {
+    const fs::path tiledFile = dir / "tiled_for_patch.exr";
+    OIIO::ImageSpec spec(32, 16, 3, OIIO::TypeDesc::HALF);
+    spec.tile_width = spec.tile_height = 16;
+    const std::vector<float> pixels(std::size_t(32) * 16 * 3, 0.5f);
+    {
+        auto out = OIIO::ImageOutput::create(tiledFile.string());
+        ASSERT_TRUE(out && out->open(tiledFile.string(), spec)) << OIIO::geterror();
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+        ASSERT_TRUE(out->close());
+    }
+    const std::string tiled = readBytes(tiledFile);
+    fs::remove(tiledFile);
+    writeText(dir / "tiled.exr", tiled);
+    const CliRun ok = runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "inspect tiled.exr");
+    EXPECT_EQ(ok.exitCode, 0) << ok.err;
+
+    const std::string key = std::string("tiles") + '\0' + "tiledesc" + '\0';
+    const std::size_t at = tiled.find(key);
+    ASSERT_NE(at, std::string::npos);
+    const auto claimingTiles = [&](std::uint32_t width, std::uint32_t height) {
+        std::string bytes = tiled;
+        const std::uint32_t size[2] = {width, height};
+        std::memcpy(&bytes[at + key.size() + 4], size, sizeof size); // after the attribute's size (9)
+        return bytes;
+    };
+    writeText(dir / "huge_tiles.exr", claimingTiles(1u << 30, 1u << 30));
+    expectRefused("inspect huge_tiles.exr", {"huge_tiles.exr", "damaged OpenEXR header",
+                                             "1073741824x1073741824 tiles are larger than the limit of "
+                                             "268435456 pixels (IBLBAKE_MAX_IMAGE_PIXELS)"});
+    // Tiles within the pixel limit pass the walk: a 64x64 tile of a 32x16 image is legal OpenEXR.
+    writeText(dir / "big_tiles.exr", claimingTiles(64, 64));
+    const CliRun big = runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "inspect big_tiles.exr");
+    EXPECT_EQ(big.err.find("damaged OpenEXR header"), std::string::npos) << big.err;
+}
+
 TEST_F(HostileInputs, ThePixelLimitIsSetByItsVariable) {
     expectRefused(kSpecular + "sky.exr", {"sky.exr", "64x32 is 2048 pixels, more than the limit of 2047"},
                   "IBLBAKE_MAX_IMAGE_PIXELS=2047 ");

@@ -2,8 +2,9 @@
 // header, sized by what the header claims, before any caller can look: a string attribute's value (a
 // 1.3 KB file claiming a 1.8 GB "Software" string, found by fuzz/image_header.cpp), a string vector's
 // strings, a preview image's pixels, the chunk-offset table (dataWindow with compression or tiles,
-// chunkCount). Each claim is held
-// against what the file can hold and against the pixel limit, so such a file is refused in one line.
+// chunkCount), and when it opens a part, one decoding buffer per chunk sized from the tile or the block
+// of scanlines times the bytes of a pixel (the channel list). Each claim is held against what the file
+// can hold and against the pixel limit, so such a file is refused in one line.
 // Layout (OpenEXR "File Layout"): magic 76 2f 31 01, a 4-byte version with flags, then one header (a
 // multi-part file: several, closed by an empty one) of attributes name\0 type\0 int32 size, value; a
 // header ends with an empty name. Integers are little-endian.
@@ -11,6 +12,7 @@
 
 #include "iblbake/core/error.h"
 #include "iblbake/core/input_file.h"
+#include "iblbake/core/limits.h"
 
 #include <algorithm>
 #include <array>
@@ -102,22 +104,35 @@ std::int32_t fixedSizeOf(const std::string& type) {
     return 0;
 }
 
-// What a part's header says about its chunks: OpenEXR allocates one 8-byte offset per chunk when it opens
-// the file, and a file that holds the part holds those offsets after its headers.
+// What a part's header says about its chunks. When OpenEXR opens a part it allocates one 8-byte offset
+// per chunk (a file that holds the part holds those offsets after its headers) and decoding buffers of
+// one chunk each: a tile, or a block of scanlines, times the bytes of a pixel.
 struct PartClaims {
     std::uint64_t width = 0, height = 0; // of the dataWindow, 0 when absent or empty
     int compression = -1;
     std::uint64_t tileWidth = 0, tileHeight = 0; // of tiledesc, 0 when absent
+    std::uint64_t bytesPerPixel = 0;             // of all channels in the chlist, subsampling ignored
 
-    // Chunks of level 0 (OpenEXR "Chunk Offset Tables"): tiles, or blocks of scanlines whose height the
-    // compression gives (an unknown compression, which OpenEXR refuses, counts as the tallest, 256).
+    bool tiled() const { return tileWidth > 0 && tileHeight > 0; }
+
+    // Scanlines per chunk (OpenEXR "Chunk Offset Tables"), by compression; an unknown compression, which
+    // OpenEXR refuses, counts as the tallest.
+    std::uint64_t linesPerChunk() const {
+        static constexpr std::uint64_t kLinesPerChunk[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
+        const bool known = compression >= 0 && compression < int(std::size(kLinesPerChunk));
+        return known ? kLinesPerChunk[compression] : 256;
+    }
+    // Chunks of level 0: tiles, or blocks of linesPerChunk() scanlines.
     std::uint64_t minimumChunks() const {
         if (width == 0 || height == 0) return 0;
         const auto divUp = [](std::uint64_t a, std::uint64_t b) { return (a + b - 1) / b; };
-        if (tileWidth > 0 && tileHeight > 0) return divUp(width, tileWidth) * divUp(height, tileHeight);
-        static constexpr std::uint64_t kLinesPerChunk[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};
-        const bool known = compression >= 0 && compression < int(std::size(kLinesPerChunk));
-        return divUp(height, known ? kLinesPerChunk[compression] : 256);
+        if (tiled()) return divUp(width, tileWidth) * divUp(height, tileHeight);
+        return divUp(height, linesPerChunk());
+    }
+    // Pixels of the largest chunk: a whole tile (a tile larger than the data window still takes its full
+    // buffer), or the scanlines of one block.
+    std::uint64_t chunkPixels() const {
+        return tiled() ? tileWidth * tileHeight : width * std::min(height, linesPerChunk());
     }
 };
 
@@ -153,14 +168,17 @@ void checkAttribute(HeaderReader& in, const std::string& attribute, const std::s
         if (chunks < 0 || std::uint64_t(chunks) > in.left() / 8)
             throw in.damaged("chunkCount " + std::to_string(chunks) + " is more than the file can hold");
     } else if (type == "chlist") {
-        // Channels (name\0, then 16 bytes each) up to an empty name, which must end the attribute.
+        // Channels (name\0, then pixel type int32, pLinear, 3 reserved bytes, x and y sampling int32) up to
+        // an empty name, which must end the attribute. HALF (1) is 2 bytes, UINT (0) and FLOAT (2) are 4.
         std::int64_t left = size;
         for (;;) {
             const std::string channel = in.text();
             left -= std::int64_t(channel.size()) + 1;
             if (channel.empty()) break;
             if (left < 16) throw sizeMismatch();
-            in.skip(16);
+            const std::int32_t pixelType = in.int32();
+            if (attribute == "channels") part.bytesPerPixel += pixelType == 1 ? 2 : 4;
+            in.skip(12);
             left -= 16;
         }
         if (left != 0) throw sizeMismatch();
@@ -191,6 +209,24 @@ void checkAttribute(HeaderReader& in, const std::string& attribute, const std::s
     }
 }
 
+// A chunk's decoding buffer is held to the memory the pixel limit allows a whole image (RGBA32F, 16 bytes
+// a pixel) and a tile to the pixel limit itself: found by fuzz/image_header.cpp, a 4096-pixel data window
+// tiled in tiles of billions of pixels, whose tile buffer OpenEXR allocated on open.
+void checkChunkBuffers(const HeaderReader& in, const PartClaims& part) {
+    const std::uint64_t maxPixels = limits::maxImagePixels();
+    if (part.tiled() && part.tileHeight > maxPixels / part.tileWidth)
+        throw in.damaged("its " + std::to_string(part.tileWidth) + "x" + std::to_string(part.tileHeight) +
+                         " tiles are larger than the limit of " + std::to_string(maxPixels) + " pixels (" +
+                         limits::kMaxImagePixelsVariable + ")");
+    constexpr std::uint64_t kBudgetBytesPerPixel = 16;
+    const std::uint64_t chunkPixels = part.chunkPixels(); // at most 2^40 x 256: no overflow
+    if (part.bytesPerPixel > 0 && chunkPixels > maxPixels * kBudgetBytesPerPixel / part.bytesPerPixel)
+        throw in.damaged("a chunk of " + std::to_string(chunkPixels) + " pixels of " +
+                         std::to_string(part.bytesPerPixel) + " bytes is more than the " +
+                         std::to_string(maxPixels * kBudgetBytesPerPixel) +
+                         " bytes the pixel limit allows (" + limits::kMaxImagePixelsVariable + ")");
+}
+
 } // namespace
 
 void checkExrHeader(const std::filesystem::path& file, const std::string& name) {
@@ -218,6 +254,7 @@ void checkExrHeader(const std::filesystem::path& file, const std::string& name) 
             throw in.damaged("its " + std::to_string(claims.width) + "x" + std::to_string(claims.height) +
                              " data window needs " + std::to_string(chunks) +
                              " chunk offsets, more than the rest of the file holds");
+        checkChunkBuffers(in, claims);
         if (!multiPart) return;
     }
 }
