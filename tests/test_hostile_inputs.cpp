@@ -12,6 +12,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <cstdlib>
@@ -46,21 +47,28 @@ std::map<std::string, std::intmax_t> listing(const fs::path& dir) {
     return out;
 }
 
+// OpenEXR `bytes` with the value of attribute `name` of `type` overwritten in place by `value`'s bytes
+// (OpenEXR file layout: name\0 type\0, int32 size, then the value; integers little-endian, as this machine).
+template <typename Value>
+std::string withAttributeValue(std::string bytes, const char* name, const char* type, const Value& value) {
+    const std::string key = std::string(name) + '\0' + type + '\0';
+    const std::size_t at = bytes.find(key);
+    EXPECT_NE(at, std::string::npos) << name;
+    if (at != std::string::npos) std::memcpy(&bytes[at + key.size() + 4], &value, sizeof value);
+    return bytes;
+}
+
 // The bytes of a small OpenEXR (64 x 32, float RGB) whose header is rewritten to claim width x height:
-// its dataWindow and displayWindow (box2i, OpenEXR file layout) are patched in place. 64 KB of zeros after
-// it give the offset table of the claimed rows something to read, so that the header is accepted.
+// its dataWindow and displayWindow (box2i) are patched in place. 64 KB of zeros after it give the offset
+// table of the claimed rows something to read, so that the header is accepted.
 std::string exrClaiming(const fs::path& dir, int width, int height) {
     const fs::path good = dir / "good_for_patch.exr";
     writeLatLong(good, 0.5f);
     std::string bytes = readBytes(good);
     fs::remove(good);
-    for (const char* name : {"dataWindow", "displayWindow"}) {
-        const std::string key = std::string(name) + '\0' + "box2i" + '\0';
-        const std::size_t at = bytes.find(key);
-        EXPECT_NE(at, std::string::npos) << name;
-        const std::int32_t box[4] = {0, 0, width - 1, height - 1};
-        std::memcpy(&bytes[at + key.size() + 4], box, sizeof box); // after the attribute's size (16)
-    }
+    const std::array<std::int32_t, 4> box = {0, 0, width - 1, height - 1};
+    for (const char* name : {"dataWindow", "displayWindow"})
+        bytes = withAttributeValue(bytes, name, "box2i", box);
     return bytes + std::string(64 << 10, '\0');
 }
 
@@ -171,30 +179,22 @@ TEST_F(HostileInputs, OpenExrHeaderClaimsAreRefusedBeforeOpenExrTakesMemory) {
 // Found by fuzz/image_header.cpp: a small tiled OpenEXR whose tiledesc claims huge tiles; OpenEXR 3.1
 // allocates a tile's decoding buffer when it opens the file. The claim is held to the pixel limit.
 TEST_F(HostileInputs, OpenExrTilesLargerThanThePixelLimitAreRefused) {
-    const fs::path tiledFile = dir / "tiled_for_patch.exr";
     OIIO::ImageSpec spec(32, 16, 3, OIIO::TypeDesc::HALF);
     spec.tile_width = spec.tile_height = 16;
     const std::vector<float> pixels(std::size_t(32) * 16 * 3, 0.5f);
     {
-        auto out = OIIO::ImageOutput::create(tiledFile.string());
-        ASSERT_TRUE(out && out->open(tiledFile.string(), spec)) << OIIO::geterror();
+        const std::string file = (dir / "tiled.exr").string();
+        auto out = OIIO::ImageOutput::create(file);
+        ASSERT_TRUE(out && out->open(file, spec)) << OIIO::geterror();
         ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
         ASSERT_TRUE(out->close());
     }
-    const std::string tiled = readBytes(tiledFile);
-    fs::remove(tiledFile);
-    writeText(dir / "tiled.exr", tiled);
     const CliRun ok = runProgram("cd " + dir.string() + " && " + IBLBAKE_CLI, "inspect tiled.exr");
     EXPECT_EQ(ok.exitCode, 0) << ok.err;
 
-    const std::string key = std::string("tiles") + '\0' + "tiledesc" + '\0';
-    const std::size_t at = tiled.find(key);
-    ASSERT_NE(at, std::string::npos);
+    const std::string tiled = readBytes(dir / "tiled.exr");
     const auto claimingTiles = [&](std::uint32_t width, std::uint32_t height) {
-        std::string bytes = tiled;
-        const std::uint32_t size[2] = {width, height};
-        std::memcpy(&bytes[at + key.size() + 4], size, sizeof size); // after the attribute's size (9)
-        return bytes;
+        return withAttributeValue(tiled, "tiles", "tiledesc", std::array<std::uint32_t, 2>{width, height});
     };
     writeText(dir / "huge_tiles.exr", claimingTiles(1u << 30, 1u << 30));
     expectRefused("inspect huge_tiles.exr", {"huge_tiles.exr", "damaged OpenEXR header",

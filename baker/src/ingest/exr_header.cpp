@@ -209,16 +209,16 @@ void checkAttribute(HeaderReader& in, const std::string& attribute, const std::s
     }
 }
 
-// A chunk's decoding buffer is held to the memory the pixel limit allows a whole image (RGBA32F, 16 bytes
-// a pixel) and a tile to the pixel limit itself: found by fuzz/image_header.cpp, a 4096-pixel data window
-// tiled in tiles of billions of pixels, whose tile buffer OpenEXR allocated on open.
+// A chunk's decoding buffer is held to the memory the pixel limit allows a whole image in memory (an
+// ImageRGBA pixel each) and a tile to the pixel limit itself: found by fuzz/image_header.cpp, a 4096-pixel
+// data window tiled in tiles of billions of pixels, whose tile buffer OpenEXR allocated on open.
 void checkChunkBuffers(const HeaderReader& in, const PartClaims& part) {
     const std::uint64_t maxPixels = limits::maxImagePixels();
     if (part.tiled() && part.tileHeight > maxPixels / part.tileWidth)
         throw in.damaged("its " + std::to_string(part.tileWidth) + "x" + std::to_string(part.tileHeight) +
                          " tiles are larger than the limit of " + std::to_string(maxPixels) + " pixels (" +
                          limits::kMaxImagePixelsVariable + ")");
-    constexpr std::uint64_t kBudgetBytesPerPixel = 16;
+    constexpr std::uint64_t kBudgetBytesPerPixel = sizeof(decltype(ImageRGBA::pixels)::value_type);
     const std::uint64_t chunkPixels = part.chunkPixels(); // at most 2^40 x 256: no overflow
     if (part.bytesPerPixel > 0 && chunkPixels > maxPixels * kBudgetBytesPerPixel / part.bytesPerPixel)
         throw in.damaged("a chunk of " + std::to_string(chunkPixels) + " pixels of " +
