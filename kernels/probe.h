@@ -132,35 +132,6 @@ IBL_FN vec3 sampleLd(IBL_FLOAT_BUFFER data, LdChain ld, vec3 d, float perceptual
     return cubeSampleLod(data + ld.dataOffset, ld.shape, d, ldLodForRoughness(ld, perceptualRoughness));
 }
 
-// A scalar pyramid (one float per texel: a local probe's visibility) has the layout of cube_sample.h with
-// one float where the RGB pyramid has three, so its texel index is the RGB float index / 3 (every term of
-// cubeBorderedTexelIndex is a multiple of 3). Bilinear and trilinear reads with the RGB reads' weights.
-IBL_FN float cubeSampleLevelScalar(IBL_FLOAT_BUFFER pyramid, CubePyramidLayout shape, uint level,
-                                   CubeCoord c) {
-    uint size = cubeLevelFaceSize(shape, level);
-    float n = IBL_FLOAT(size);
-    float x = c.s * n - 0.5f, y = c.t * n - 0.5f;
-    float x0f = clamp(floor(x), -1.0f, n - 1.0f), y0f = clamp(floor(y), -1.0f, n - 1.0f);
-    float fx = clamp(x - x0f, 0.0f, 1.0f), fy = clamp(y - y0f, 0.0f, 1.0f);
-    uint i00 = cubeBorderedTexelIndex(shape, level, c.face, IBL_INT(x0f), IBL_INT(y0f)) / 3u;
-    uint i10 = i00 + 1u, i01 = i00 + size + 2u, i11 = i01 + 1u;
-    float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
-    return w00 * IBL_READ(pyramid, i00) + w10 * IBL_READ(pyramid, i10) + w01 * IBL_READ(pyramid, i01) +
-           w11 * IBL_READ(pyramid, i11);
-}
-
-IBL_FN float cubeSampleLodScalar(IBL_FLOAT_BUFFER pyramid, CubePyramidLayout shape, vec3 d, float lod) {
-    CubeCoord c = cubeCoordFromDirection(d);
-    float maxLevel = IBL_FLOAT(shape.levelCount - 1u);
-    lod = clamp(lod, 0.0f, maxLevel);
-    float l0f = floor(lod);
-    uint l0 = IBL_UINT(l0f);
-    uint l1 = min(l0 + 1u, shape.levelCount - 1u);
-    float f = lod - l0f;
-    return cubeSampleLevelScalar(pyramid, shape, l0, c) * (1.0f - f) +
-           cubeSampleLevelScalar(pyramid, shape, l1, c) * f;
-}
-
 // Bilinear DFG LUT (DESIGN.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped to the
 // texel centres (so NoV < 0.5 / N reads the first column, as Listing 24's max(NdotV, 0.5 / size)).
 // Returns (DFG1, DFG2, Disney).

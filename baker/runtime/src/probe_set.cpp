@@ -28,7 +28,7 @@ LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping, Chai
     pyramid.layout.levelCount = uint32_t(chain.levels.size());
     pyramid.data.assign(cubePyramidFloatCount(pyramid.layout), 0.0f);
     if (alpha == ChainAlpha::PremultipliedVisibility)
-        pyramid.visibility.assign(cubePyramidFloatCount(pyramid.layout) / 3u, 0.0f);
+        pyramid.visibility.assign(cubePyramidTexelCount(pyramid.layout), 0.0f);
     for (uint32_t m = 0; m < pyramid.layout.levelCount; ++m) {
         const CubeMap& level = chain.levels[m];
         const int n = base >> m;
