@@ -182,6 +182,37 @@ TEST_F(IndependentParser, LightCardArray) {
     fs::remove_all(dir);
 }
 
+// A local probe's LD holds colour x visibility: its DFD carries KHR_DF_FLAG_ALPHA_PREMULTIPLIED, every
+// other product's does not (the checker expects the flag clear unless told).
+TEST_F(IndependentParser, PremultipliedAlphaIsTheDfdFlag) {
+    const fs::path dir = ibl::test::freshTempDir("ktx_premultiplied");
+    ibl::CubeMapChain chain;
+    for (int n = 4; n >= 1; n /= 2) {
+        ibl::CubeMap level(n);
+        for (ibl::ImageRGBA& face : level.faces)
+            for (glm::vec4& texel : face.pixels)
+                texel = glm::vec4(0.25f, 0.5f, 0.125f, 0.5f);
+        chain.levels.push_back(level);
+    }
+    ibl::writeKtx2Cube(dir / "premultiplied.ktx2", chain, ibl::Ktx2Format::RGBA16F, {},
+                       ibl::Ktx2Alpha::Premultiplied);
+    ibl::writeKtx2Cube(dir / "straight.ktx2", chain, ibl::Ktx2Format::RGBA16F, {});
+    nlohmann::json expect = {
+        {"vkFormat", 97}, {"pixelWidth", 4}, {"levelCount", 3}, {"faceCount", 6}, {"layerCount", 0}};
+    const std::string premultiplied = (dir / "premultiplied.ktx2").string();
+    const std::string straight = (dir / "straight.ktx2").string();
+    NodeRun r = runNode("check_ktx2.mjs", straight + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(runNode("check_ktx2.mjs", premultiplied + " " + quoted(expect)).exitCode, 1);
+    expect["alphaPremultiplied"] = true;
+    r = runNode("check_ktx2.mjs", premultiplied + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    EXPECT_EQ(runNode("check_ktx2.mjs", straight + " " + quoted(expect)).exitCode, 1);
+    EXPECT_EQ(ibl::readKtx2(premultiplied).alpha, ibl::Ktx2Alpha::Premultiplied);
+    EXPECT_EQ(ibl::readKtx2(straight).alpha, ibl::Ktx2Alpha::Straight);
+    fs::remove_all(dir);
+}
+
 // The checker itself can fail: a wrong expectation and a damaged file are both reported.
 TEST_F(IndependentParser, Ktx2CheckerRejectsWrongExpectationsAndDamage) {
     const fs::path dir = ibl::test::freshTempDir("ktx_negative");

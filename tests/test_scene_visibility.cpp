@@ -147,8 +147,9 @@ void expectMirrorsThroughTheWindow(const SceneDir& d) {
     EXPECT_EQ(probe["visibility"]["convention"], "premultiplied-alpha");
     EXPECT_EQ(probe["visibility"]["channel"], "A");
     EXPECT_FALSE(probe.contains("alphaRepaired"));
-    EXPECT_EQ(readKtx2(d.out() / "probe_room.ktx2").keyValues.at("iblbake.visibility"),
-              "premultiplied-alpha");
+    const Ktx2Image stored = readKtx2(d.out() / "probe_room.ktx2");
+    EXPECT_EQ(stored.keyValues.at("iblbake.visibility"), "premultiplied-alpha");
+    EXPECT_EQ(stored.alpha, Ktx2Alpha::Premultiplied) << "the DFD's KHR_DF_FLAG_ALPHA_PREMULTIPLIED";
 
     const ManifestProbeSet loaded = loadProbeSetFromManifest(d.out());
     ASSERT_EQ(loaded.set.localProbes().size(), 1u);

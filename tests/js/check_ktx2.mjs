@@ -1,10 +1,12 @@
 // Reads a KTX 2.0 file with ktx-parse (an implementation independent of iblbake's reader) and checks it
 // against what the writer promised.
 // Usage: node check_ktx2.mjs FILE.ktx2 '{"vkFormat": 97, "pixelWidth": 64, ["pixelHeight": 64,] "levelCount": 7,
-//        "faceCount": 6, "layerCount": 0, "keys": ["iblbake.product", ...], "keyValues": {"k": "v"}}'
+//        "faceCount": 6, "layerCount": 0, ["alphaPremultiplied": true,] "keys": ["iblbake.product", ...],
+//        "keyValues": {"k": "v"}}'   (alphaPremultiplied: the DFD's flag, expected clear when not given)
 // Exits 0 and prints "ok ..." when every check holds; otherwise prints each failure and exits 1.
 import { readFileSync } from 'node:fs';
-import { read, KHR_DF_MODEL_RGBSDA, KHR_DF_PRIMARIES_BT709, KHR_DF_TRANSFER_LINEAR } from 'ktx-parse';
+import { read, KHR_DF_FLAG_ALPHA_PREMULTIPLIED, KHR_DF_MODEL_RGBSDA, KHR_DF_PRIMARIES_BT709, KHR_DF_TRANSFER_LINEAR }
+  from 'ktx-parse';
 
 const [file, expectText] = process.argv.slice(2);
 const expect = JSON.parse(expectText);
@@ -69,6 +71,10 @@ if (format) {
   check(dfd.colorModel === KHR_DF_MODEL_RGBSDA, `DFD colorModel ${dfd.colorModel}, expected RGBSDA`);
   check(dfd.colorPrimaries === KHR_DF_PRIMARIES_BT709, `DFD colorPrimaries ${dfd.colorPrimaries}, expected BT709`);
   check(dfd.transferFunction === KHR_DF_TRANSFER_LINEAR, `DFD transferFunction ${dfd.transferFunction}, expected LINEAR`);
+  const premultiplied = (dfd.flags & KHR_DF_FLAG_ALPHA_PREMULTIPLIED) !== 0;
+  check(premultiplied === (expect.alphaPremultiplied ?? false),
+        `DFD flags ${dfd.flags}: alpha ${premultiplied ? 'premultiplied' : 'straight'}, expected ` +
+        `${expect.alphaPremultiplied ? 'premultiplied' : 'straight'}`);
   check(dfd.texelBlockDimension.every((d) => d === 0), `DFD texelBlockDimension ${dfd.texelBlockDimension}`);
   check(dfd.bytesPlane[0] === format.bytes && dfd.bytesPlane.slice(1).every((b) => b === 0),
         `DFD bytesPlane ${dfd.bytesPlane}, expected [${format.bytes}, 0...]`);

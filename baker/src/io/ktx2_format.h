@@ -20,10 +20,11 @@ inline constexpr std::size_t kHeaderBytes = 80;          // identifier, 9 UInt32
 inline constexpr std::size_t kLevelIndexEntryBytes = 24; // byteOffset, byteLength, uncompressedByteLength
 
 // KDF basic descriptor block constants (KDF section 5).
-inline constexpr std::uint32_t kDfVersion = 2;      // versionNumber of KDF 1.3 and later
-inline constexpr std::uint32_t kModelRgbsda = 1;    // KHR_DF_MODEL_RGBSDA
-inline constexpr std::uint32_t kPrimariesBt709 = 1; // KHR_DF_PRIMARIES_BT709
-inline constexpr std::uint32_t kTransferLinear = 1; // KHR_DF_TRANSFER_LINEAR
+inline constexpr std::uint32_t kDfVersion = 2;              // versionNumber of KDF 1.3 and later
+inline constexpr std::uint32_t kModelRgbsda = 1;            // KHR_DF_MODEL_RGBSDA
+inline constexpr std::uint32_t kPrimariesBt709 = 1;         // KHR_DF_PRIMARIES_BT709
+inline constexpr std::uint32_t kTransferLinear = 1;         // KHR_DF_TRANSFER_LINEAR
+inline constexpr std::uint32_t kFlagAlphaPremultiplied = 1; // KHR_DF_FLAG_ALPHA_PREMULTIPLIED
 inline constexpr std::uint8_t kQualifierLinear = 0x10;
 inline constexpr std::uint8_t kQualifierExponent = 0x20;
 inline constexpr std::uint8_t kQualifierSigned = 0x40;
@@ -110,7 +111,7 @@ inline std::vector<Sample> formatSamples(Ktx2Format format) {
 // The complete Data Format Descriptor as UInt32 words: dfdTotalSize, then one basic descriptor block
 // (KDF section 5: vendorId/descriptorType, versionNumber/descriptorBlockSize, model/primaries/transfer/
 // flags, texelBlockDimension0..3, bytesPlane0..7, then 4 words per sample).
-inline std::vector<std::uint32_t> dataFormatDescriptor(Ktx2Format format) {
+inline std::vector<std::uint32_t> dataFormatDescriptor(Ktx2Format format, Ktx2Alpha alpha) {
     const FormatInfo& info = formatInfo(format);
     const std::vector<Sample> samples = formatSamples(format);
     const std::uint32_t blockBytes = 24 + 16 * std::uint32_t(samples.size());
@@ -118,7 +119,8 @@ inline std::vector<std::uint32_t> dataFormatDescriptor(Ktx2Format format) {
     words.push_back(4 + blockBytes);
     words.push_back(0); // vendorId KHRONOS (0), descriptorType BASICFORMAT (0)
     words.push_back(kDfVersion | (blockBytes << 16));
-    words.push_back(kModelRgbsda | (kPrimariesBt709 << 8) | (kTransferLinear << 16)); // flags: straight alpha
+    const std::uint32_t flags = alpha == Ktx2Alpha::Premultiplied ? kFlagAlphaPremultiplied : 0;
+    words.push_back(kModelRgbsda | (kPrimariesBt709 << 8) | (kTransferLinear << 16) | (flags << 24));
     words.push_back(0);               // 1x1x1x1 texel block (each dimension stored minus one)
     words.push_back(info.texelBytes); // bytesPlane0; planes 1..3 unused
     words.push_back(0);               // bytesPlane4..7

@@ -144,10 +144,10 @@ FormatInfo checkHeader(const Header& h, const std::string& name) {
 
 // The DFD must hold a basic descriptor block whose layout and samples are exactly those of vkFormat
 // (KTX 2.0 "Data Format Descriptor" restrictions; only the LINEAR qualifier bit may differ). Colour
-// primaries and alpha flags are informational; the transfer function must be linear, since the texels
-// are returned as linear values.
-void checkDfd(std::span<const std::uint8_t> bytes, const FormatInfo& info, const std::string& name) {
-    const std::vector<std::uint32_t> expected = ktx2::dataFormatDescriptor(info.format);
+// primaries are informational and the premultiplied-alpha flag is returned; the transfer function must be
+// linear, since the texels are returned as linear values.
+Ktx2Alpha checkDfd(std::span<const std::uint8_t> bytes, const FormatInfo& info, const std::string& name) {
+    const std::vector<std::uint32_t> expected = ktx2::dataFormatDescriptor(info.format, Ktx2Alpha::Straight);
     ByteSource in(bytes, name, "data format descriptor");
     if (in.u32() != bytes.size()) throw Error(name + ": dfdTotalSize does not match dfdByteLength");
     std::vector<std::uint32_t> block;
@@ -171,6 +171,7 @@ void checkDfd(std::span<const std::uint8_t> bytes, const FormatInfo& info, const
             throw Error(name + ": data format descriptor does not match vkFormat " +
                         std::to_string(info.vkFormat));
     }
+    return (block[2] >> 24) & ktx2::kFlagAlphaPremultiplied ? Ktx2Alpha::Premultiplied : Ktx2Alpha::Straight;
 }
 
 // KTX 2.0 "Key/Value Data": the entries must exactly fill kvdByteLength, keys must be non-empty,
@@ -270,10 +271,10 @@ Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name)
     if (h.dfdByteOffset != indexEnd || h.dfdByteLength % 4 != 0 ||
         !inside(h.dfdByteOffset, h.dfdByteLength, fileSize))
         throw Error(name + ": data format descriptor does not follow the level index inside the file");
-    checkDfd(slice(file, h.dfdByteOffset, h.dfdByteLength), info, name);
+    Ktx2Image image;
+    image.alpha = checkDfd(slice(file, h.dfdByteOffset, h.dfdByteLength), info, name);
     std::uint64_t metadataEnd = std::uint64_t(h.dfdByteOffset) + h.dfdByteLength;
 
-    Ktx2Image image;
     if (h.kvdByteLength == 0) {
         if (h.kvdByteOffset != 0) throw Error(name + ": kvdByteOffset is set for empty key/value data");
     } else {

@@ -188,14 +188,15 @@ std::vector<std::uint8_t> keyValueData(const std::string& name, const Ktx2KeyVal
 
 // layerCount 0: not an array (each level's images are its faces); else a 2D array of that many layers.
 Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& levels, Ktx2Format format,
-                         const Ktx2KeyValues& keyValues, std::uint32_t layerCount = 0) {
+                         const Ktx2KeyValues& keyValues, std::uint32_t layerCount = 0,
+                         Ktx2Alpha alpha = Ktx2Alpha::Straight) {
     const std::string name = path.string();
     const FormatInfo& info = ktx2::formatInfo(format);
     const std::uint32_t imagesPerLevel = std::uint32_t(levels.front().faces.size());
     const std::uint32_t faceCount = layerCount == 0 ? imagesPerLevel : 1;
     const std::uint32_t levelCount = std::uint32_t(levels.size());
 
-    const std::vector<std::uint32_t> dfd = ktx2::dataFormatDescriptor(format);
+    const std::vector<std::uint32_t> dfd = ktx2::dataFormatDescriptor(format, alpha);
     const std::vector<std::uint8_t> kvd = keyValueData(name, keyValues);
 
     // Section offsets: header and Index, Level Index, DFD, KVD, then (no supercompression global data)
@@ -270,7 +271,7 @@ void checkImage(const std::string& name, const ImageRGBA& image, int width, int 
 } // namespace
 
 Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Ktx2Format format,
-                             const Ktx2KeyValues& keyValues) {
+                             const Ktx2KeyValues& keyValues, Ktx2Alpha alpha) {
     const std::string name = path.string();
     if (chain.levels.empty()) throw Error(name + ": refusing to write a cube map without levels");
     const int base = chain.levels.front().faceSize;
@@ -311,7 +312,7 @@ Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Kt
         }
         levels.push_back(std::move(view));
     }
-    return writeKtx2(path, levels, format, keyValues);
+    return writeKtx2(path, levels, format, keyValues, 0, alpha);
 }
 
 Ktx2WriteStats writeKtx2Array(const fs::path& path, const std::vector<std::vector<ImageRGBA>>& levels,

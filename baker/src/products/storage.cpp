@@ -100,11 +100,11 @@ Ktx2KeyValues storageKeyValues(const ProductStorage& storage) {
 
 Ktx2WriteStats writeProductCube(const std::filesystem::path& path, const CubeMapChain& chain,
                                 Ktx2Format format, const Ktx2KeyValues& keyValues,
-                                const ProductStorage& storage) {
+                                const ProductStorage& storage, Ktx2Alpha alpha) {
     Ktx2KeyValues kv = keyValues;
     for (auto& entry : storageKeyValues(storage))
         kv.push_back(std::move(entry));
-    if (storage.scale == 1.0) return writeKtx2Cube(path, chain, format, kv);
+    if (storage.scale == 1.0) return writeKtx2Cube(path, chain, format, kv, alpha);
     CubeMapChain scaled = chain;
     const float scale = float(storage.scale);
     for (CubeMap& level : scaled.levels)
@@ -114,7 +114,7 @@ Ktx2WriteStats writeProductCube(const std::filesystem::path& path, const CubeMap
                 t.g *= scale;
                 t.b *= scale;
             }
-    return writeKtx2Cube(path, scaled, format, kv);
+    return writeKtx2Cube(path, scaled, format, kv, alpha);
 }
 
 json productStorageToJson(const ProductStorage& storage) {

@@ -248,7 +248,8 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
     keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
     if (visibility) keyValues.emplace_back(kVisibilityKey, kVisibilityPremultipliedAlpha);
-    writeProductCube(file, chain, format, keyValues, storage);
+    writeProductCube(file, chain, format, keyValues, storage,
+                     visibility ? Ktx2Alpha::Premultiplied : Ktx2Alpha::Straight);
     writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();

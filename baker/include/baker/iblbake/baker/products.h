@@ -124,7 +124,7 @@ Ktx2KeyValues storageKeyValues(const ProductStorage& storage);
 // writeKtx2Cube of the chain times storage.scale, with keyValues and storageKeyValues(storage).
 Ktx2WriteStats writeProductCube(const std::filesystem::path& path, const CubeMapChain& chain,
                                 Ktx2Format format, const Ktx2KeyValues& keyValues,
-                                const ProductStorage& storage);
+                                const ProductStorage& storage, Ktx2Alpha alpha = Ktx2Alpha::Straight);
 
 // The manifest entry's keys (README "Manifest"): "storageScale", and with `clamped` "storageClamp"
 // {"energyLostPercent": [per level], "meaning"}; the same object is a stage's cache record. Its reader

@@ -34,13 +34,17 @@ struct Ktx2WriteStats {
 
 using Ktx2KeyValues = std::vector<std::pair<std::string, std::string>>;
 
+// How RGB relates to A, written as the DFD's KHR_DF_FLAG_ALPHA_PREMULTIPLIED (KDF 5.6 "flags"): a local
+// probe's LD holds colour x visibility (Premultiplied); everything else stores alpha 1 or no alpha.
+enum class Ktx2Alpha { Straight, Premultiplied };
+
 // Writes a cube map with every level of `chain` (levels[0] largest, level m of face size max(1, base >> m)).
 // Key/value pairs are written sorted by key, each value NUL-terminated, together with
 // "KTXwriter" = "iblbake <version>" (the caller may not pass that key, nor an empty or duplicate key).
 // The file is written to a temporary name and renamed when complete (ibl::AtomicFile). Throws ibl::Error
 // "<file>: <problem>" on invalid input or any I/O failure; an existing file at `path` is then untouched.
 Ktx2WriteStats writeKtx2Cube(const std::filesystem::path& path, const CubeMapChain& chain, Ktx2Format format,
-                             const Ktx2KeyValues& keyValues);
+                             const Ktx2KeyValues& keyValues, Ktx2Alpha alpha = Ktx2Alpha::Straight);
 
 // Writes one 2D image (faceCount 1, levelCount 1), e.g. a LUT. Same conventions as writeKtx2Cube.
 Ktx2WriteStats writeKtx2Image(const std::filesystem::path& path, const ImageRGBA& image, Ktx2Format format,
@@ -61,6 +65,7 @@ struct Ktx2Image {
     std::uint32_t layerCount = 0;                 // 0: not an array (2D arrays only: faceCount 1)
     std::uint32_t levelCount = 0;                 // as stored in the header; 0 means "base level only"
     std::map<std::string, std::string> keyValues; // one trailing NUL of each value removed
+    Ktx2Alpha alpha = Ktx2Alpha::Straight;        // the DFD's premultiplied-alpha flag
     // levels[m][face], or levels[m][layer] for an array, max(1, levelCount) levels, decoded to float RGBA
     // (alpha 1 for formats without alpha). Values are decoded as stored: a foreign file may contain Inf/NaN
     // texels.
