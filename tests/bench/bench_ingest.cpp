@@ -2,6 +2,7 @@
 // repair, colour, exact-area lat-long -> cube resampling) at n-texel faces, and each of its steps and the
 // measurements made on the cube before a bake (statistics, sun detection, zenith luminance) on their own.
 // Process CPU time is reported beside wall time: on a shared 2-core machine it is the steadier figure.
+#include "cube_texel_geometry.h"
 #include "ingest_internal.h"
 
 #include <iblbake/baker/calibration.h>
@@ -69,8 +70,15 @@ void ingestMaxLuminance(benchmark::State& state) {
 void ingestResample(benchmark::State& state) {
     const ibl::ImageRGBA& image = sampleImage().pixels;
     for (auto _ : state)
-        benchmark::DoNotOptimize(ibl::ingest::resampleLatLongToCubeRotated(
-            image, int(state.range(0)), ibl::LatLongPixels::Centre, 0.0));
+        benchmark::DoNotOptimize(ibl::ingest::resampleLatLongToCubeRotated(image, int(state.range(0)),
+                                                                           ibl::LatLongPixels::Centre, 0.0));
+}
+
+// The table of one face size that statistics, sun detection and zenith luminance read (built once per
+// process and face size; their benchmarks reuse it).
+void cubeTexelGeometry(benchmark::State& state) {
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::CubeTexelGeometry(int(state.range(0))));
 }
 
 void cubeStatistics(benchmark::State& state) {
@@ -88,8 +96,8 @@ void cubeSunDetection(benchmark::State& state) {
 void cubeZenithLuminance(benchmark::State& state) {
     const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
     for (auto _ : state)
-        benchmark::DoNotOptimize(ibl::zenithLuminance(ibl::SphereTexels(cube), ibl::kZenithCapDegrees,
-                                                      ibl::kRec709Luminance));
+        benchmark::DoNotOptimize(
+            ibl::zenithLuminance(ibl::SphereTexels(cube), ibl::kZenithCapDegrees, ibl::kRec709Luminance));
 }
 
 void timed(benchmark::internal::Benchmark* b) {
@@ -102,6 +110,7 @@ BENCHMARK(ingestSanitize)->Apply(timed);
 BENCHMARK(ingestColour)->Apply(timed);
 BENCHMARK(ingestMaxLuminance)->Apply(timed);
 BENCHMARK(ingestResample)->Arg(256)->Apply(timed);
+BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(timed);
 BENCHMARK(cubeStatistics)->Arg(256)->Apply(timed);
 BENCHMARK(cubeSunDetection)->Arg(256)->Apply(timed);
 BENCHMARK(cubeZenithLuminance)->Arg(256)->Apply(timed);
