@@ -82,6 +82,67 @@ TEST(EnvironmentGeometry, CubeTexelsAreExact) {
                         2e-4 * t.solidAngle(std::size_t(j) * 64 + i));
 }
 
+// The cube geometry is read from a table of one face quadrant (mirrored, and turned into each face's frame):
+// it must equal every face's own texel integrals. The reference integrates on each face plane, where
+// d omega = da db / (1 + a^2 + b^2)^(3/2) and the direction is (o + a u + b v) / sqrt(1 + a^2 + b^2), by
+// 3-point Gauss-Legendre on 4 x 4 cells per texel (smooth integrands: ~1e-10 here); the upward cosine
+// over the part above the horizon (side faces: b <= 0, as y = -b). A wrong mirror or frame is off by ~1.
+TEST(EnvironmentGeometry, CubeTableMatchesEachFacesIntegrals) {
+    const double nodes[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)},
+                 weights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    struct Integrals {
+        double omega = 0.0, upward = 0.0;
+        glm::dvec3 vector{0.0};
+    };
+    for (int n : {5, 8, 34}) {
+        const CubeMap cube(n);
+        const SphereTexels texels(cube);
+        double worst = 0.0;
+        for (int face = 0; face < 6; ++face) {
+            const glm::dvec3 o(cubeFaceDirection(face, 0.5f, 0.5f));
+            const glm::dvec3 u = glm::dvec3(cubeFaceDirection(face, 1.0f, 0.5f)) - o,
+                             v = glm::dvec3(cubeFaceDirection(face, 0.5f, 1.0f)) - o;
+            const auto integrate = [&](double a0, double a1, double b0, double b1, Integrals& sum,
+                                       bool upward) {
+                constexpr int kCells = 4;
+                const double da = (a1 - a0) / kCells, db = (b1 - b0) / kCells;
+                for (int ca = 0; ca < kCells; ++ca)
+                    for (int cb = 0; cb < kCells; ++cb)
+                        for (int p = 0; p < 3; ++p)
+                            for (int q = 0; q < 3; ++q) {
+                                const double a = a0 + da * (ca + 0.5 + 0.5 * nodes[p]);
+                                const double b = b0 + db * (cb + 0.5 + 0.5 * nodes[q]);
+                                const double r2 = 1.0 + a * a + b * b;
+                                const double w =
+                                    weights[p] * weights[q] * 0.25 * da * db / (r2 * std::sqrt(r2));
+                                const glm::dvec3 d = (o + a * u + b * v) / std::sqrt(r2);
+                                if (upward) {
+                                    sum.upward += w * std::max(0.0, d.y);
+                                } else {
+                                    sum.omega += w;
+                                    sum.vector += w * d;
+                                }
+                            }
+            };
+            for (int j = 0; j < n; ++j)
+                for (int i = 0; i < n; ++i) {
+                    const double step = 2.0 / n;
+                    const double a0 = -1.0 + i * step, a1 = a0 + step, b0 = -1.0 + j * step, b1 = b0 + step;
+                    Integrals ref;
+                    integrate(a0, a1, b0, b1, ref, false);
+                    if (face == 2) integrate(a0, a1, b0, b1, ref, true);
+                    if (face != 2 && face != 3 && b0 < 0.0)
+                        integrate(a0, a1, b0, std::min(b1, 0.0), ref, true);
+                    const std::size_t k = (std::size_t(face) * n + j) * n + i;
+                    worst = std::max({worst, std::fabs(texels.solidAngle(k) - ref.omega) / ref.omega,
+                                      glm::length(texels.vectorSolidAngle(k) - ref.vector) / ref.omega,
+                                      std::fabs(texels.upwardCosine(k) - ref.upward) / ref.omega});
+                }
+        }
+        EXPECT_LT(worst, 1e-6) << "face size " << n;
+    }
+}
+
 TEST(EnvironmentGeometry, LatLongPixelsAreExact) {
     for (auto [w, h] : {std::pair{4, 2}, {64, 32}, {63, 31}, {100, 50}}) {
         SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));

@@ -1,6 +1,7 @@
 // Ingest front end: reading, layout detection, colour, repair and area-correct resampling.
 #include "iblbake/baker/ingest.h"
 #include "iblbake/core/error.h"
+#include "ingest_internal.h"
 
 #include <cube.h>
 
@@ -289,6 +290,48 @@ TEST(IngestResample, OnePixelSunKeepsItsEnergy) {
         }
     }
     RecordProperty("worst_relative_energy_error", std::to_string(worstError));
+}
+
+// The resampling computes one texel's geometry for its mirror image and quarter turns (when the grid has
+// them) and applies it to all: every texel must match the one computed on its own, within rounding. A wrong
+// orbit (face, texel, column shift or mirrored rows) is off by the content's contrast, ~1.
+TEST(IngestResample, SymmetricGeometryMatchesTexelByTexel) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    struct Case {
+        int w, h, n;
+        LatLongPixels placement;
+        double rotate;
+        bool alpha;
+    };
+    const Case cases[] = {
+        {256, 128, 32, LatLongPixels::Centre, 0.0, false},  // mirror and quarter turns
+        {256, 128, 20, LatLongPixels::Centre, 0.7, true},   // rotated, with alpha
+        {255, 128, 32, LatLongPixels::Centre, 0.0, false},  // width not a multiple of 4: mirror only
+        {257, 129, 16, LatLongPixels::OpenExr, 0.0, false}, // OpenEXR placement: mirror only
+        {256, 128, 15, LatLongPixels::Centre, 0.0, false},  // odd face: every texel on its own
+    };
+    for (const Case& c : cases) {
+        ImageRGBA ll = latLongOf(c.w, c.h, [&](int, int) { return glm::vec3(uni(rng), uni(rng), uni(rng)); });
+        for (glm::vec4& p : ll.pixels)
+            p.w = uni(rng);
+        for (int k = 0; k < 20; ++k) // bright spots, placed with no symmetry
+            ll.at(int(uni(rng) * float(c.w - 1)), int(uni(rng) * float(c.h - 1))) =
+                glm::vec4(glm::vec3(1e4f * uni(rng)), 1.0f);
+        const CubeMap fast =
+            ibl::ingest::resampleLatLongToCubeRotated(ll, c.n, c.placement, c.rotate, c.alpha);
+        const CubeMap reference =
+            ibl::ingest::resampleLatLongToCubeRotated(ll, c.n, c.placement, c.rotate, c.alpha, false);
+        double worst = 0.0;
+        for (int f = 0; f < 6; ++f)
+            for (std::size_t t = 0; t < fast.faces[f].pixels.size(); ++t)
+                for (int ch = 0; ch < 4; ++ch) {
+                    const double a = fast.faces[f].pixels[t][ch], b = reference.faces[f].pixels[t][ch];
+                    worst = std::max(worst, std::fabs(a - b) / std::max({std::fabs(a), std::fabs(b), 1e-30}));
+                }
+        EXPECT_LE(worst, 1e-6) << c.w << "x" << c.h << " into " << c.n << ", "
+                               << ibl::latLongPixelsName(c.placement) << ", rotation " << c.rotate;
+    }
 }
 
 // A quarter turn maps the texel grid onto itself, so the rotated cube is the unrotated one permuted.

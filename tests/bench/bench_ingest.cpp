@@ -1,10 +1,36 @@
 // Ingest time (Google Benchmark; never a pass/fail timer): the whole ingest of the sample HDRI (read,
-// repair, colour, exact-area lat-long -> cube resampling) at n-texel faces.
+// repair, colour, exact-area lat-long -> cube resampling) at n-texel faces, and each of its steps and the
+// measurements made on the cube before a bake (statistics, sun detection, zenith luminance) on their own.
+// Process CPU time is reported beside wall time: on a shared 2-core machine it is the steadier figure.
+#include "cube_texel_geometry.h"
+#include "ingest_internal.h"
+
+#include <iblbake/baker/calibration.h>
+#include <iblbake/baker/environment_stats.h>
 #include <iblbake/baker/ingest.h>
+#include <iblbake/baker/sun.h>
 
 #include <benchmark/benchmark.h>
 
 namespace {
+
+// The sample read and repaired once: the steps after the read start from it.
+const ibl::ingest::RawImage& sampleImage() {
+    static const ibl::ingest::RawImage image = [] {
+        ibl::ingest::RawImage raw = ibl::ingest::readImage(IBLBAKE_SAMPLE_HDRI);
+        ibl::ingest::sanitize(raw.pixels);
+        return raw;
+    }();
+    return image;
+}
+
+const ibl::CubeMap& sampleCube(int faceSize) {
+    static ibl::CubeMap cube;
+    if (cube.faceSize != faceSize)
+        cube = ibl::ingest::resampleLatLongToCubeRotated(sampleImage().pixels, faceSize,
+                                                         ibl::LatLongPixels::Centre, 0.0);
+    return cube;
+}
 
 void ingestSample(benchmark::State& state) {
     ibl::IngestSettings settings;
@@ -13,6 +39,80 @@ void ingestSample(benchmark::State& state) {
         benchmark::DoNotOptimize(ibl::ingestEnvironment({IBLBAKE_SAMPLE_HDRI}, settings));
 }
 
-BENCHMARK(ingestSample)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
+void ingestRead(benchmark::State& state) {
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::ingest::readImage(IBLBAKE_SAMPLE_HDRI));
+}
+
+// A repaired image again: the same checks of every value, nothing left to change.
+void ingestSanitize(benchmark::State& state) {
+    ibl::ImageRGBA image = sampleImage().pixels;
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::ingest::sanitize(image));
+}
+
+// Rec.709 -> ACEScg (the sample is Rec.709, where the default working space makes this step a no-op);
+// converted back and forth so that every iteration sees the same values.
+void ingestColour(benchmark::State& state) {
+    ibl::ImageRGBA image = sampleImage().pixels;
+    for (auto _ : state) {
+        ibl::ingest::convertColor(image, "lin_rec709", "acescg", "sample");
+        ibl::ingest::convertColor(image, "acescg", "lin_rec709", "sample");
+    }
+    state.SetLabel("two conversions");
+}
+
+void ingestMaxLuminance(benchmark::State& state) {
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::ingest::maxLuminance(sampleImage().pixels, ibl::kRec709Luminance));
+}
+
+void ingestResample(benchmark::State& state) {
+    const ibl::ImageRGBA& image = sampleImage().pixels;
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::ingest::resampleLatLongToCubeRotated(image, int(state.range(0)),
+                                                                           ibl::LatLongPixels::Centre, 0.0));
+}
+
+// The table of one face size that statistics, sun detection and zenith luminance read (built once per
+// process and face size; their benchmarks reuse it).
+void cubeTexelGeometry(benchmark::State& state) {
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::CubeTexelGeometry(int(state.range(0))));
+}
+
+void cubeStatistics(benchmark::State& state) {
+    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::computeEnvironmentStats(cube, ibl::kRec709Luminance));
+}
+
+void cubeSunDetection(benchmark::State& state) {
+    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::detectSun(cube, ibl::SunDetectSettings{}));
+}
+
+void cubeZenithLuminance(benchmark::State& state) {
+    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(
+            ibl::zenithLuminance(ibl::SphereTexels(cube), ibl::kZenithCapDegrees, ibl::kRec709Luminance));
+}
+
+void timed(benchmark::internal::Benchmark* b) {
+    b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+}
+
+BENCHMARK(ingestSample)->Arg(64)->Arg(256)->Arg(1024)->Apply(timed);
+BENCHMARK(ingestRead)->Apply(timed);
+BENCHMARK(ingestSanitize)->Apply(timed);
+BENCHMARK(ingestColour)->Apply(timed);
+BENCHMARK(ingestMaxLuminance)->Apply(timed);
+BENCHMARK(ingestResample)->Arg(256)->Apply(timed);
+BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(timed);
+BENCHMARK(cubeStatistics)->Arg(256)->Apply(timed);
+BENCHMARK(cubeSunDetection)->Arg(256)->Apply(timed);
+BENCHMARK(cubeZenithLuminance)->Arg(256)->Apply(timed);
 
 } // namespace

@@ -1,18 +1,13 @@
 // Exact texel geometry on the sphere (SphereTexels) and the photometric statistics built on it.
 //
-// Cube texels are spherical quadrilaterals whose edges are great-circle arcs (straight lines on the face
-// plane), so their solid angle has a closed form (the face area element of kernels/cube.h, here in
-// double) and so has the integral of the direction over them: Arvo's vector irradiance of a spherical
-// polygon, 1/2 sum_k theta_k n_k over its edges (theta_k the arc length, n_k the unit normal of the edge's
-// plane). Clipping the face-plane polygon at the horizon (y = 0 is a straight line on every face plane)
-// gives the exact upward-cosine weight of a texel that straddles it.
+// Cube texels: the tabulated geometry of cube_texel_geometry.h.
 //
 // Lat-long cells are rectangles in (longitude phi, z = sin latitude), where d omega = d phi dz, and every
 // integral needed separates: solid angle dphi dz, upward cosine dphi (z1^2 - z0^2) / 2, direction
 // integral from the antiderivative of sqrt(1 - z^2).
 #include "iblbake/baker/environment_stats.h"
 
-#include "../ingest/ingest_internal.h"
+#include "cube_texel_geometry.h"
 #include "iblbake/core/error.h"
 
 #include <cube.h>
@@ -25,7 +20,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <optional>
 #include <utility>
 #include <vector>
 
@@ -34,66 +28,6 @@ namespace ibl {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// ---- cube geometry ----
-
-double areaElement(double x, double y) {
-    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
-}
-
-struct FaceSquare {
-    double a0, a1, b0, b1;
-};
-
-FaceSquare faceSquare(int i, int j, int n) {
-    const double step = 2.0 / n;
-    return {-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step, -1.0 + (j + 1) * step};
-}
-
-// A polygon on a face plane, in (a, b) coordinates; at most 5 vertices after one half-plane clip.
-struct PlanePolygon {
-    std::array<glm::dvec2, 8> v;
-    int count = 0;
-};
-
-PlanePolygon squarePolygon(const FaceSquare& s) {
-    PlanePolygon p;
-    p.v[0] = {s.a0, s.b0};
-    p.v[1] = {s.a1, s.b0};
-    p.v[2] = {s.a1, s.b1};
-    p.v[3] = {s.a0, s.b1};
-    p.count = 4;
-    return p;
-}
-
-// Keeps the part where c + g . (a, b) >= 0 (Sutherland-Hodgman against one line).
-PlanePolygon clipHalfPlane(const PlanePolygon& in, double c, const glm::dvec2& g) {
-    PlanePolygon out;
-    for (int k = 0; k < in.count; ++k) {
-        const glm::dvec2 p = in.v[std::size_t(k)], q = in.v[std::size_t((k + 1) % in.count)];
-        const double fp = c + glm::dot(g, p), fq = c + glm::dot(g, q);
-        if (fp >= 0.0) out.v[std::size_t(out.count++)] = p;
-        if ((fp >= 0.0) != (fq >= 0.0)) out.v[std::size_t(out.count++)] = p + (q - p) * (fp / (fp - fq));
-    }
-    return out;
-}
-
-// Integral of the unit direction over the spherical polygon under a face-plane polygon (Arvo 1995).
-glm::dvec3 polygonVectorSolidAngle(const ingest::FaceFrame& frame, const PlanePolygon& poly) {
-    if (poly.count < 3) return glm::dvec3(0.0);
-    glm::dvec3 sum(0.0), centre(0.0);
-    for (int k = 0; k < poly.count; ++k) {
-        const glm::dvec2 p = poly.v[std::size_t(k)], q = poly.v[std::size_t((k + 1) % poly.count)];
-        const glm::dvec3 dp = glm::normalize(frame.at(p.x, p.y)), dq = glm::normalize(frame.at(q.x, q.y));
-        const glm::dvec3 c = glm::cross(dp, dq);
-        const double len = glm::length(c);
-        centre += dp;
-        if (len > 0.0) sum += (std::atan2(len, glm::dot(dp, dq)) / len) * c;
-    }
-    sum *= 0.5;
-    // The formula's sign follows the polygon's winding; the integral points toward the polygon.
-    return glm::dot(sum, centre) < 0.0 ? -sum : sum;
-}
 
 // ---- lat-long geometry (the placement's pixel grid, latlong_pixels.h) ----
 
@@ -129,6 +63,7 @@ double squareDifference(double z1, double z0) {
 SphereTexels::SphereTexels(CubeMap& cube) : cube_(&cube), writable_(true) {
     if (cube.faceSize <= 0) throw Error("environment: empty cube map");
     size_ = 6 * std::size_t(cube.faceSize) * std::size_t(cube.faceSize);
+    cubeGeometry_ = CubeTexelGeometry::of(cube.faceSize);
 }
 
 SphereTexels::SphereTexels(const CubeMap& cube) : SphereTexels(const_cast<CubeMap&>(cube)) {
@@ -174,12 +109,15 @@ void SphereTexels::setRgb(std::size_t i, const glm::vec3& value) {
     t = glm::vec4(value, t.w);
 }
 
+SphereTexels::CubeTexel SphereTexels::cubeTexel(std::size_t i) const {
+    const std::size_t n = std::size_t(cube_->faceSize), r = i % (n * n);
+    return {int(i / (n * n)), int(r % n), int(r / n)};
+}
+
 double SphereTexels::solidAngle(std::size_t i) const {
     if (cube_) {
-        const int n = cube_->faceSize, r = int(i % (std::size_t(n) * std::size_t(n)));
-        const FaceSquare s = faceSquare(r % n, r / n, n);
-        return areaElement(s.a0, s.b0) - areaElement(s.a0, s.b1) - areaElement(s.a1, s.b0) +
-               areaElement(s.a1, s.b1);
+        const CubeTexel t = cubeTexel(i);
+        return cubeGeometry_->solidAngle(t.i, t.j);
     }
     const int w = latlong_->width, h = latlong_->height;
     const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h, placement_);
@@ -188,10 +126,8 @@ double SphereTexels::solidAngle(std::size_t i) const {
 
 glm::dvec3 SphereTexels::vectorSolidAngle(std::size_t i) const {
     if (cube_) {
-        const int n = cube_->faceSize;
-        const int face = int(i / (std::size_t(n) * std::size_t(n))),
-                  r = int(i % (std::size_t(n) * std::size_t(n)));
-        return polygonVectorSolidAngle(ingest::faceFrame(face), squarePolygon(faceSquare(r % n, r / n, n)));
+        const CubeTexel t = cubeTexel(i);
+        return cubeGeometry_->vectorSolidAngle(t.face, t.i, t.j);
     }
     const int w = latlong_->width, h = latlong_->height;
     const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h, placement_);
@@ -206,15 +142,8 @@ glm::dvec3 SphereTexels::direction(std::size_t i) const {
 
 double SphereTexels::upwardCosine(std::size_t i) const {
     if (cube_) {
-        const int n = cube_->faceSize;
-        const int face = int(i / (std::size_t(n) * std::size_t(n))),
-                  r = int(i % (std::size_t(n) * std::size_t(n)));
-        if (face == 3) return 0.0; // -Y: entirely below the horizon
-        const ingest::FaceFrame frame = ingest::faceFrame(face);
-        PlanePolygon poly = squarePolygon(faceSquare(r % n, r / n, n));
-        // y(a, b) = o.y + a u.y + b v.y on the face plane; the +Y face needs no clip.
-        if (face != 2) poly = clipHalfPlane(poly, frame.o.y, {frame.u.y, frame.v.y});
-        return std::max(0.0, polygonVectorSolidAngle(frame, poly).y);
+        const CubeTexel t = cubeTexel(i);
+        return cubeGeometry_->upwardCosine(t.face, t.i, t.j);
     }
     const int w = latlong_->width, h = latlong_->height;
     const LatLongCell c = latLongCell(int(i % std::size_t(w)), int(i / std::size_t(w)), w, h, placement_);
@@ -270,46 +199,6 @@ double ev100FromLuminance(double averageLuminance) {
 
 namespace {
 
-// Per-texel solid angle and upward-cosine weight of a cube, from tables of one face: the solid angle is
-// the same on every face, and the upward weight depends only on the face's height profile (o.y, u.y,
-// v.y), which the four side faces share. 3 tables of n^2 texels instead of 12 (each entry costs 4-5
-// atan2), so the statistics of a 256-px cube take a fraction of its ingest.
-class CubeTexelWeights {
-  public:
-    explicit CubeTexelWeights(const SphereTexels& texels, int faceSize) : n_(std::size_t(faceSize)) {
-        const std::size_t nn = n_ * n_;
-        solidAngle_.resize(nn);
-        for (std::size_t r = 0; r < nn; ++r)
-            solidAngle_[r] = texels.solidAngle(r);
-        for (int face = 0; face < 6; ++face) {
-            const ingest::FaceFrame f = ingest::faceFrame(face);
-            const std::array<double, 3> profile = {f.o.y, f.u.y, f.v.y};
-            std::size_t k = 0;
-            while (k < profiles_.size() && profiles_[k] != profile)
-                ++k;
-            if (k == profiles_.size()) {
-                profiles_.push_back(profile);
-                upward_.emplace_back(nn);
-                for (std::size_t r = 0; r < nn; ++r)
-                    upward_[k][r] = texels.upwardCosine(std::size_t(face) * nn + r);
-            }
-            upwardOfFace_[std::size_t(face)] = k;
-        }
-    }
-    double solidAngle(std::size_t i) const { return solidAngle_[i % (n_ * n_)]; }
-    double upwardCosine(std::size_t i) const {
-        const std::size_t nn = n_ * n_;
-        return upward_[upwardOfFace_[i / nn]][i % nn];
-    }
-
-  private:
-    std::size_t n_;
-    std::vector<double> solidAngle_;
-    std::vector<std::array<double, 3>> profiles_;
-    std::vector<std::vector<double>> upward_;
-    std::array<std::size_t, 6> upwardOfFace_{};
-};
-
 // The luminance below which `fraction` of the positive-luminance solid angle lies (texels as (luminance,
 // solid angle) pairs, consumed). Only the darkest texels are ordered: the answer lies among them unless
 // the solid angles are very uneven, when the whole list is sorted; either way the result is the full
@@ -338,12 +227,6 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
         double minY = std::numeric_limits<double>::infinity(),
                maxY = -std::numeric_limits<double>::infinity();
     };
-    std::optional<CubeTexelWeights> cube;
-    if (texels.isCube()) cube.emplace(texels, texels.faceSize());
-    const auto solidAngle = [&](std::size_t i) { return cube ? cube->solidAngle(i) : texels.solidAngle(i); };
-    const auto upwardCosine = [&](std::size_t i) {
-        return cube ? cube->upwardCosine(i) : texels.upwardCosine(i);
-    };
     // Deterministic: the same split into ranges on any number of threads, so the same sums to the last
     // bit (a calibration factor from them reaches every product, which must not depend on the machine).
     using Range = tbb::blocked_range<std::size_t>;
@@ -352,10 +235,10 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
         [&](const Range& range, Sums a) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
-                const double omega = solidAngle(i);
+                const double omega = texels.solidAngle(i);
                 a.omega += omega;
                 a.energy += y * omega;
-                a.upward += y * upwardCosine(i);
+                a.upward += y * texels.upwardCosine(i);
                 a.minY = std::min(a.minY, y);
                 a.maxY = std::max(a.maxY, y);
                 if (y > 0.0) {
@@ -390,7 +273,7 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
     positive.reserve(texels.size());
     for (std::size_t i = 0; i < texels.size(); ++i) {
         const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
-        if (y > 0.0) positive.emplace_back(float(y), float(solidAngle(i)));
+        if (y > 0.0) positive.emplace_back(float(y), float(texels.solidAngle(i)));
     }
     if (!positive.empty()) {
         st.lowPercentileLuminance = lowPercentile(positive, 0.001 * s.logOmega);

@@ -29,19 +29,44 @@ double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {
     return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
 
-// Solid-angle-weighted median of (value, weight) pairs; 0 when empty.
+// Solid-angle-weighted median of (value, weight) pairs (consumed): the first value, in ascending order,
+// at which the running weight reaches half the total; 0 when empty. Found by selection (a weighted
+// quickselect): nth_element splits the range where the answer lies at its middle until a short range is
+// left, which is sorted. The weights are summed part by part rather than in sorted order, which changes
+// only their rounding.
 double weightedMedian(std::vector<std::pair<float, double>>& samples) {
     if (samples.empty()) return 0.0;
-    std::sort(samples.begin(), samples.end());
     double total = 0.0;
     for (const auto& s : samples)
         total += s.second;
-    double acc = 0.0;
-    for (const auto& [value, weight] : samples) {
-        acc += weight;
-        if (acc >= 0.5 * total) return value;
+    const double half = 0.5 * total;
+    const auto weightOf = [&](std::size_t begin, std::size_t end) {
+        double w = 0.0;
+        for (std::size_t k = begin; k < end; ++k)
+            w += samples[k].second;
+        return w;
+    };
+    constexpr std::size_t kSorted = 64; // a range this short is sorted
+    std::size_t lo = 0, hi = samples.size();
+    double acc = 0.0; // weight of the samples before lo
+    const auto at = [&](std::size_t k) { return samples.begin() + std::ptrdiff_t(k); };
+    while (hi - lo > kSorted) {
+        const std::size_t mid = lo + (hi - lo) / 2;
+        std::nth_element(at(lo), at(mid), at(hi));
+        const double below = acc + weightOf(lo, mid);
+        if (below >= half) {
+            hi = mid;
+        } else {
+            acc = below;
+            lo = mid;
+        }
     }
-    return samples.back().first;
+    std::sort(at(lo), at(hi));
+    for (std::size_t k = lo; k < hi; ++k) {
+        acc += samples[k].second;
+        if (acc >= half) return samples[k].first;
+    }
+    return samples[hi - 1].first;
 }
 
 std::string format(const char* fmt, double a, double b = 0.0) {

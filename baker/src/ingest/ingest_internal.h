@@ -129,9 +129,11 @@ int sourceFaceSizeOf(const SourceFaces& faces);
 
 // ---- lat-long (latlong_to_cube.cpp) ----
 // resampleLatLongToCube with the environment rotated by `rotateRadians` about +Y (see IngestSettings);
-// with `withAlpha`, A is resampled with the same weights as colour (else A = 1).
+// with `withAlpha`, A is resampled with the same weights as colour (else A = 1). `useSymmetry` false
+// computes every texel's geometry itself (the reference the symmetric computation is tested against; the
+// results differ by rounding only).
 CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
-                                     double rotateRadians, bool withAlpha = false);
+                                     double rotateRadians, bool withAlpha = false, bool useSymmetry = true);
 // A resampled alpha as stored: clamped to [0, 1], and within 1e-6 of 0 or 1 taken as that (the exact-area
 // average of cells that are all 1 may round to 0.99999994; it should not make a visible texel partial).
 float resampledAlpha(double alpha);

@@ -14,6 +14,15 @@
 // quadrature of z_hi - z_lo: a constant environment gives a constant cube to rounding, and a one-pixel
 // sun keeps its energy (vertical texel edges on the side faces are meridians, so there the split of a
 // pixel between texels is exact; elsewhere only the quadrature of a smooth edge curve is approximate).
+//
+// The geometry (cuts, meridian clips, rows crossed) is the costly part, and most texels share it with
+// others: the cube and the lat-long grid are both unchanged by the mirror y -> -y (row edges are symmetric
+// about the equator in either placement) and, when the columns are (Centre placement, width a multiple of
+// 4), by a quarter turn about +Y, which shifts u by 1/4 (width/4 columns). A texel's mirror image integrates
+// the same rows mirrored (H-1-r), a quarter turn the columns shifted, with the same weights. So for an even
+// face size the geometry is computed for one texel of each such set (its orbit: 8 texels, or 2 without the
+// turns) and its weights applied to all of them: an eighth of the cube (a side face's upper half and a
+// quadrant of +Y) instead of all of it.
 #include "ingest_internal.h"
 
 #include "iblbake/core/error.h"
@@ -113,6 +122,9 @@ class LatLongGrid {
             z = std::cos(kPi * z);
         zEdge_.front() = 1.0;
         zEdge_.back() = -1.0;
+        rowHeight_.resize(std::size_t(image.height));
+        for (int r = 0; r < image.height; ++r)
+            rowHeight_[std::size_t(r)] = zEdge(r) - zEdge(r + 1);
     }
 
     const std::vector<double>& uEdges() const { return uEdge_; }
@@ -128,16 +140,31 @@ class LatLongGrid {
         return c;
     }
 
-    // Integral of column c over z in [zLo, zHi], per channel: RGB (Value = dvec3) or RGBA (dvec4).
-    template <class Value>
-    Value integrate(int c, double zLo, double zHi) const {
-        const int rTop = row(zHi), rBottom = row(zLo);
-        if (rTop == rBottom) return value<Value>(c, rTop) * (zHi - zLo);
-        Value sum = value<Value>(c, rTop) * (zHi - zEdge(rTop + 1));
-        for (int r = rTop + 1; r < rBottom; ++r)
-            sum += value<Value>(c, r) * (zEdge(r) - zEdge(r + 1));
-        return sum + value<Value>(c, rBottom) * (zEdge(rBottom) - zLo);
+    // Rows crossed by the meridian arc [zLo, zHi] of a column and the z length in the first and last.
+    struct RowSpan {
+        int top, bottom;                // top <= bottom
+        double topLength, bottomLength; // topLength is the whole arc's when top == bottom
+    };
+    RowSpan rowSpan(double zLo, double zHi) const {
+        const int top = row(zHi), bottom = row(zLo);
+        if (top == bottom) return {top, bottom, zHi - zLo, 0.0};
+        return {top, bottom, zHi - zEdge(top + 1), zEdge(bottom) - zLo};
     }
+
+    // Integral of column c over the rows of `span` (rows H-1-r when `mirrored`), per channel: RGB (Value =
+    // dvec3) or RGBA (dvec4).
+    template <class Value>
+    Value integrate(int c, const RowSpan& span, bool mirrored) const {
+        const int flip = mirrored ? image_.height - 1 : 0, sign = mirrored ? -1 : 1;
+        auto at = [&](int r) { return value<Value>(c, flip + sign * r); };
+        if (span.top == span.bottom) return at(span.top) * span.topLength;
+        Value sum = at(span.top) * span.topLength;
+        for (int r = span.top + 1; r < span.bottom; ++r)
+            sum += at(r) * rowHeight_[std::size_t(r)];
+        return sum + at(span.bottom) * span.bottomLength;
+    }
+
+    int width() const { return image_.width; }
 
   private:
     double zEdge(int r) const { return zEdge_[std::size_t(r)]; }
@@ -164,11 +191,68 @@ class LatLongGrid {
     const ImageRGBA& image_;
     LatLongPixels placement_;
     std::vector<double> uEdge_, zEdge_;
+    std::vector<double> rowHeight_; // zEdge(r) - zEdge(r + 1)
+};
+
+// A texel that shares the geometry of the one computed: it integrates column (c + columnShift) mod W for
+// the computed texel's column c, and row H-1-r for row r when mirrored.
+struct TexelImage {
+    int face, i, j;
+    int columnShift;
+    bool mirrored;
+};
+
+// Up to 4 quarter turns, each with its mirror image.
+constexpr int kMaxImages = 8;
+
+struct Orbit {
+    std::array<TexelImage, kMaxImages> images;
+    int count = 0;
+};
+
+// Which symmetries of the cube and the lat-long grid the resampling may use (see the top of the file).
+struct Symmetry {
+    bool mirror = false;       // y -> -y: an even face size
+    bool quarterTurns = false; // also a quarter turn about +Y: Centre placement, width a multiple of 4
+
+    Symmetry(int faceSize, int width, LatLongPixels placement, bool use)
+        : mirror(use && faceSize % 2 == 0),
+          quarterTurns(mirror && placement == LatLongPixels::Centre && width % 4 == 0) {}
+
+    // Whether texel (face, i, j) is the one of its orbit whose geometry is computed: with quarter turns, +Z's
+    // upper half and +Y's quadrant i, j < n/2; with the mirror only, the side faces' upper halves and +Y.
+    bool computes(int face, int i, int j, int n) const {
+        const int half = n / 2;
+        if (quarterTurns) return (face == 4 && j < half) || (face == 2 && i < half && j < half);
+        if (mirror) return face == 2 || (face != 3 && j < half);
+        return true;
+    }
+
+    // The texels that take texel (face, i, j)'s geometry, itself first. A quarter turn about +Y (+Z toward
+    // +X) takes +Z's texel (i, j) to +X's, -Z's, -X's (i, j) in turn (kernels/cube.h face directions),
+    // +Y's (i, j) to (j, n-1-i), and adds pi/2 to the longitude: u falls by 1/4, W/4 columns. The mirror
+    // takes a side face's (i, j) to (i, n-1-j) and +Y's (i, j) to -Y's (i, n-1-j).
+    Orbit orbit(int face, int i, int j, int n, int width) const {
+        Orbit o;
+        const int turns = quarterTurns ? 4 : 1;
+        constexpr int kSideTurns[4] = {4, 0, 5, 1};
+        TexelImage t{face, i, j, 0, false};
+        for (int k = 0; k < turns; ++k) {
+            o.images[std::size_t(o.count++)] = t;
+            if (mirror)
+                o.images[std::size_t(o.count++)] = {t.face == 2 ? 3 : t.face, t.i, n - 1 - t.j, t.columnShift,
+                                                    true};
+            t.face = t.face == 2 ? 2 : kSideTurns[(k + 1) % 4];
+            t.columnShift = (width - (k + 1) * (width / 4)) % width;
+            if (face == 2) t = {2, t.j, n - 1 - t.i, t.columnShift, false};
+        }
+        return o;
+    }
 };
 
 template <class Value>
 struct TexelIntegral {
-    Value energy{0.0};
+    std::array<Value, kMaxImages> energy{}; // per image of the orbit
     double area = 0.0;
 };
 
@@ -178,7 +262,7 @@ using CornerLongitudes = std::array<double, 4>;
 
 template <class Value>
 TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
-                                    const CornerLongitudes& corners, double rotate,
+                                    const CornerLongitudes& corners, double rotate, const Orbit& orbit,
                                     std::vector<double>& cuts) {
     // Longitude range of the texel: its corners' longitudes unwrapped around one of them (a texel that
     // holds no pole spans less than pi); a texel that holds a pole inside sees every longitude.
@@ -225,6 +309,7 @@ TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& fr
     std::sort(cuts.begin(), cuts.end());
 
     TexelIntegral<Value> sum;
+    sum.energy.fill(Value(0.0));
     for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         const double p0 = std::max(cuts[i], phiMin), p1 = std::min(cuts[i + 1], phiMax);
         if (!(p1 - p0 > 1e-15)) continue;
@@ -236,7 +321,13 @@ TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& fr
             if (!clipMeridian(frame, sq, mid + half * kNodes[k], zLo, zHi)) continue;
             const double w = half * kWeights[k];
             sum.area += w * (zHi - zLo);
-            sum.energy += w * grid.integrate<Value>(column, zLo, zHi);
+            const LatLongGrid::RowSpan span = grid.rowSpan(zLo, zHi);
+            for (int m = 0; m < orbit.count; ++m) {
+                const TexelImage& image = orbit.images[std::size_t(m)];
+                const int c = column + image.columnShift;
+                sum.energy[std::size_t(m)] +=
+                    w * grid.integrate<Value>(c < grid.width() ? c : c - grid.width(), span, image.mirrored);
+            }
         }
     }
     return sum;
@@ -251,17 +342,24 @@ float resampledAlpha(double alpha) {
 }
 
 CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
-                                     double rotateRadians, bool withAlpha) {
+                                     double rotateRadians, bool withAlpha, bool useSymmetry) {
     if (latlong.width <= 0 || latlong.height <= 0) throw Error("lat-long resampling: empty image");
     if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
     if (placement == LatLongPixels::Auto) throw Error("lat-long resampling: internal: unresolved placement");
     const LatLongGrid grid(latlong, placement);
+    const Symmetry symmetry(faceSize, latlong.width, placement, useSymmetry);
     CubeMap cube(faceSize);
     const double step = 2.0 / faceSize;
     const int corners = faceSize + 1; // per face and axis
+    // Corner longitudes of the faces whose texels are computed (face texel (i, j)'s corners (i..i+1,
+    // j..j+1)).
+    std::array<bool, 6> computed{};
+    for (int face = 0; face < 6; ++face)
+        computed[std::size_t(face)] = symmetry.computes(face, 0, 0, faceSize);
     std::vector<double> cornerLongitude(std::size_t(6) * corners * corners);
     tbb::parallel_for(0, 6 * corners, [&](int fr) {
         const int face = fr / corners, j = fr % corners;
+        if (!computed[std::size_t(face)]) return;
         const FaceFrame frame = faceFrame(face);
         for (int i = 0; i < corners; ++i) {
             const glm::dvec3 d = frame.at(-1.0 + i * step, -1.0 + j * step);
@@ -269,6 +367,8 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
                 d.x * d.x + d.z * d.z < 1e-24 ? std::numeric_limits<double>::quiet_NaN() : longitude(d);
         }
     });
+    // Each computed texel writes its whole orbit; orbits do not overlap, so tasks never write the same texel,
+    // and each texel's value comes from one fixed computation whatever the scheduling.
     tbb::parallel_for(tbb::blocked_range<int>(0, 6 * faceSize), [&](const tbb::blocked_range<int>& rows) {
         std::vector<double> cuts; // scratch, reused across texels
         for (int fr = rows.begin(); fr != rows.end(); ++fr) {
@@ -276,19 +376,31 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
             const FaceFrame frame = faceFrame(face);
             const double* below = &cornerLongitude[(std::size_t(face) * corners + std::size_t(j)) * corners];
             const double* above = below + corners;
-            for (int i = 0; i < faceSize; ++i) {
+            for (int i = 0; i < faceSize && symmetry.computes(face, i, j, faceSize); ++i) {
                 const Square sq{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step,
                                 -1.0 + (j + 1) * step};
                 const CornerLongitudes phis = {below[i], above[i], below[i + 1], above[i + 1]};
-                glm::vec4& texel = cube.faces[std::size_t(face)].at(i, j);
+                const Orbit orbit = symmetry.orbit(face, i, j, faceSize, latlong.width);
+                auto texel = [&](int m) -> glm::vec4& {
+                    const TexelImage& t = orbit.images[std::size_t(m)];
+                    return cube.faces[std::size_t(t.face)].at(t.i, t.j);
+                };
                 if (withAlpha) {
-                    const auto t = integrateTexel<glm::dvec4>(grid, frame, sq, phis, rotateRadians, cuts);
-                    const glm::dvec4 v = t.area > 0.0 ? t.energy / t.area : glm::dvec4(0.0);
-                    texel = glm::vec4(glm::vec3(glm::dvec3(v)), resampledAlpha(v.w));
+                    const auto t =
+                        integrateTexel<glm::dvec4>(grid, frame, sq, phis, rotateRadians, orbit, cuts);
+                    for (int m = 0; m < orbit.count; ++m) {
+                        const glm::dvec4 v =
+                            t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
+                        texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), resampledAlpha(v.w));
+                    }
                 } else {
-                    const auto t = integrateTexel<glm::dvec3>(grid, frame, sq, phis, rotateRadians, cuts);
-                    const glm::dvec3 v = t.area > 0.0 ? t.energy / t.area : glm::dvec3(0.0);
-                    texel = glm::vec4(glm::vec3(v), 1.0f);
+                    const auto t =
+                        integrateTexel<glm::dvec3>(grid, frame, sq, phis, rotateRadians, orbit, cuts);
+                    for (int m = 0; m < orbit.count; ++m) {
+                        const glm::dvec3 v =
+                            t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec3(0.0);
+                        texel(m) = glm::vec4(glm::vec3(v), 1.0f);
+                    }
                 }
             }
         }

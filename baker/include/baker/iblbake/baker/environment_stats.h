@@ -11,6 +11,7 @@
 #include "iblbake/core/image.h"
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -19,13 +20,16 @@ namespace ibl {
 
 inline constexpr glm::dvec3 kRec709Luminance{0.2126, 0.7152, 0.0722};
 
-// An environment as a set of texels on the unit sphere with exact geometry, computed in double on demand
-// (nothing per texel is stored, so a 16k lat-long costs no extra memory). It refers to, and does not own,
+// An environment as a set of texels on the unit sphere with exact geometry in double: a lat-long's computed
+// on demand (nothing per texel is stored, so a 16k lat-long costs no extra memory), a cube's read from a
+// table of one face quadrant shared by every view of that face size. It refers to, and does not own,
 // the pixels of either
 //   - a cube map: texel (face f, column i, row j) has index (f * N + j) * N + i; its footprint is the
 //     spherical quadrilateral under the face-plane square of kernels/cube.h, or
 //   - a lat-long image: pixel (x, y) has index y * W + x; its footprint is its cell in the pixel grid of
 //     the placement it was read with (latlong_pixels.h), the same grid the ingest resamples from.
+class CubeTexelGeometry; // src/calibration/cube_texel_geometry.h
+
 class SphereTexels {
   public:
     // Views that may write (setRgb) and read-only views, chosen by the constness of the argument.
@@ -61,7 +65,12 @@ class SphereTexels {
     void neighbours(std::size_t i, std::vector<std::size_t>& out) const;
 
   private:
+    struct CubeTexel {
+        int face, i, j;
+    };
+    CubeTexel cubeTexel(std::size_t i) const;
     CubeMap* cube_ = nullptr;
+    std::shared_ptr<const CubeTexelGeometry> cubeGeometry_; // the cube's face size's
     ImageRGBA* latlong_ = nullptr;
     LatLongPixels placement_ = LatLongPixels::Centre;
     std::size_t size_ = 0;
