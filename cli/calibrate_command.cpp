@@ -100,9 +100,8 @@ Action addCalibrateCommand(CLI::App& app) {
         for (auto& kv : latLongPixelsKeyValues(r.latLongPixels, "iblbake:"))
             exr.attributes.push_back(std::move(kv));
         // A lat-long output keeps the input's pixel grid: OpenEXR's placement is what the envmap attribute
-        // says (OIIO writes it from textureformat), so that ingest reads the file back the same way.
-        if (calibrated.latLong && r.latLongPixels == LatLongPixels::OpenExr)
-            exr.attributes.emplace_back("textureformat", "LatLong Environment");
+        // says, so that ingest reads the file back the same way.
+        if (calibrated.latLong && r.latLongPixels == LatLongPixels::OpenExr) exr.envmap = ExrEnvmap::LatLong;
         for (auto& kv : calibrationKeyValues(calibrated.record, calibrated.sun, "iblbake:"))
             exr.attributes.push_back(std::move(kv));
 

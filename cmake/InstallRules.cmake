@@ -72,6 +72,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/baker/runtime/README.md DESTINATION ${CMAKE_
 # The programs. iblbake runs iblbake-engine from beside itself (cli/front_end.cpp). With BUILD_SHARED_LIBS
 # they need the project's other libraries too (found through CMAKE_INSTALL_RPATH, top-level CMakeLists.txt).
 install(TARGETS iblbake iblbake-engine COMPONENT tools)
+# The OpenImageIO module, loaded on demand from bin/../lib/iblbake (baker/CMakeLists.txt).
+install(TARGETS iblbake_oiio LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/iblbake COMPONENT tools)
 if(BUILD_SHARED_LIBS)
   install(TARGETS iblbake_scene iblbake_batch iblbake_bake_state iblbake_batch_run iblbake_baker iblbake_accuracy
           COMPONENT tools)

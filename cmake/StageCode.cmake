@@ -30,8 +30,9 @@ set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's f
     baker/src/products)
 set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options
     baker/src/executor.cpp baker/src/opencl baker/src/dispatch)
-set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration
-    baker/src/ingest baker/src/calibration baker/src/environment)
+set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration; the OpenImageIO module reads formats
+    baker/src/ingest baker/src/calibration baker/src/environment baker/src/io/oiio_module.h
+    baker/src/io/oiio_module_loader.cpp baker/oiio_module)
 set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, bright texels, level 0
     kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/cube_pyramid.cpp
     baker/src/stages/bright_split.cpp baker/src/stages/sun_in_level0.cpp)
@@ -63,7 +64,7 @@ set(IBLBAKE_STAGE_CODE_gltf-export stage_runner kernel_host ld_chain baker/src/s
     baker/src/io/encoded_image.cpp)
 set(IBLBAKE_STAGE_CODE_material-preview stage_runner kernel_host baker/src/scene/engine_output_stages.cpp
     baker/src/preview baker/runtime/src kernels/runtime.cl baker/src/io/preview.cpp baker/src/io/exr_output.cpp
-    baker/src/io/encoded_image.cpp)
+    baker/src/io/encoded_image.cpp baker/oiio_module)
 # A textured light's card (lights[].texture): the texture's read and colour conversion, the bake and its file.
 set(IBLBAKE_STAGE_CODE_light-card stage_runner kernel_host kernels/light_card.cl baker/src/light_card
     baker/src/ingest/read_image.cpp baker/src/ingest/color.cpp baker/src/ingest/sanitize.cpp)
@@ -82,6 +83,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
+    baker/src/io/shipped_file.cpp baker/src/io/shipped_file.h # where shipped files are, not what they hold
     baker/src/stages/specular_reference.cpp baker/src/stages/specular_settings.cpp
     kernels/dispatch_check.cl kernels/dispatch_check.h # dispatch_check: the dispatch helper's test kernel
     kernels/area_lights.cl # the runtime's area lights: no stage renders them

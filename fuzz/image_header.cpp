@@ -1,11 +1,12 @@
 // Fuzz target: arbitrary bytes as an environment image file, through the ingest's reader exactly as a bake
-// opens one (baker/src/ingest/read_image.cpp: regular-file check, OpenImageIO's format probe and header,
+// opens one (baker/src/ingest/read_image.cpp: regular-file check, the reader its first bytes pick (OpenEXR,
+// Radiance, else the OpenImageIO module; image_source.h) and its header,
 // the pixel limit, the layout check on the header, then the pixels strip by strip). The limit is set to
 // kMaxPixels here, so the contract is: the file is refused with ibl::Error in one line naming it, or it
 // is read as an image of at most kMaxPixels pixels with a layout the ingest can resample. Memory beyond
 // what such an image needs (libFuzzer's -rss_limit_mb and -malloc_limit_mb in .ci/fuzz) is a finding,
 // whether our code or a library takes it. The bytes go to a file named .exr when they start with
-// OpenEXR's magic number, else .hdr (Radiance), since OpenImageIO tries the format the name says first.
+// OpenEXR's magic number, else .hdr (Radiance), as a user's files would be named.
 // Seeds: fuzz/seeds/image_header/, written by oiiotool: tiny lat-long, cross and strip images as .hdr (flat
 // and run-length encoded) and .exr (zip, rle, tiled piz, an envmap attribute), three of them truncated at
 // half, and a header of each format claiming 262661x15105 pixels.

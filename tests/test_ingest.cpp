@@ -1,7 +1,9 @@
 // Ingest front end: reading, layout detection, colour, repair and area-correct resampling.
+#include "cli_runner.h"
 #include "iblbake/baker/ingest.h"
 #include "iblbake/core/error.h"
 #include "ingest_internal.h"
+#include "test_support.h"
 
 #include <cube.h>
 
@@ -12,6 +14,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <functional>
 #include <numbers>
@@ -923,3 +926,48 @@ TEST(IngestShared, KernerLatLongAndCubeAgree) {
 }
 
 } // namespace
+
+namespace {
+
+// RGBA of `file` as OpenImageIO reads it (level 0 of the first subimage; A = 1 when it has none).
+std::vector<glm::vec4> readWithOiio(const fs::path& file, OIIO::ImageSpec& spec) {
+    auto in = OIIO::ImageInput::open(file.string());
+    EXPECT_TRUE(in) << file;
+    if (!in) return {};
+    spec = in->spec();
+    std::vector<float> values(std::size_t(spec.width) * spec.height * spec.nchannels);
+    EXPECT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data())) << file;
+    const int r = spec.channelindex("R"), g = spec.channelindex("G"), b = spec.channelindex("B");
+    std::vector<glm::vec4> rgba(std::size_t(spec.width) * spec.height);
+    for (std::size_t i = 0; i < rgba.size(); ++i) {
+        const float* p = &values[i * std::size_t(spec.nchannels)];
+        rgba[i] = glm::vec4(p[r], p[g], p[b], spec.alpha_channel >= 0 ? p[spec.alpha_channel] : 1.0f);
+    }
+    return rgba;
+}
+
+} // namespace
+
+// The readers that replace OpenImageIO for OpenEXR and Radiance files (image_source.h) read every pixel
+// bit for bit as OpenImageIO does, and report the metadata ingest decides by the same way.
+TEST(ImageSources, MatchOpenImageIOOnRealFiles) {
+    std::vector<fs::path> files = {ibl::test::kSampleHdri};
+    for (const char* name : ibl::test::kSharedHdris)
+        if (fs::exists(ibl::test::hdriPath(name))) files.push_back(ibl::test::hdriPath(name));
+    for (const fs::path& file : files) {
+        OIIO::ImageSpec spec;
+        const std::vector<glm::vec4> expected = readWithOiio(file, spec);
+        const ibl::ingest::RawImage raw = ibl::ingest::readImage(file, nullptr, true);
+        ASSERT_EQ(raw.pixels.width, spec.width) << file;
+        ASSERT_EQ(raw.pixels.height, spec.height) << file;
+        ASSERT_EQ(raw.pixels.pixels.size(), expected.size()) << file;
+        std::size_t differing = 0;
+        for (std::size_t i = 0; i < expected.size(); ++i)
+            differing += std::memcmp(&raw.pixels.pixels[i], &expected[i], sizeof(glm::vec4)) != 0;
+        EXPECT_EQ(differing, 0u) << file;
+        EXPECT_EQ(raw.textureFormat, spec.get_string_attribute("textureformat")) << file;
+        EXPECT_EQ(raw.upDirection, spec.get_string_attribute("oiio:updirection")) << file;
+        EXPECT_EQ(raw.colorSpace, spec.get_string_attribute("oiio:ColorSpace")) << file;
+        EXPECT_EQ(raw.hasAlpha, spec.alpha_channel >= 0) << file;
+    }
+}

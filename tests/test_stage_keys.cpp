@@ -136,8 +136,8 @@ class SourceCopy {
   public:
     SourceCopy() : root_(fs::temp_directory_path() / ("iblbake-stage-code-" + std::to_string(getpid()))) {
         fs::remove_all(root_);
-        for (const char* folder : {"baker/src", "baker/include", "baker/runtime/src", "baker/runtime/include",
-                                   "kernels", "cmake"}) {
+        for (const char* folder : {"baker/src", "baker/oiio_module", "baker/include", "baker/runtime/src",
+                                   "baker/runtime/include", "kernels", "cmake"}) {
             fs::create_directories(root_ / folder);
             fs::copy(fs::path(IBLBAKE_SOURCE_DIR) / folder, root_ / folder, fs::copy_options::recursive);
         }

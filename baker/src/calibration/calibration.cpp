@@ -4,7 +4,6 @@
 #include "../ingest/ingest_internal.h"
 #include "iblbake/core/error.h"
 
-#include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -181,18 +180,16 @@ std::vector<std::pair<std::string, std::string>> calibrationMetadata(const Calib
 }
 
 std::vector<std::pair<std::string, std::string>> readCalibrationMetadata(const std::filesystem::path& file) {
-    std::vector<std::pair<std::string, std::string>> kv;
-    auto in = OIIO::ImageInput::open(file.string());
-    if (!in) {
-        (void)OIIO::geterror(); // clear the error: absent metadata is not a failure here
-        return kv;
+    std::vector<std::pair<std::string, std::string>> kv, attributes;
+    try {
+        attributes = ingest::readStringAttributes(file);
+    } catch (const Error&) {
+        return kv; // absent metadata is not a failure here: the caller reads the pixels and reports that
     }
-    for (const OIIO::ParamValue& p : in->spec().extra_attribs) {
-        const std::string name = p.name().string();
+    for (auto& [name, value] : attributes)
         if (name.rfind("iblbake:calibration.", 0) == 0 || name == "iblbake:units" ||
             name.rfind("iblbake:sun", 0) == 0)
-            kv.emplace_back(name, p.get_string());
-    }
+            kv.emplace_back(std::move(name), std::move(value));
     return kv;
 }
 

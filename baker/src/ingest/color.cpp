@@ -1,5 +1,6 @@
 // Colour: which space the input is in (metadata or the user's word) and the OCIO conversion to the
 // working space. The config is the shipped data/ocio/config.ocio unless $OCIO names another one.
+#include "../io/shipped_file.h"
 #include "ingest_internal.h"
 
 #include "iblbake/core/error.h"
@@ -11,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <map>
 #include <mutex>
 
@@ -70,27 +70,13 @@ std::string spaceOfChromaticities(const std::vector<float>& xy) {
     return {};
 }
 
-// The shipped config: an installed program's (its data directory found from the program's own path, so any
-// install prefix works: cmake --install --prefix, the .deb), else the source tree's a build-tree program was
-// built from.
-std::string shippedConfigPath() {
-    namespace fs = std::filesystem;
-    std::error_code ec;
-    const fs::path program = fs::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const fs::path installed =
-            (program.parent_path() / IBLBAKE_INSTALLED_DATA_DIR / "ocio/config.ocio").lexically_normal();
-        if (fs::is_regular_file(installed, ec)) return installed.string();
-    }
-    return std::string(IBLBAKE_DATA_DIR) + "/ocio/config.ocio";
-}
-
 } // namespace
 
 std::string ocioConfigPath() {
     const char* env = std::getenv("OCIO");
     if (env && *env) return env;
-    static const std::string shipped = shippedConfigPath();
+    static const std::string shipped =
+        shippedFile(IBLBAKE_INSTALLED_DATA_DIR "/ocio/config.ocio", IBLBAKE_DATA_DIR "/ocio/config.ocio");
     return shipped;
 }
 

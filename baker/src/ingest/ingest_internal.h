@@ -38,10 +38,10 @@ struct RawImage {
     ImageRGBA pixels;                  // R, G, B of the file's level 0 (grey replicated), A (1 if not read)
     bool hasAlpha = false;             // A was read from the file's alpha channel
     bool unassociatedAlpha = false;    // the file's colour is not premultiplied by its alpha (PNG, some TIFF)
-    std::string colorSpace;            // oiio:ColorSpace, "" if absent
+    std::string colorSpace;            // the format's colour space name ("Linear" for OpenEXR), "" if none
     std::vector<float> chromaticities; // EXR chromaticities (8 values) if present
-    std::string textureFormat;         // OIIO "textureformat" (from the EXR envmap attribute), "" if absent
-    std::string upDirection;           // OIIO "oiio:updirection", "" if absent
+    std::string textureFormat;         // "LatLong Environment" or "CubeFace Environment" (OpenEXR envmap)
+    std::string upDirection;           // "y" for an OpenEXR lat-long envmap, else "oiio:updirection"
     bool integerPixels = false;        // stored as integers (8-bit PNG/JPEG, 16-bit TIFF...): display-encoded
 };
 
@@ -49,8 +49,8 @@ struct RawImage {
 // regular file, or when its header claims more pixels than limits::maxImagePixels(). `checkHeader`, when
 // given, sees the image with its size and metadata before any pixel is read (pixels.pixels still empty),
 // so that a size that cannot work (a layout that does not fit) is refused without reading the file. With
-// `readAlpha`, the file's alpha channel (OIIO's alpha_channel, else one named "A"), if it has one, is read
-// into A as stored.
+// `readAlpha`, the file's alpha channel (the format's own, else one named "A"), if it has one, is read into
+// A as stored. OpenEXR and Radiance files are read without OpenImageIO (image_source.h).
 RawImage readImage(const std::filesystem::path& file,
                    const std::function<void(const RawImage&)>& checkHeader = nullptr, bool readAlpha = false);
 
@@ -58,7 +58,11 @@ RawImage readImage(const std::filesystem::path& file,
 // width x height image (both >= 1) is over limits::maxImagePixels().
 void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t height);
 
-// When `file` is OpenEXR (its magic number): walks its header(s) before OpenImageIO opens it, refusing
+// The text metadata of an image file (OpenEXR string attributes; what OpenImageIO reports for other
+// formats; none for Radiance). Throws ibl::Error "<file>: ..." when it cannot be opened.
+std::vector<std::pair<std::string, std::string>> readStringAttributes(const std::filesystem::path& file);
+
+// Walks an OpenEXR file's header(s) before OpenEXR opens it, refusing
 // (ibl::Error "<name>: ...") an attribute larger than the rest of the file, a string vector or preview
 // claiming more than its attribute holds, a chunkCount the file cannot hold and a dataWindow over the
 // pixel limit: OpenEXR sizes memory from each of these while it reads the header (exr_header.cpp).

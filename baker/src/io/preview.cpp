@@ -4,8 +4,6 @@
 
 #include <cube.h>
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -47,8 +45,8 @@ float encodeSrgb(float linear) {
 
 void writeSrgb8Png(const std::filesystem::path& path, int width, int height,
                    const std::vector<unsigned char>& rgb) {
-    writeEncodedImage(path, "png", OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8),
-                      OIIO::TypeDesc::UINT8, rgb.data());
+    const std::vector<std::uint8_t> png = encodePng(path, width, height, 3, rgb.data());
+    writeEncodedImage(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 unsigned char tonemapToSrgb8(float linear, float scale) {

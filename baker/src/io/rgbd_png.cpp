@@ -1,9 +1,7 @@
-// RGBD packing (iblbake/baker/rgbd.h) and its PNG files through OpenImageIO.
+// RGBD packing (iblbake/baker/rgbd.h) and its PNG files.
 #include "encoded_image.h"
 #include "iblbake/baker/rgbd.h"
 #include "iblbake/core/error.h"
-
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
@@ -47,27 +45,9 @@ void writeRgbdPng(const std::filesystem::path& path, const ImageRGBA& image, flo
         const auto rgbd = encodeRgbd(glm::vec3(image.pixels[i]) * scale);
         std::copy(rgbd.begin(), rgbd.end(), pixels.begin() + std::ptrdiff_t(4 * i));
     }
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::UINT8);
-    // Alpha is D, not coverage: OpenImageIO must not divide the colour by it on the way out.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    writeEncodedImage(path, "png", spec, OIIO::TypeDesc::UINT8, pixels.data());
-}
-
-ImageRGBA readRgbdPng(const std::filesystem::path& path) {
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1); // keep D as stored (no premultiplication)
-    auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) throw Error(path.string() + ": " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    if (spec.nchannels != 4) throw Error(path.string() + ": an RGBD PNG has 4 channels");
-    std::vector<std::uint8_t> pixels(std::size_t(spec.width) * spec.height * 4);
-    if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, pixels.data()))
-        throw Error(path.string() + ": " + in->geterror());
-    ImageRGBA image(spec.width, spec.height);
-    for (std::size_t i = 0; i < image.pixels.size(); ++i)
-        image.pixels[i] = glm::vec4(
-            decodeRgbd({pixels[4 * i], pixels[4 * i + 1], pixels[4 * i + 2], pixels[4 * i + 3]}), 1.0f);
-    return image;
+    // Alpha is D, not coverage: stored straight, as encodePng writes 8-bit RGBA.
+    const std::vector<std::uint8_t> png = encodePng(path, image.width, image.height, 4, pixels.data());
+    writeEncodedImage(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 } // namespace ibl

@@ -1,5 +1,6 @@
 // What the material preview renders (iblbake/baker/material_preview.h): a bake's probe set and the
 // reference environment.
+#include "../ingest/ingest_internal.h"
 #include "iblbake/baker/calibration.h"
 #include "iblbake/baker/ingest.h"
 #include "iblbake/baker/material_preview.h"
@@ -9,7 +10,6 @@
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/runtime/runtime_manifest.h"
 
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -22,18 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// The LUT's R, G, B as stored (ingest's reader: OpenEXR files need no OpenImageIO).
 ImageRGBA readDfgExr(const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw Error(path.string() + ": " + OIIO::geterror());
-    const OIIO::ImageSpec& spec = in->spec();
-    ImageRGBA lut(spec.width, spec.height);
-    std::vector<float> pixels(std::size_t(spec.width) * spec.height * spec.nchannels);
-    if (spec.nchannels < 3 || !in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-        throw Error(path.string() + ": not a DFG LUT (needs R, G, B)");
-    for (std::size_t i = 0; i < lut.pixels.size(); ++i)
-        lut.pixels[i] = glm::vec4(pixels[i * spec.nchannels], pixels[i * spec.nchannels + 1],
-                                  pixels[i * spec.nchannels + 2], 1.0f);
-    return lut;
+    return ingest::readImage(path).pixels;
 }
 
 // The "iblbake.calibration.factor" value of a bake's KTX2: a finite, positive number and nothing else.

@@ -1,12 +1,13 @@
 // The material preview's labelled grid (preview_grid.h). Text is drawn by OpenImageIO's render_text
-// (FreeType) in DejaVu Sans from Debian's fonts-dejavu-core.
+// (FreeType, through the OpenImageIO module) in DejaVu Sans from Debian's fonts-dejavu-core.
 #include "preview_grid.h"
+
+#include "../io/oiio_module.h"
 
 #include "iblbake/baker/preview.h"
 #include "iblbake/core/error.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include <algorithm>
 
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,8 @@
 namespace ibl {
 
 namespace {
+
+using oiio_module::TextAlign;
 
 constexpr const char* kFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 constexpr float kBackground = 0.14f; // the grid's dark grey; the balls' cells are black
@@ -29,32 +32,37 @@ std::string percent(double value) {
 class Canvas {
   public:
     Canvas(const std::filesystem::path& png, int width, int height)
-        : png_(png), buffer_(OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::FLOAT)) {
-        const float grey[3] = {kBackground, kBackground, kBackground};
-        OIIO::ImageBufAlgo::fill(buffer_, grey);
+        : png_(png), width_(width), height_(height),
+          rgb_(std::size_t(width) * std::size_t(height) * 3, kBackground) {}
+    void set(int x, int y, const glm::vec3& display) {
+        float* p = &rgb_[(std::size_t(y) * std::size_t(width_) + std::size_t(x)) * 3];
+        p[0] = display.x;
+        p[1] = display.y;
+        p[2] = display.z;
     }
-    void set(int x, int y, const glm::vec3& display) { buffer_.setpixel(x, y, &display.x, 3); }
     void fill(int x, int y, int width, int height, const glm::vec3& display) {
-        OIIO::ImageBufAlgo::fill(buffer_, {&display.x, 3},
-                                 OIIO::ROI(x, x + width, y, y + height, 0, 1, 0, 3));
+        for (int py = std::max(y, 0); py < std::min(y + height, height_); ++py)
+            for (int px = std::max(x, 0); px < std::min(x + width, width_); ++px)
+                set(px, py, display);
     }
-    void text(int x, int y, const std::string& text, int fontSize,
-              OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left) {
-        if (!OIIO::ImageBufAlgo::render_text(buffer_, x, y, text, fontSize, kFont, kText, align,
-                                             OIIO::ImageBufAlgo::TextAlignY::Center))
-            throw Error(png_.string() + ": cannot draw the labels (" + buffer_.geterror() +
-                        "): they need DejaVu Sans, " + kFont + " (Debian fonts-dejavu-core)");
+    void text(int x, int y, const std::string& text, int fontSize, TextAlign align = TextAlign::Left) {
+        std::string why;
+        if (!oiio_module::api(png_.string() + ": the labels")
+                 .drawText(rgb_.data(), width_, height_, x, y, text, fontSize, kFont, kText, align, why))
+            throw Error(png_.string() + ": cannot draw the labels (" + why + "): they need DejaVu Sans, " +
+                        kFont + " (Debian fonts-dejavu-core)");
     }
     void write() const {
-        const OIIO::ImageSpec& spec = buffer_.spec();
-        std::vector<unsigned char> rgb(std::size_t(spec.width) * spec.height * 3);
-        buffer_.get_pixels(buffer_.roi(), OIIO::TypeDesc::UINT8, rgb.data());
-        writeSrgb8Png(png_, spec.width, spec.height, rgb);
+        std::vector<unsigned char> rgb(rgb_.size());
+        for (std::size_t i = 0; i < rgb_.size(); ++i)
+            rgb[i] = (unsigned char)std::lround(255.0f * std::clamp(rgb_[i], 0.0f, 1.0f));
+        writeSrgb8Png(png_, width_, height_, rgb);
     }
 
   private:
     std::filesystem::path png_;
-    OIIO::ImageBuf buffer_;
+    int width_, height_;
+    std::vector<float> rgb_; // display-encoded RGB, rows top to bottom
 };
 
 } // namespace
@@ -126,7 +134,6 @@ std::vector<std::string> previewRowNames(bool withReference, const std::vector<s
 void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, const ImageRGBA& panels,
                       const std::vector<glm::vec3>& errorColor, const std::vector<int>& owner, float scale,
                       const PreviewGridLabels& labels) {
-    using OIIO::ImageBufAlgo::TextAlignX;
     const bool withReference = l.rowCount == 3 * l.groupCount;
     const int size = l.sphereSize, panelWidth = l.columnCount * size;
     Canvas canvas(png, l.width, l.height);
@@ -137,7 +144,7 @@ void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, 
     for (int c = 0; c < l.columnCount; ++c) {
         char value[16];
         std::snprintf(value, sizeof value, "%.1f", labels.roughness[std::size_t(c)]);
-        canvas.text(l.cellX(c) + size / 2, l.headerHeight - fs, value, fs, TextAlignX::Center);
+        canvas.text(l.cellX(c) + size / 2, l.headerHeight - fs, value, fs, TextAlign::Centre);
     }
 
     const std::vector<std::string> names = previewRowNames(withReference, labels.groups);
@@ -170,9 +177,9 @@ void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, 
             canvas.text(l.margin, top + size + 2 * fs, "reference's own", fs);
             for (int c = 0; c < l.columnCount; ++c) {
                 canvas.text(l.cellX(c) + size / 2, top + size + fs, percent(error[std::size_t(c)]), fs,
-                            TextAlignX::Center);
+                            TextAlign::Centre);
                 canvas.text(l.cellX(c) + size / 2, top + size + 2 * fs, percent(own[std::size_t(c)]), fs,
-                            TextAlignX::Center);
+                            TextAlign::Centre);
             }
         }
     }
@@ -187,9 +194,9 @@ void writePreviewGrid(const std::filesystem::path& png, const PreviewLayout& l, 
         const char* ticks[5] = {"0", "5%", "10%", "15%", ">= 20%"};
         for (int t = 0; t < 5; ++t)
             canvas.text(l.cellX(0) + t * (barWidth - 1) / 4, top + barHeight + fs, ticks[t], fs,
-                        t == 0   ? TextAlignX::Left
-                        : t == 4 ? TextAlignX::Right
-                                 : TextAlignX::Center);
+                        t == 0   ? TextAlign::Left
+                        : t == 4 ? TextAlign::Right
+                                 : TextAlign::Centre);
         canvas.text(l.cellX(0) + barWidth + fs, top + barHeight / 2,
                     "|runtime - reference| / reference, luminance", fs);
     }

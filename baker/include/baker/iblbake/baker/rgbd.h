@@ -27,7 +27,5 @@ glm::vec3 decodeRgbd(const std::array<std::uint8_t, 4>& rgbd);
 // Writes `image` x `scale` as a straight-alpha (unassociated) RGBA PNG at `path`, without colour-space
 // chunks. Not atomic: callers pass a temporary name (ibl::AtomicFile). Throws ibl::Error naming the file.
 void writeRgbdPng(const std::filesystem::path& path, const ImageRGBA& image, float scale);
-// Reads such a PNG back, decoded to linear (alpha 1). Throws ibl::Error naming the file.
-ImageRGBA readRgbdPng(const std::filesystem::path& path);
 
 } // namespace ibl

@@ -1,0 +1,66 @@
+// Start-up without OpenImageIO (issue 18): the programs link no OpenImageIO, and only an input that is
+// neither OpenEXR nor Radiance loads it (the module, baker/src/io/oiio_module.h). The dynamic loader's own
+// trace (LD_DEBUG=files) lists every shared object a process initialises, dlopen'ed ones included.
+#include "cli_runner.h"
+
+#include <iblbake/baker/exr_output.h>
+#include <iblbake/baker/preview.h>
+
+#include <gtest/gtest.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace ibl::test;
+
+struct Traced {
+    ibl::test::CliRun run;
+    bool initialisedOiio = false;
+};
+
+Traced traced(const std::string& args) {
+    Traced t;
+    t.run = runProgram("env LD_DEBUG=files " IBLBAKE_CLI, args);
+    // The trace names each object as it initialises it; without it the check would pass vacuously.
+    EXPECT_NE(t.run.err.find("calling init:"), std::string::npos) << t.run.err.substr(0, 400);
+    t.initialisedOiio = t.run.err.find("libOpenImageIO") != std::string::npos;
+    return t;
+}
+
+TEST(StartUp, OpenExrAndRadianceWorkLoadNoOpenImageIO) {
+    const fs::path dir = fs::temp_directory_path() / ("iblbake_start_up_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string bake = " --size 8 --quality draft --backend cpu -o ";
+    ibl::ImageRGBA sky(64, 32);
+    for (std::size_t i = 0; i < sky.pixels.size(); ++i)
+        sky.pixels[i] = glm::vec4(0.5f + float(i % 64) / 64.0f, 0.7f, 0.9f, 1.0f);
+    ibl::ExrOutputOptions exr;
+    exr.envmap = ibl::ExrEnvmap::LatLong;
+    ibl::writeExr(dir / "sky.exr", sky, exr);
+    for (const std::string& args :
+         {std::string("--version"),
+          "dfg --size 8 --samples 16 --backend cpu -o " + (dir / "dfg.exr").string(),
+          "specular " + kSampleHdri + bake + (dir / "hdr.ktx2").string(),
+          "specular " + (dir / "sky.exr").string() + bake + (dir / "exr.ktx2").string()}) {
+        const Traced t = traced(args);
+        EXPECT_EQ(t.run.exitCode, 0) << args;
+        EXPECT_FALSE(t.initialisedOiio) << args;
+    }
+    fs::remove_all(dir);
+}
+
+TEST(StartUp, OtherFormatsLoadTheOpenImageIOModule) {
+    const fs::path dir = fs::temp_directory_path() / ("iblbake_start_up_png_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const int width = 64, height = 32;
+    ibl::writeSrgb8Png(dir / "sky.png", width, height, std::vector<unsigned char>(width * height * 3, 128));
+    const Traced t = traced("specular " + (dir / "sky.png").string() +
+                            " --size 8 --quality draft --backend cpu -o " + (dir / "png.ktx2").string());
+    EXPECT_EQ(t.run.exitCode, 0) << t.run.err.substr(t.run.err.size() > 400 ? t.run.err.size() - 400 : 0);
+    EXPECT_TRUE(t.initialisedOiio);
+    EXPECT_TRUE(fs::exists(dir / "png.ktx2"));
+    fs::remove_all(dir);
+}
+
+} // namespace
