@@ -1,6 +1,7 @@
 // Probe data in the layout the kernels read: bordered LD pyramids, the 3-channel DFG table, local probes.
 #include "iblbake/core/cube_pyramid.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/visibility.h"
 #include "iblbake/runtime/runtime.h"
 
 #include <algorithm>
@@ -42,8 +43,7 @@ LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping, Chai
         storeBorderedLevel(level, m, pyramid.layout, pyramid.data.data());
         if (alpha == ChainAlpha::PremultipliedVisibility)
             forEachBorderedTexel(level, m, pyramid.layout, [&](std::uint32_t o, const glm::vec4& v) {
-                const bool inRange = v.w >= 0.0f && v.w <= 1.0f; // false for NaN
-                pyramid.visibility[o / 3u] = inRange ? v.w : (v.w > 1.0f ? 1.0f : 0.0f);
+                pyramid.visibility[o / 3u] = repairedVisibilityTexel(v).w;
             });
     }
     // Visible everywhere is no visibility: the probe then composes by its influence weight alone, with the

@@ -2,6 +2,8 @@
 // pixels are repaired and counted, never propagated).
 #include "ingest_internal.h"
 
+#include "iblbake/core/visibility.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
@@ -64,24 +66,18 @@ RepairCounts sanitize(ImageRGBA& image) {
         });
 }
 
-// A transparent texel holds nothing (RGBA 0), as bakeSpecularWithVisibility repairs one: colour premultiplied
-// by a NaN or negative visibility has no meaning to keep.
+// Alpha is a visibility here: iblbake/core/visibility.h repairs it, as the specular stage does.
 AlphaRepairCounts sanitizeAlpha(ImageRGBA& image) {
     return tbb::parallel_reduce(
         Range(0, image.pixels.size(), 4096), AlphaRepairCounts{},
         [&](const Range& r, AlphaRepairCounts n) {
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
                 glm::vec4& p = image.pixels[i];
-                if (std::isnan(p.w)) {
-                    p = glm::vec4(0.0f);
-                    ++n.nan;
-                } else if (p.w < 0.0f) {
-                    p = glm::vec4(0.0f);
-                    ++n.negative;
-                } else if (p.w > 1.0f) {
-                    p.w = 1.0f;
-                    ++n.overOne;
-                }
+                const VisibilityRepair repair = visibilityRepairOf(p.w);
+                n.nan += repair == VisibilityRepair::NaN;
+                n.negative += repair == VisibilityRepair::Negative;
+                n.overOne += repair == VisibilityRepair::OverOne;
+                p = repairedVisibilityTexel(p, repair);
             }
             return n;
         },

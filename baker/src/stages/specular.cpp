@@ -1,5 +1,6 @@
 #include "iblbake/baker/specular.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/visibility.h"
 #include "iblbake/opencl/dispatch.h"
 
 #include "bright_split.h"
@@ -198,9 +199,9 @@ VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const S
     for (int f = 0; f < 6; ++f)
         for (std::size_t i = 0; i < source.faces[f].pixels.size(); ++i) {
             glm::vec4& texel = source.faces[f].pixels[i];
-            const bool inRange = texel.w >= 0.0f && texel.w <= 1.0f; // false for NaN
-            result.clampedTexels += !inRange;
-            if (!inRange) texel = texel.w > 1.0f ? glm::vec4(glm::vec3(texel), 1.0f) : glm::vec4(0.0f);
+            const VisibilityRepair repair = visibilityRepairOf(texel.w);
+            result.clampedTexels += repair != VisibilityRepair::None;
+            texel = repairedVisibilityTexel(texel, repair);
             allVisible = allVisible && texel.w == 1.0f;
             visibility.faces[f].pixels[i] = glm::vec4(texel.w, texel.w, texel.w, 1.0f);
         }
