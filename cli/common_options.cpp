@@ -17,6 +17,10 @@ Executor BackendOptions::makeExecutor() const {
     return Executor::create(parseBackend(backend), device, std::cerr);
 }
 
+std::future<Executor> BackendOptions::startExecutor() const {
+    return std::async(std::launch::async, [options = *this] { return options.makeExecutor(); });
+}
+
 void BackendOptions::printTiming(const Executor& executor, const char* stage, double wallMs) const {
     if (!timing) return;
     if (executor.usesOpenCL())

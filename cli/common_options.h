@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <future>
 #include <string>
 
 namespace ibl::cli {
@@ -21,6 +22,9 @@ struct BackendOptions {
 
     void addTo(CLI::App& command);
     Executor makeExecutor() const; // warnings go to stderr
+    // makeExecutor() on its own thread, so that the OpenCL set-up (PoCL loads LLVM: ~40 ms) overlaps the
+    // ingest; get() rethrows its error.
+    std::future<Executor> startExecutor() const;
     // With --timing: prints the device time of every OpenCL dispatch, and the stage's wall time.
     void printTiming(const Executor& executor, const char* stage, double wallMs) const;
 };

@@ -121,8 +121,12 @@ Action addDiffuseCommand(CLI::App& app) {
         if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
         OutputSet outputs;
 
-        Executor executor = o->backend.makeExecutor();
+        // Only the sampled irradiance cube runs on the backend; the SH are projected on the CPU.
+        const bool needsBackend = wantCube && method == IrradianceMethod::Sampled;
+        std::future<Executor> pendingExecutor;
+        if (needsBackend) pendingExecutor = o->backend.startExecutor();
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size);
+        const Executor executor = needsBackend ? pendingExecutor.get() : Executor::cpu();
         const SourceEnvironment& env = input.env;
         const PreparedEnvironment& calibration = input;
         const double ingestMs = millisecondsSince(start);

@@ -119,9 +119,10 @@ Action addSpecularCommand(CLI::App& app) {
             checkOutputFile(std::filesystem::is_directory(o->exrDir) ? o->exrDir + "/level_0.exr"
                                                                      : o->exrDir);
         if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
-        Executor executor = o->backend.makeExecutor();
+        std::future<Executor> pendingExecutor = o->backend.startExecutor();
         // The cube with the sun is kept for level 0 (below).
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
+        const Executor executor = pendingExecutor.get();
         const SourceEnvironment& env = input.env;
         const PreparedEnvironment& calibration = input;
         const double ingestMs = millisecondsSince(start);
