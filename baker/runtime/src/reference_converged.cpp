@@ -242,11 +242,18 @@ class AlbedoTables {
             alphas.insert(std::max(r * r, minAlpha));
         }
         if (alphas.size() > 64) return; // no shared columns: per point
+        std::vector<std::pair<double, std::vector<double>*>> columns;
         for (double alpha : alphas) {
             std::vector<double>& t = tables_[alpha];
-            for (int i = 0; i <= kSteps; ++i)
-                t.push_back(directionalAlbedo(std::max(double(i) / kSteps, 1e-4), alpha, samples));
+            t.resize(kSteps + 1);
+            columns.emplace_back(alpha, &t);
         }
+        // Every entry is its own integral: the same values in any order, on every core.
+        tbb::parallel_for(std::size_t(0), columns.size() * (kSteps + 1), [&](std::size_t k) {
+            const auto& [alpha, t] = columns[k / (kSteps + 1)];
+            const std::size_t i = k % (kSteps + 1);
+            (*t)[i] = directionalAlbedo(std::max(double(i) / kSteps, 1e-4), alpha, samples);
+        });
     }
     double operator()(double NoV, double alpha) const {
         auto it = tables_.find(alpha);

@@ -2,6 +2,7 @@
 // at each specular preset, against the brute-force renderer (Frostbite Appendix A) lit by the same input.
 #include "sweep.h"
 
+#include <iblbake/baker/dfg_lut.h>
 #include <iblbake/baker/environment.h>
 #include <iblbake/baker/specular.h>
 #include <iblbake/baker/sphere_columns.h>
@@ -67,6 +68,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                "level 0 and the extracted sun as a disk light"
              : "LD chain and irradiance cube (no sun detected)");
 
+    const DfgTable dfg = dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor));
     auto measure = [&](MeasuredSetting& s, const std::vector<glm::vec4>& shaded) {
         const std::vector<double> columns = columnErrors(c, reference, &shaded);
         double signedError = 0.0, total = 0.0;
@@ -92,7 +94,8 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.label = std::string(qualityName(quality)) + " LD chain";
         s.knobs = {{"specularQuality", qualityName(quality)}, {"sun", sun ? "extracted" : "none"}};
         s.preset = qualityName(quality);
-        measure(s, evaluateCpu(shippedProbe(residual, source, sun, settings, executor), c.points, options));
+        measure(s,
+                evaluateCpu(shippedProbe(residual, source, sun, settings, dfg, executor), c.points, options));
         stage.settings.push_back(std::move(s));
     }
     if (sun) { // the same production bake with the sun left in the probe: what the warning measures
@@ -102,7 +105,8 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.timeMs = median(s.timesMs);
         s.label = "production LD chain, sun left in the probe";
         s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}};
-        measure(s, evaluateCpu(shippedProbe(source, source, {}, production, executor), c.points, options));
+        measure(s,
+                evaluateCpu(shippedProbe(source, source, {}, production, dfg, executor), c.points, options));
         const auto worst = std::max_element(s.partErrors.begin(), s.partErrors.end(),
                                             [](const auto& a, const auto& b) { return a.second < b.second; });
         const std::size_t k = std::size_t(worst - s.partErrors.begin());

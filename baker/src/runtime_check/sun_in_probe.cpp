@@ -1,9 +1,11 @@
 // What a sun left in the probe costs at runtime (sun_in_probe.h).
 #include "iblbake/baker/sun_in_probe.h"
 
+#include "iblbake/baker/dfg_lut.h"
 #include "iblbake/baker/environment.h"
 #include "iblbake/baker/sphere_columns.h"
 #include "iblbake/core/cube_pyramid.h"
+#include "iblbake/runtime/runtime.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -38,10 +40,11 @@ SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executo
     const RuntimeOptions options;
     const ConvergedReference reference = renderConvergedReference(source, c.points, options);
     const SpecularSettings production;
+    const DfgTable dfg = dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor));
     const std::vector<glm::vec4> kept =
-        evaluateCpu(shippedProbe(source, source, {}, production, executor), c.points, options);
+        evaluateCpu(shippedProbe(source, source, {}, production, dfg, executor), c.points, options);
     const std::vector<glm::vec4> extracted =
-        evaluateCpu(shippedProbe(residual, source, sun, production, executor), c.points, options);
+        evaluateCpu(shippedProbe(residual, source, sun, production, dfg, executor), c.points, options);
     out.keptError = columnErrors(c, reference, &kept);
     out.extractedError = columnErrors(c, reference, &extracted);
     const std::size_t worst =

@@ -32,9 +32,11 @@ std::vector<double> columnErrors(const SphereColumns& columns, const ConvergedRe
 
 // The probe the product ships, from `probeSource` (the residual of an extraction, or the full map when the
 // sun stays in), at a specular quality: LD chain, DFG, SH, irradiance cube, and the disk light (level 0
-// keeps the sun's pixels of `full` when a sun is given). `chainOut` receives the LD chain.
+// keeps the sun's pixels of `full` when a sun is given). `dfg` is the DFG LUT at its defaults
+// (dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor))), baked once by callers that build several probes.
+// `chainOut` receives the LD chain.
 ProbeSet shippedProbe(const CubeMap& probeSource, const CubeMap& full, const std::optional<SunDisk>& sun,
-                      const SpecularSettings& settings, const Executor& executor,
+                      const SpecularSettings& settings, const DfgTable& dfg, const Executor& executor,
                       CubeMapChain* chainOut = nullptr);
 
 } // namespace ibl
