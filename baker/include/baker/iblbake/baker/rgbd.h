@@ -25,8 +25,8 @@ std::array<std::uint8_t, 4> encodeRgbd(const glm::vec3& linear);
 glm::vec3 decodeRgbd(const std::array<std::uint8_t, 4>& rgbd);
 
 // Writes `image` x `scale` as a straight-alpha (unassociated) RGBA PNG at `path`, with libpng's sRGB chunk
-// (which browsers decode as an untagged PNG: no conversion; the Babylon.js glTF test reads these). Not
-// atomic: callers pass a temporary name (ibl::AtomicFile). Throws ibl::Error naming the file.
+// (which browsers decode as an untagged PNG: no conversion; the Babylon.js glTF test reads these), through a
+// temporary file and a rename, so a failure leaves nothing at `path`. Throws ibl::Error naming the file.
 void writeRgbdPng(const std::filesystem::path& path, const ImageRGBA& image, float scale);
 
 } // namespace ibl
