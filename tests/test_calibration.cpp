@@ -284,6 +284,43 @@ TEST(EnvironmentStats, MatchPerTexelSumsAndSameBitsOnAnyThreadCount) {
     }
 }
 
+// The low percentile is the full sort's: the luminance at which the running solid angle of all positive
+// texels in ascending order (ties by solid angle) first reaches 0.1 % of their total, whatever the
+// selection does to get there. Luminances spread over many octaves with ties and zeros, on a cube and a
+// lat-long (uneven solid angles).
+TEST(EnvironmentStats, LowPercentileIsTheFullSorts) {
+    const auto value = [](const glm::dvec3& d) {
+        const double wave = std::sin(37.0 * d.x) * std::cos(23.0 * d.z) + 0.3 * d.y;
+        const float y = wave < -0.9 ? 0.0f : float(std::exp2(std::round(12.0 * wave)));
+        return glm::vec3(y);
+    };
+    const CubeMap cube = cubeOf(96, value);
+    const ImageRGBA latlong = latLongOf(384, 192, value);
+    for (const SphereTexels& texels : {SphereTexels(cube), SphereTexels(latlong, LatLongPixels::Centre)}) {
+        std::vector<std::pair<float, float>> positive;
+        double logOmega = 0.0;
+        for (std::size_t i = 0; i < texels.size(); ++i) {
+            const double y = glm::dot(kRec709Luminance, glm::dvec3(texels.rgb(i)));
+            if (!(y > 0.0)) continue;
+            positive.emplace_back(float(y), float(texels.solidAngle(i)));
+            logOmega += texels.solidAngle(i);
+        }
+        std::sort(positive.begin(), positive.end());
+        ASSERT_LT(positive.size(), texels.size()); // some texels are black
+        const EnvironmentStats stats = computeEnvironmentStats(texels);
+        double acc = 0.0;
+        float expected = positive.back().first;
+        for (const auto& [y, omega] : positive) {
+            acc += omega;
+            if (acc >= 0.001 * logOmega) {
+                expected = y;
+                break;
+            }
+        }
+        EXPECT_EQ(stats.lowPercentileLuminance, expected);
+    }
+}
+
 // ---------------------------------------------------------------------------------------------------
 // Calibration factors
 
