@@ -340,18 +340,26 @@ EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, LatLongPixels pla
 
 double zenithLuminance(const SphereTexels& texels, double capDegrees, const glm::dvec3& weights,
                        const std::vector<std::size_t>& exclude) {
-    // Texels whose centroid lies in the cap; on a grid too coarse to have any, the ones nearest +Y.
+    // Texels whose centroid lies in the cap; on a grid too coarse to have any, the ones nearest +Y. On a
+    // cube, a cap narrower than 45 degrees holds +Y's texels only: every other face's texel centroids lie
+    // more than 45 degrees from +Y (a side face's nearest point, the middle of its top edge, is at 45),
+    // and +Y's central texels are nearer than that, so the nearest texels are +Y's too; the other faces
+    // are skipped (their texels come before and after +Y's, so the sums' order is unchanged).
+    const std::size_t faceTexels = texels.isCube() ? texels.size() / 6 : 0;
+    const bool plusYOnly = texels.isCube() && capDegrees < 45.0;
+    const std::size_t first = plusYOnly ? 2 * faceTexels : 0,
+                      last = plusYOnly ? 3 * faceTexels : texels.size();
     // The cosines in parallel (a maximum does not depend on the order); the sums below stay in texel
     // order, over the few texels of the cap, so the result is the serial loop's to the last bit.
     using Range = tbb::blocked_range<std::size_t>;
-    std::vector<double> cosines(texels.size());
+    std::vector<double> cosines(last - first);
     const double nearest = tbb::parallel_reduce(
-        Range(0, texels.size(), 4096), -1.0,
+        Range(first, last, 4096), -1.0,
         [&](const Range& range, double m) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const glm::dvec3 v = texels.vectorSolidAngle(i);
-                cosines[i] = v.y / glm::length(v);
-                m = std::max(m, cosines[i]);
+                cosines[i - first] = v.y / glm::length(v);
+                m = std::max(m, cosines[i - first]);
             }
             return m;
         },
@@ -360,8 +368,8 @@ double zenithLuminance(const SphereTexels& texels, double capDegrees, const glm:
     std::vector<std::size_t> skip = exclude;
     std::sort(skip.begin(), skip.end());
     double energy = 0.0, omega = 0.0;
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        if (cosines[i] < cosCap || std::binary_search(skip.begin(), skip.end(), i)) continue;
+    for (std::size_t i = first; i < last; ++i) {
+        if (cosines[i - first] < cosCap || std::binary_search(skip.begin(), skip.end(), i)) continue;
         const double w = texels.solidAngle(i);
         energy += glm::dot(weights, glm::dvec3(texels.rgb(i))) * w;
         omega += w;
