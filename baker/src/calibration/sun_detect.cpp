@@ -248,16 +248,13 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
     det.texelCount = n;
     const glm::dvec3& wt = settings.luminanceWeights;
 
-    // Luminance, solid angle and the upper-hemisphere flag per texel (the passes over all texels below
-    // read them instead of the geometry).
+    // Luminance and the upper-hemisphere flag per texel.
     std::vector<float> lum(n);
-    std::vector<double> omega(n);
     std::vector<std::uint8_t> upper(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t i = r.begin(); i != r.end(); ++i) {
                               lum[i] = float(glm::dot(wt, glm::dvec3(texels.rgb(i))));
-                              omega[i] = texels.solidAngle(i);
                               upper[i] = texels.vectorSolidAngle(i).y > 0.0;
                           }
                       });
@@ -274,7 +271,7 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
         std::vector<std::pair<float, double>> samples;
         samples.reserve(n / 2 + 1);
         for (std::size_t i = 0; i < n; ++i)
-            if (upper[i]) samples.emplace_back(lum[i], omega[i]);
+            if (upper[i]) samples.emplace_back(lum[i], texels.solidAngle(i));
         det.skyLuminance = weightedMedian(samples);
     }
 
@@ -317,7 +314,7 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
     for (std::size_t k : det.region)
         if (lum[k] > t) regionExcess += (double(lum[k]) - det.threshold) * texels.solidAngle(k);
     for (std::size_t i = 0; i < n; ++i)
-        if (lum[i] > t) allExcess += (double(lum[i]) - det.threshold) * omega[i];
+        if (lum[i] > t) allExcess += (double(lum[i]) - det.threshold) * texels.solidAngle(i);
     det.energyShare = allExcess > 0.0 ? regionExcess / allExcess : 1.0;
     if (det.energyShare <= settings.minEnergyShare) {
         det.reason =
