@@ -252,6 +252,37 @@ TEST(EnvironmentStats, AnalyticEnvironments) {
     EXPECT_NEAR(zenithLuminance(SphereTexels(zen), kZenithCapDegrees), 3.0, 1e-6);
 }
 
+// On a cube, the zenith cap reads +Y's texels only when it is narrower than 45 degrees; the result is the
+// one of every texel tested in order, to the last bit, on coarse grids (the nearest-texel fallback) too.
+TEST(EnvironmentStats, ZenithLuminanceIsTheAllTexelLoops) {
+    const auto sky = [](const glm::dvec3& d) {
+        return glm::vec3(float(1.0 + 2.0 * d.y + 0.3 * d.x), float(0.5 + d.z * d.z), 0.25f);
+    };
+    for (int n : {1, 2, 3, 16, 33}) {
+        const CubeMap cube = cubeOf(n, sky);
+        const SphereTexels texels(cube);
+        for (double cap : {1.0, 5.0, 30.0, 44.9, 60.0, 100.0}) {
+            const std::vector<std::size_t> exclude = {2 * std::size_t(n) * n + std::size_t(n) / 2};
+            double nearest = -1.0;
+            for (std::size_t i = 0; i < texels.size(); ++i) {
+                const glm::dvec3 v = texels.vectorSolidAngle(i);
+                nearest = std::max(nearest, v.y / glm::length(v));
+            }
+            const double cosCap = std::min(std::cos(cap * kPi / 180.0), nearest - 1e-12);
+            double energy = 0.0, omega = 0.0;
+            for (std::size_t i = 0; i < texels.size(); ++i) {
+                const glm::dvec3 v = texels.vectorSolidAngle(i);
+                if (v.y / glm::length(v) < cosCap || i == exclude[0]) continue;
+                energy += glm::dot(kRec709Luminance, glm::dvec3(texels.rgb(i))) * texels.solidAngle(i);
+                omega += texels.solidAngle(i);
+            }
+            EXPECT_EQ(zenithLuminance(texels, cap, kRec709Luminance, exclude),
+                      omega > 0.0 ? energy / omega : 0.0)
+                << n << " texels, cap " << cap;
+        }
+    }
+}
+
 // The statistics (from per-face tables for a cube) equal the per-texel sums, and are the same to the last
 // bit on one thread or many: a calibration factor made from them reaches every product, which must not
 // depend on the machine (batch shards are byte-compared).
@@ -281,6 +312,43 @@ TEST(EnvironmentStats, MatchPerTexelSumsAndSameBitsOnAnyThreadCount) {
         EXPECT_EQ(again.upwardIlluminance, one.upwardIlluminance);
         EXPECT_EQ(again.logMeanLuminance, one.logMeanLuminance);
         EXPECT_EQ(again.lowPercentileLuminance, one.lowPercentileLuminance);
+    }
+}
+
+// The low percentile is the full sort's: the luminance at which the running solid angle of all positive
+// texels in ascending order (ties by solid angle) first reaches 0.1 % of their total, whatever the
+// selection does to get there. Luminances spread over many octaves with ties and zeros, on a cube and a
+// lat-long (uneven solid angles).
+TEST(EnvironmentStats, LowPercentileIsTheFullSorts) {
+    const auto value = [](const glm::dvec3& d) {
+        const double wave = std::sin(37.0 * d.x) * std::cos(23.0 * d.z) + 0.3 * d.y;
+        const float y = wave < -0.9 ? 0.0f : float(std::exp2(std::round(12.0 * wave)));
+        return glm::vec3(y);
+    };
+    const CubeMap cube = cubeOf(96, value);
+    const ImageRGBA latlong = latLongOf(384, 192, value);
+    for (const SphereTexels& texels : {SphereTexels(cube), SphereTexels(latlong, LatLongPixels::Centre)}) {
+        std::vector<std::pair<float, float>> positive;
+        double logOmega = 0.0;
+        for (std::size_t i = 0; i < texels.size(); ++i) {
+            const double y = glm::dot(kRec709Luminance, glm::dvec3(texels.rgb(i)));
+            if (!(y > 0.0)) continue;
+            positive.emplace_back(float(y), float(texels.solidAngle(i)));
+            logOmega += texels.solidAngle(i);
+        }
+        std::sort(positive.begin(), positive.end());
+        ASSERT_LT(positive.size(), texels.size()); // some texels are black
+        const EnvironmentStats stats = computeEnvironmentStats(texels);
+        double acc = 0.0;
+        float expected = positive.back().first;
+        for (const auto& [y, omega] : positive) {
+            acc += omega;
+            if (acc >= 0.001 * logOmega) {
+                expected = y;
+                break;
+            }
+        }
+        EXPECT_EQ(stats.lowPercentileLuminance, expected);
     }
 }
 

@@ -971,3 +971,73 @@ TEST(ImageSources, MatchOpenImageIOOnRealFiles) {
         EXPECT_EQ(raw.hasAlpha, spec.alpha_channel >= 0) << file;
     }
 }
+
+namespace {
+
+// Radiance run-length encoding of one scanline (Ward, Graphics Gems II): per channel, runs of 3 or more
+// equal bytes as (128 + count, byte), the rest as (count, literal bytes), counts up to 127.
+void appendEncodedScanline(std::string& out, const std::vector<std::uint8_t>& rgbe, int width) {
+    out += {char(2), char(2), char(width >> 8), char(width & 0xff)};
+    for (int channel = 0; channel < 4; ++channel) {
+        auto at = [&](int x) { return rgbe[std::size_t(4 * x + channel)]; };
+        for (int x = 0; x < width;) {
+            int run = 1;
+            while (x + run < width && run < 127 && at(x + run) == at(x))
+                ++run;
+            if (run >= 3) {
+                out += {char(128 + run), char(at(x))};
+                x += run;
+                continue;
+            }
+            int literal = 1;
+            while (x + literal < width && literal < 127 &&
+                   !(x + literal + 2 < width && at(x + literal) == at(x + literal + 1) &&
+                     at(x + literal) == at(x + literal + 2)))
+                ++literal;
+            out += char(literal);
+            for (int k = 0; k < literal; ++k)
+                out += char(at(x + k));
+            x += literal;
+        }
+    }
+}
+
+} // namespace
+
+// Every mantissa at every exponent, flat and run-length encoded: the reader's values are ldexp(mantissa,
+// exponent - 136) (0 at exponent 0) bit for bit, as rgbe.c and OpenImageIO decode.
+TEST(ImageSources, RadianceDecodesEveryExponentAsLdexp) {
+    constexpr int kSize =
+        256; // pixel (x, y): mantissas x, x + 1, x + 2 (never the run marker 1, 1, 1), exponent y
+    std::vector<std::vector<std::uint8_t>> rows;
+    for (int y = 0; y < kSize; ++y) {
+        std::vector<std::uint8_t> row;
+        for (int x = 0; x < kSize; ++x)
+            row.insert(row.end(),
+                       {std::uint8_t(x), std::uint8_t(x + 1), std::uint8_t(x + 2), std::uint8_t(y)});
+        rows.push_back(row);
+    }
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 256 +X 256\n";
+    std::string flat = header, encoded = header;
+    for (const auto& row : rows) {
+        flat.append(reinterpret_cast<const char*>(row.data()), row.size());
+        appendEncodedScanline(encoded, row, kSize);
+    }
+    TempDir dir;
+    for (const auto& [name, bytes] : {std::pair{"flat.hdr", flat}, std::pair{"encoded.hdr", encoded}}) {
+        std::ofstream(dir / name, std::ios::binary) << bytes;
+        const ibl::ingest::RawImage raw = ibl::ingest::readImage(dir / name);
+        ASSERT_EQ(raw.pixels.width, kSize);
+        ASSERT_EQ(raw.pixels.height, kSize);
+        std::size_t differing = 0;
+        for (int y = 0; y < kSize; ++y)
+            for (int x = 0; x < kSize; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const std::uint8_t mantissa = rows[std::size_t(y)][std::size_t(4 * x + c)];
+                    const float expected = y == 0 ? 0.0f : std::ldexp(float(mantissa), y - 136);
+                    const float got = raw.pixels.at(x, y)[c];
+                    differing += std::memcmp(&got, &expected, sizeof(float)) != 0;
+                }
+        EXPECT_EQ(differing, 0u) << name;
+    }
+}

@@ -1,6 +1,6 @@
 // Ingest time (Google Benchmark; never a pass/fail timer): the whole ingest of the sample HDRI (read,
-// repair, colour, exact-area lat-long -> cube resampling) at n-texel faces, and each of its steps and the
-// measurements made on the cube before a bake (statistics, sun detection, zenith luminance) on their own.
+// repair, colour, exact-area lat-long -> cube resampling) at n-texel faces, alone and with the measurements
+// made on the cube before a bake (statistics, sun detection, zenith luminance), and each step on its own.
 // Process CPU time is reported beside wall time: on a shared 2-core machine it is the steadier figure.
 #include "cube_texel_geometry.h"
 #include "ingest_internal.h"
@@ -100,11 +100,28 @@ void cubeZenithLuminance(benchmark::State& state) {
             ibl::zenithLuminance(ibl::SphereTexels(cube), ibl::kZenithCapDegrees, ibl::kRec709Luminance));
 }
 
+// The whole of issue 18 item 2's budget: the ingest (read, repair, colour, resampling into n-texel faces)
+// and the measurements a calibration makes on its cube (statistics, sun detection, zenith luminance
+// without the sun's texels).
+void ingestAndMeasure(benchmark::State& state) {
+    ibl::IngestSettings settings;
+    settings.sourceFaceSize = int(state.range(0));
+    for (auto _ : state) {
+        const ibl::SourceEnvironment env = ibl::ingestEnvironment({IBLBAKE_SAMPLE_HDRI}, settings);
+        const ibl::SphereTexels texels(env.cube);
+        benchmark::DoNotOptimize(ibl::computeEnvironmentStats(texels, ibl::kRec709Luminance));
+        const ibl::SunDetection sun = ibl::detectSun(texels, ibl::SunDetectSettings{});
+        benchmark::DoNotOptimize(
+            ibl::zenithLuminance(texels, ibl::kZenithCapDegrees, ibl::kRec709Luminance, sun.region));
+    }
+}
+
 void timed(benchmark::internal::Benchmark* b) {
     b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 }
 
 BENCHMARK(ingestSample)->Arg(64)->Arg(256)->Arg(1024)->Apply(timed);
+BENCHMARK(ingestAndMeasure)->Arg(256)->Apply(timed);
 BENCHMARK(ingestRead)->Apply(timed);
 BENCHMARK(ingestSanitize)->Apply(timed);
 BENCHMARK(ingestColour)->Apply(timed);

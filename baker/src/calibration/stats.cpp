@@ -17,7 +17,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <utility>
@@ -54,6 +56,22 @@ double sqrtOneMinusSquareIntegral(double z) {
 // z1^2 - z0^2 without cancellation.
 double squareDifference(double z1, double z0) {
     return (z1 - z0) * (z1 + z0);
+}
+
+// Cube texel index i = face * N^2 + rest, for a cube of `size` texels.
+struct CubeIndex {
+    std::size_t face, rest; // rest: the index within the face, j * N + i
+};
+
+CubeIndex splitCubeIndex(std::size_t i, int faceSize, std::size_t size) {
+    // In 32 bits whenever the cube's indices fit (every cube a bake makes: 6 * 4096^2 < 2^32), where a
+    // division is several times cheaper than in 64 bits; every accessor of a cube view divides.
+    const std::size_t n = std::size_t(faceSize);
+    if (size <= std::numeric_limits<std::uint32_t>::max()) {
+        const std::uint32_t nn = std::uint32_t(n * n), k = std::uint32_t(i);
+        return {k / nn, k % nn};
+    }
+    return {i / (n * n), i % (n * n)};
 }
 
 } // namespace
@@ -93,8 +111,8 @@ bool SphereTexels::sameGridAs(const SphereTexels& other) const {
 
 glm::vec4& SphereTexels::texel(std::size_t i) const {
     if (cube_) {
-        const std::size_t n = std::size_t(cube_->faceSize), face = i / (n * n), r = i % (n * n);
-        return cube_->faces[face].pixels[r];
+        const CubeIndex t = splitCubeIndex(i, cube_->faceSize, size_);
+        return cube_->faces[t.face].pixels[t.rest];
     }
     return latlong_->pixels[i];
 }
@@ -110,8 +128,9 @@ void SphereTexels::setRgb(std::size_t i, const glm::vec3& value) {
 }
 
 SphereTexels::CubeTexel SphereTexels::cubeTexel(std::size_t i) const {
-    const std::size_t n = std::size_t(cube_->faceSize), r = i % (n * n);
-    return {int(i / (n * n)), int(r % n), int(r / n)};
+    const CubeIndex t = splitCubeIndex(i, cube_->faceSize, size_);
+    const std::uint32_t n = std::uint32_t(cube_->faceSize), r = std::uint32_t(t.rest);
+    return {int(t.face), int(r % n), int(r / n)};
 }
 
 double SphereTexels::solidAngle(std::size_t i) const {
@@ -199,14 +218,35 @@ double ev100FromLuminance(double averageLuminance) {
 
 namespace {
 
-// The luminance below which `fraction` of the positive-luminance solid angle lies (texels as (luminance,
-// solid angle) pairs, consumed). Only the darkest texels are ordered: the answer lies among them unless
-// the solid angles are very uneven, when the whole list is sorted; either way the result is the full
-// sort's.
-float lowPercentile(std::vector<std::pair<float, float>>& positive, double target) {
+// A positive texel as (luminance, solid angle).
+using LuminanceSample = std::pair<float, float>;
+
+// Bins of non-negative floats by their top bits (sign, exponent and 3 mantissa bits), in the floats' order.
+constexpr int kBinShift = 20;
+constexpr std::size_t kBins = std::size_t(1) << (32 - kBinShift - 1);
+
+std::size_t binOf(float value) {
+    return std::size_t(std::bit_cast<std::uint32_t>(value) >> kBinShift);
+}
+
+// The luminance below which `target` of the positive-luminance solid angle lies (texels as (luminance,
+// solid angle) pairs, consumed; `binCounts` counts them per binOf). Only the darkest texels are ordered: the
+// answer lies among them unless the solid angles are very uneven, when the whole list is sorted; either
+// way the result is the full sort's. The darkest are first moved to the front (the texels in the lowest
+// bins that hold at least as many), so the selection runs over a few thousand texels instead of all.
+float lowPercentile(std::vector<LuminanceSample>& positive, const std::array<std::uint32_t, kBins>& binCounts,
+                    double target) {
     std::size_t prefix = std::min(positive.size(), std::max<std::size_t>(1024, positive.size() / 64));
+    std::size_t lastBin = 0, dark = binCounts[0];
+    while (dark < prefix)
+        dark += binCounts[++lastBin];
+    std::partition(positive.begin(), positive.end(),
+                   [&](const LuminanceSample& s) { return binOf(s.first) <= lastBin; });
     for (;;) {
-        std::nth_element(positive.begin(), positive.begin() + std::ptrdiff_t(prefix - 1), positive.end());
+        // The prefix smallest pairs lie in the front part while it holds that many: all of its pairs are
+        // smaller than all of the others.
+        const auto end = prefix <= dark ? positive.begin() + std::ptrdiff_t(dark) : positive.end();
+        std::nth_element(positive.begin(), positive.begin() + std::ptrdiff_t(prefix - 1), end);
         std::sort(positive.begin(), positive.begin() + std::ptrdiff_t(prefix));
         double acc = 0.0;
         for (std::size_t k = 0; k < prefix; ++k) {
@@ -229,13 +269,16 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
     };
     // Deterministic: the same split into ranges on any number of threads, so the same sums to the last
     // bit (a calibration factor from them reaches every product, which must not depend on the machine).
+    // Each texel's (luminance, solid angle) is kept for the percentile, luminance -1 when not positive.
     using Range = tbb::blocked_range<std::size_t>;
+    std::vector<LuminanceSample> samples(texels.size());
     const Sums s = tbb::parallel_deterministic_reduce(
         Range(0, texels.size(), 4096), Sums{},
         [&](const Range& range, Sums a) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
                 const double omega = texels.solidAngle(i);
+                samples[i] = {y > 0.0 ? float(y) : -1.0f, float(omega)};
                 a.omega += omega;
                 a.energy += y * omega;
                 a.upward += y * texels.upwardCosine(i);
@@ -269,14 +312,16 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
     st.upwardIlluminance = s.upward;
 
     // 0.1th percentile of the positive luminances by solid angle.
-    std::vector<std::pair<float, float>> positive; // (luminance, solid angle)
+    std::vector<LuminanceSample> positive;
     positive.reserve(texels.size());
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
-        if (y > 0.0) positive.emplace_back(float(y), float(texels.solidAngle(i)));
-    }
+    std::array<std::uint32_t, kBins> binCounts{};
+    for (const LuminanceSample& sample : samples)
+        if (sample.first >= 0.0f) {
+            positive.push_back(sample);
+            ++binCounts[binOf(sample.first)];
+        }
     if (!positive.empty()) {
-        st.lowPercentileLuminance = lowPercentile(positive, 0.001 * s.logOmega);
+        st.lowPercentileLuminance = lowPercentile(positive, binCounts, 0.001 * s.logOmega);
         st.dynamicRangeStops = std::log2(st.maxLuminance / st.lowPercentileLuminance);
     }
     st.ev100 = ev100FromLuminance(st.logMeanLuminance);
@@ -295,20 +340,36 @@ EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, LatLongPixels pla
 
 double zenithLuminance(const SphereTexels& texels, double capDegrees, const glm::dvec3& weights,
                        const std::vector<std::size_t>& exclude) {
-    // Texels whose centroid lies in the cap; on a grid too coarse to have any, the ones nearest +Y.
-    std::vector<double> cosines(texels.size());
-    double nearest = -1.0;
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        const glm::dvec3 v = texels.vectorSolidAngle(i);
-        cosines[i] = v.y / glm::length(v);
-        nearest = std::max(nearest, cosines[i]);
-    }
+    // Texels whose centroid lies in the cap; on a grid too coarse to have any, the ones nearest +Y. On a
+    // cube, a cap narrower than 45 degrees holds +Y's texels only: every other face's texel centroids lie
+    // more than 45 degrees from +Y (a side face's nearest point, the middle of its top edge, is at 45),
+    // and +Y's central texels are nearer than that, so the nearest texels are +Y's too; the other faces
+    // are skipped (their texels come before and after +Y's, so the sums' order is unchanged).
+    const std::size_t faceTexels = texels.isCube() ? texels.size() / 6 : 0;
+    const bool plusYOnly = texels.isCube() && capDegrees < 45.0;
+    const std::size_t first = plusYOnly ? 2 * faceTexels : 0,
+                      last = plusYOnly ? 3 * faceTexels : texels.size();
+    // The cosines in parallel (a maximum does not depend on the order); the sums below stay in texel
+    // order, over the few texels of the cap, so the result is the serial loop's to the last bit.
+    using Range = tbb::blocked_range<std::size_t>;
+    std::vector<double> cosines(last - first);
+    const double nearest = tbb::parallel_reduce(
+        Range(first, last, 4096), -1.0,
+        [&](const Range& range, double m) {
+            for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                const glm::dvec3 v = texels.vectorSolidAngle(i);
+                cosines[i - first] = v.y / glm::length(v);
+                m = std::max(m, cosines[i - first]);
+            }
+            return m;
+        },
+        [](double a, double b) { return std::max(a, b); });
     const double cosCap = std::min(std::cos(capDegrees * kPi / 180.0), nearest - 1e-12);
     std::vector<std::size_t> skip = exclude;
     std::sort(skip.begin(), skip.end());
     double energy = 0.0, omega = 0.0;
-    for (std::size_t i = 0; i < texels.size(); ++i) {
-        if (cosines[i] < cosCap || std::binary_search(skip.begin(), skip.end(), i)) continue;
+    for (std::size_t i = first; i < last; ++i) {
+        if (cosines[i - first] < cosCap || std::binary_search(skip.begin(), skip.end(), i)) continue;
         const double w = texels.solidAngle(i);
         energy += glm::dot(weights, glm::dvec3(texels.rgb(i))) * w;
         omega += w;

@@ -70,16 +70,38 @@ struct Square {
     double a0, a1, b0, b1;
 };
 
-// The arc [zLo, zHi] of the meridian at longitude phi inside the texel; false when they do not meet.
-bool clipMeridian(const FaceFrame& f, const Square& sq, double phi, double& zLo, double& zHi) {
+// The meridian at longitude phi on a face plane: the line A a + B b + C = 0 as the point (pa, pb) plus
+// tau (ta, tb), and its half-plane of directions alpha + beta tau >= 0. It depends on the face and phi only,
+// so texels that share a longitude (a side face's column) share it.
+struct FaceMeridian {
+    bool meets = false; // false: the meridian plane is parallel to the face
+    double pa, pb, ta, tb;
+    double alpha, beta;
+};
+
+FaceMeridian faceMeridian(const FaceFrame& f, double phi) {
     const glm::dvec3 n(std::cos(phi), 0.0, -std::sin(phi)); // normal of the meridian's plane
     const glm::dvec3 m(std::sin(phi), 0.0, std::cos(phi));  // the meridian's horizontal direction
     // Plane: A a + B b + C = 0 on the face plane; half-plane: P + Q a + R b >= 0.
     const double A = glm::dot(n, f.u), B = glm::dot(n, f.v), C = glm::dot(n, f.o);
     const double P = glm::dot(m, f.o), Q = glm::dot(m, f.u), R = glm::dot(m, f.v);
     const double len2 = A * A + B * B;
-    if (len2 < 1e-24) return false; // meridian plane parallel to the face
-    const double pa = -C * A / len2, pb = -C * B / len2, ta = -B, tb = A;
+    FaceMeridian mer;
+    if (len2 < 1e-24) return mer;
+    mer.meets = true;
+    mer.pa = -C * A / len2;
+    mer.pb = -C * B / len2;
+    mer.ta = -B;
+    mer.tb = A;
+    mer.alpha = P + Q * mer.pa + R * mer.pb;
+    mer.beta = Q * mer.ta + R * mer.tb;
+    return mer;
+}
+
+// The arc [zLo, zHi] of the meridian inside the texel; false when they do not meet.
+bool clipMeridian(const FaceFrame& f, const Square& sq, const FaceMeridian& mer, double& zLo, double& zHi) {
+    if (!mer.meets) return false;
+    const double pa = mer.pa, pb = mer.pb, ta = mer.ta, tb = mer.tb;
     double lo = -1e300, hi = 1e300;
     // Constraint alpha + beta * tau >= 0 (Liang-Barsky).
     auto limit = [&](double alpha, double beta) {
@@ -95,7 +117,7 @@ bool clipMeridian(const FaceFrame& f, const Square& sq, double phi, double& zLo,
     limit(sq.a1 - pa, -ta);
     limit(pb - sq.b0, tb);
     limit(sq.b1 - pb, -tb);
-    limit(P + Q * pa + R * pb, Q * ta + R * tb);
+    limit(mer.alpha, mer.beta);
     if (!(lo < hi)) return false;
     const glm::dvec3 d0 = f.at(pa + lo * ta, pb + lo * tb), d1 = f.at(pa + hi * ta, pb + hi * tb);
     const double z0 = d0.y / glm::length(d0), z1 = d1.y / glm::length(d1);
@@ -260,13 +282,21 @@ struct TexelIntegral {
 // per-face grid: neighbouring texels share corners, so atan2 runs once per corner, not four times per texel.
 using CornerLongitudes = std::array<double, 4>;
 
-template <class Value>
-TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
-                                    const CornerLongitudes& corners, double rotate, const Orbit& orbit,
-                                    std::vector<double>& cuts) {
+// A quadrature node of a texel's longitude range: its meridian, weight and lat-long column.
+struct MeridianNode {
+    FaceMeridian meridian;
+    double weight;
+    int column;
+};
+
+// The quadrature nodes of a texel with these corner longitudes (`cuts` is scratch).
+void texelNodes(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
+                const CornerLongitudes& corners, double rotate, std::vector<double>& cuts,
+                std::vector<MeridianNode>& nodes) {
     // Longitude range of the texel: its corners' longitudes unwrapped around one of them (a texel that
     // holds no pole spans less than pi); a texel that holds a pole inside sees every longitude.
     cuts.clear();
+    nodes.clear();
     double phiMin, phiMax;
     const bool holdsPole =
         std::fabs(frame.o.y) == 1.0 && sq.a0 < 0.0 && 0.0 < sq.a1 && sq.b0 < 0.0 && 0.0 < sq.b1;
@@ -308,26 +338,33 @@ TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& fr
     cuts.push_back(phiMax);
     std::sort(cuts.begin(), cuts.end());
 
-    TexelIntegral<Value> sum;
-    sum.energy.fill(Value(0.0));
     for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
         const double p0 = std::max(cuts[i], phiMin), p1 = std::min(cuts[i + 1], phiMax);
         if (!(p1 - p0 > 1e-15)) continue;
         const double half = 0.5 * (p1 - p0), mid = 0.5 * (p0 + p1);
         const double u = uOf(mid);
         const int column = grid.column(u - std::floor(u));
-        for (int k = 0; k < kOrder; ++k) {
-            double zLo, zHi;
-            if (!clipMeridian(frame, sq, mid + half * kNodes[k], zLo, zHi)) continue;
-            const double w = half * kWeights[k];
-            sum.area += w * (zHi - zLo);
-            const LatLongGrid::RowSpan span = grid.rowSpan(zLo, zHi);
-            for (int m = 0; m < orbit.count; ++m) {
-                const TexelImage& image = orbit.images[std::size_t(m)];
-                const int c = column + image.columnShift;
-                sum.energy[std::size_t(m)] +=
-                    w * grid.integrate<Value>(c < grid.width() ? c : c - grid.width(), span, image.mirrored);
-            }
+        for (int k = 0; k < kOrder; ++k)
+            nodes.push_back({faceMeridian(frame, mid + half * kNodes[k]), half * kWeights[k], column});
+    }
+}
+
+template <class Value>
+TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
+                                    const std::vector<MeridianNode>& nodes, const Orbit& orbit) {
+    TexelIntegral<Value> sum;
+    sum.energy.fill(Value(0.0));
+    for (const MeridianNode& node : nodes) {
+        double zLo, zHi;
+        if (!clipMeridian(frame, sq, node.meridian, zLo, zHi)) continue;
+        const double w = node.weight;
+        sum.area += w * (zHi - zLo);
+        const LatLongGrid::RowSpan span = grid.rowSpan(zLo, zHi);
+        for (int m = 0; m < orbit.count; ++m) {
+            const TexelImage& image = orbit.images[std::size_t(m)];
+            const int c = node.column + image.columnShift;
+            sum.energy[std::size_t(m)] +=
+                w * grid.integrate<Value>(c < grid.width() ? c : c - grid.width(), span, image.mirrored);
         }
     }
     return sum;
@@ -369,39 +406,63 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
     });
     // Each computed texel writes its whole orbit; orbits do not overlap, so tasks never write the same texel,
     // and each texel's value comes from one fixed computation whatever the scheduling.
-    tbb::parallel_for(tbb::blocked_range<int>(0, 6 * faceSize), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<double> cuts; // scratch, reused across texels
-        for (int fr = rows.begin(); fr != rows.end(); ++fr) {
-            const int face = fr / faceSize, j = fr % faceSize;
+    auto square = [&](int i, int j) {
+        return Square{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step, -1.0 + (j + 1) * step};
+    };
+    auto cornerLongitudes = [&](int face, int i, int j) {
+        const double* below = &cornerLongitude[(std::size_t(face) * corners + std::size_t(j)) * corners];
+        const double* above = below + corners;
+        return CornerLongitudes{below[i], above[i], below[i + 1], above[i + 1]};
+    };
+    auto resampleTexel = [&](int face, const FaceFrame& frame, int i, int j,
+                             const std::vector<MeridianNode>& nodes) {
+        const Square sq = square(i, j);
+        const Orbit orbit = symmetry.orbit(face, i, j, faceSize, latlong.width);
+        auto texel = [&](int m) -> glm::vec4& {
+            const TexelImage& t = orbit.images[std::size_t(m)];
+            return cube.faces[std::size_t(t.face)].at(t.i, t.j);
+        };
+        if (withAlpha) {
+            const auto t = integrateTexel<glm::dvec4>(grid, frame, sq, nodes, orbit);
+            for (int m = 0; m < orbit.count; ++m) {
+                const glm::dvec4 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
+                texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), resampledAlpha(v.w));
+            }
+        } else {
+            const auto t = integrateTexel<glm::dvec3>(grid, frame, sq, nodes, orbit);
+            for (int m = 0; m < orbit.count; ++m) {
+                const glm::dvec3 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec3(0.0);
+                texel(m) = glm::vec4(glm::vec3(v), 1.0f);
+            }
+        }
+    };
+    // Side faces (+-X, +-Z) column by column: their vertical texel edges are meridians, so every texel of a
+    // face column has the same corner longitudes (a corner's horizontal direction does not depend on its
+    // height), hence the same cuts and quadrature meridians, computed once per column.
+    constexpr std::array<int, 4> kSideFaces = {0, 1, 4, 5};
+    tbb::parallel_for(tbb::blocked_range<int>(0, 4 * faceSize), [&](const tbb::blocked_range<int>& columns) {
+        std::vector<double> cuts;
+        std::vector<MeridianNode> nodes;
+        for (int fc = columns.begin(); fc != columns.end(); ++fc) {
+            const int face = kSideFaces[std::size_t(fc / faceSize)], i = fc % faceSize;
+            if (!symmetry.computes(face, i, 0, faceSize)) continue;
             const FaceFrame frame = faceFrame(face);
-            const double* below = &cornerLongitude[(std::size_t(face) * corners + std::size_t(j)) * corners];
-            const double* above = below + corners;
+            texelNodes(grid, frame, square(i, 0), cornerLongitudes(face, i, 0), rotateRadians, cuts, nodes);
+            for (int j = 0; j < faceSize && symmetry.computes(face, i, j, faceSize); ++j)
+                resampleTexel(face, frame, i, j, nodes);
+        }
+    });
+    // +-Y row by row, every texel with its own cuts.
+    tbb::parallel_for(tbb::blocked_range<int>(0, 2 * faceSize), [&](const tbb::blocked_range<int>& rows) {
+        std::vector<double> cuts;
+        std::vector<MeridianNode> nodes;
+        for (int fr = rows.begin(); fr != rows.end(); ++fr) {
+            const int face = 2 + fr / faceSize, j = fr % faceSize;
+            const FaceFrame frame = faceFrame(face);
             for (int i = 0; i < faceSize && symmetry.computes(face, i, j, faceSize); ++i) {
-                const Square sq{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step,
-                                -1.0 + (j + 1) * step};
-                const CornerLongitudes phis = {below[i], above[i], below[i + 1], above[i + 1]};
-                const Orbit orbit = symmetry.orbit(face, i, j, faceSize, latlong.width);
-                auto texel = [&](int m) -> glm::vec4& {
-                    const TexelImage& t = orbit.images[std::size_t(m)];
-                    return cube.faces[std::size_t(t.face)].at(t.i, t.j);
-                };
-                if (withAlpha) {
-                    const auto t =
-                        integrateTexel<glm::dvec4>(grid, frame, sq, phis, rotateRadians, orbit, cuts);
-                    for (int m = 0; m < orbit.count; ++m) {
-                        const glm::dvec4 v =
-                            t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
-                        texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), resampledAlpha(v.w));
-                    }
-                } else {
-                    const auto t =
-                        integrateTexel<glm::dvec3>(grid, frame, sq, phis, rotateRadians, orbit, cuts);
-                    for (int m = 0; m < orbit.count; ++m) {
-                        const glm::dvec3 v =
-                            t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec3(0.0);
-                        texel(m) = glm::vec4(glm::vec3(v), 1.0f);
-                    }
-                }
+                texelNodes(grid, frame, square(i, j), cornerLongitudes(face, i, j), rotateRadians, cuts,
+                           nodes);
+                resampleTexel(face, frame, i, j, nodes);
             }
         }
     });

@@ -17,6 +17,9 @@
 #include <cstdio>
 #include <cstring>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace ibl::ingest {
 
 namespace {
@@ -31,26 +34,52 @@ class BufferedFile {
     explicit BufferedFile(const std::filesystem::path& file) : in_(file) {}
     // The next byte, or -1 at the end of the file.
     int get() {
-        if (next_ == end_) {
-            end_ = in_.read(buffer_.data(), buffer_.size());
-            next_ = 0;
-            if (end_ == 0) return -1;
-        }
-        return static_cast<unsigned char>(buffer_[next_++]);
+        const std::uint8_t* byte = take(1);
+        return byte ? *byte : -1;
+    }
+    // The next n bytes (n at most the buffer's size), or nullptr when the file ends before them. The
+    // pointer holds until the next call.
+    const std::uint8_t* take(std::size_t n) {
+        if (end_ - next_ < n && !refill(n)) return nullptr;
+        const std::uint8_t* bytes = buffer_.data() + next_;
+        next_ += n;
+        return bytes;
     }
 
   private:
+    // Keeps the unread bytes and reads more after them until n are there; false at the end of the file.
+    bool refill(std::size_t n) {
+        std::memmove(buffer_.data(), buffer_.data() + next_, end_ - next_);
+        end_ -= next_;
+        next_ = 0;
+        while (end_ < n) {
+            const std::size_t got =
+                in_.read(reinterpret_cast<char*>(buffer_.data()) + end_, buffer_.size() - end_);
+            if (got == 0) return false;
+            end_ += got;
+        }
+        return true;
+    }
+
     InputFile in_;
-    std::array<char, 64 * 1024> buffer_{};
+    std::array<std::uint8_t, 64 * 1024> buffer_{};
     std::size_t next_ = 0, end_ = 0;
 };
 
-// The float a channel's mantissa holds at exponent e (0: black). Exact in float: a mantissa of at most 8 bits
-// times a power of two. No half-step is added (as rgbe.c and OpenImageIO decode; Radiance's own colr_color
-// adds 0.5), so values are those of the readers the files were checked in.
-float rgbeChannel(std::uint8_t mantissa, std::uint8_t exponent) {
-    return exponent == 0 ? 0.0f : std::ldexp(float(mantissa), int(exponent) - (128 + 8));
-}
+// The float a channel's mantissa holds at exponent e: mantissa * kExponentScale[e] (0 for e = 0: black).
+// Exact in float, as ldexp(mantissa, e - (128 + 8)) is: a mantissa of at most 8 bits times a power of two
+// (the smallest scales are subnormal floats, and so are their products, still exact). A table lookup and a
+// multiply instead of an ldexp call per channel. No half-step is added (as rgbe.c and OpenImageIO decode;
+// Radiance's own colr_color adds 0.5), so values are those of the readers the files were checked in.
+const std::array<float, 256> kExponentScale = [] {
+    std::array<float, 256> scale{};
+    for (int e = 1; e < 256; ++e)
+        scale[std::size_t(e)] = std::ldexp(1.0f, e - (128 + 8));
+    return scale;
+}();
+
+// Pixels converted to floats per task.
+constexpr std::size_t kPixelsPerTask = 16 * 1024;
 
 class RadianceSource final : public ImageSource {
   public:
@@ -70,11 +99,17 @@ class RadianceSource final : public ImageSource {
             nextRow_ = y1;
         }
         const std::size_t pixels = std::size_t(y1 - y0) * std::size_t(header_.width);
-        for (std::size_t i = 0; i < pixels; ++i) {
-            const std::uint8_t* rgbe = &strip_[4 * i];
-            for (int c = begin; c < end; ++c)
-                *data++ = rgbeChannel(rgbe[c], rgbe[3]);
-        }
+        const std::size_t channels = std::size_t(end - begin);
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels, kPixelsPerTask),
+                          [&](const tbb::blocked_range<std::size_t>& r) {
+                              float* out = data + r.begin() * channels;
+                              for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                  const std::uint8_t* rgbe = &strip_[4 * i];
+                                  const float scale = kExponentScale[rgbe[3]];
+                                  for (int c = begin; c < end; ++c)
+                                      *out++ = float(rgbe[c]) * scale;
+                              }
+                          });
     }
 
   private:
@@ -112,45 +147,55 @@ class RadianceSource final : public ImageSource {
         header_.colorSpace = "linear";
     }
 
-    int byteOf(int y) {
-        const int c = file_.get();
-        if (c < 0)
+    // The next n bytes of scanline y; fails when the file ends before them.
+    const std::uint8_t* bytesOf(int y, std::size_t n) {
+        const std::uint8_t* bytes = file_.take(n);
+        if (!bytes)
             fail("cannot read pixels: the file ends in scanline " + std::to_string(y + 1) + " of " +
                  std::to_string(header_.height));
-        return c;
+        return bytes;
     }
 
     void readScanline(std::uint8_t* rgbe, int y) {
         const int width = header_.width;
         std::array<std::uint8_t, 4> first{};
-        for (std::uint8_t& b : first)
-            b = std::uint8_t(byteOf(y));
+        std::memcpy(first.data(), bytesOf(y, 4), 4);
         const bool encoded = width >= kMinEncodedWidth && width <= kMaxEncodedWidth && first[0] == 2 &&
                              first[1] == 2 && (first[2] & 0x80) == 0;
         if (encoded) {
             if ((first[2] << 8 | first[3]) != width)
                 fail("cannot read pixels: scanline " + std::to_string(y + 1) + " is encoded for " +
                      std::to_string(first[2] << 8 | first[3]) + " pixels, not " + std::to_string(width));
-            for (int channel = 0; channel < 4; ++channel)
+            // Each channel as runs; a literal run's bytes are taken from the buffer at once.
+            for (int channel = 0; channel < 4; ++channel) {
+                std::uint8_t* out = rgbe + channel;
                 for (int x = 0; x < width;) {
-                    int count = byteOf(y);
+                    int count = *bytesOf(y, 1);
                     const bool run = count > 128;
                     if (run) count -= 128;
                     if (count == 0 || count > width - x)
                         fail("cannot read pixels: a run in scanline " + std::to_string(y + 1) +
                              " overruns it");
-                    const int repeated = run ? byteOf(y) : 0;
-                    for (int k = 0; k < count; ++k, ++x)
-                        rgbe[4 * x + channel] = std::uint8_t(run ? repeated : byteOf(y));
+                    if (run) {
+                        const std::uint8_t repeated = *bytesOf(y, 1);
+                        for (int k = 0; k < count; ++k)
+                            out[4 * k] = repeated;
+                    } else {
+                        const std::uint8_t* literal = bytesOf(y, std::size_t(count));
+                        for (int k = 0; k < count; ++k)
+                            out[4 * k] = literal[k];
+                    }
+                    out += 4 * count;
+                    x += count;
                 }
+            }
             return;
         }
         std::memcpy(rgbe, first.data(), 4);
         int shift = 0;
         for (int x = 1; x < width;) {
             std::uint8_t* pixel = rgbe + 4 * x;
-            for (int c = 0; c < 4; ++c)
-                pixel[c] = std::uint8_t(byteOf(y));
+            std::memcpy(pixel, bytesOf(y, 4), 4);
             if (pixel[0] == 1 && pixel[1] == 1 && pixel[2] == 1) {
                 // Old-style run: the previous pixel again, the count in base 256 over consecutive runs.
                 const std::uint64_t count = std::uint64_t(pixel[3]) << shift;

@@ -7,6 +7,9 @@
 #include "iblbake/core/input_file.h"
 #include "iblbake/core/limits.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -42,6 +45,9 @@ std::array<int, 3> pickChannels(const ImageHeader& header) {
 
 // Pixels read at once (a strip of whole rows, at least one row or one row of tiles): 16 MB of floats.
 constexpr std::uint64_t kStripPixels = std::uint64_t(1) << 20;
+// Pixels of a strip copied into the image per task.
+constexpr std::size_t kPixelsPerTask = 16 * 1024;
+using Range = tbb::blocked_range<std::size_t>;
 
 // The file's alpha channel: the format's own, else one named "A"; -1 if none or it is also a colour.
 int pickAlpha(const ImageHeader& header, const std::array<int, 3>& rgb) {
@@ -137,15 +143,17 @@ RawImage readImage(const std::filesystem::path& file, const std::function<void(c
                 const int end = together ? first + span : begin + 1;
                 strip.resize(n * std::size_t(end - begin));
                 source->readRows(y0, y1, begin, end, strip.data());
-                for (std::size_t i = 0; i < n; ++i) {
-                    const float* p = &strip[i * std::size_t(end - begin)];
-                    glm::vec4& out = raw.pixels.pixels[offset + i];
-                    if (together)
-                        out = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first],
-                                        raw.hasAlpha ? p[alpha - first] : 1.0f);
-                    else
-                        out[c] = p[0];
-                }
+                tbb::parallel_for(Range(0, n, kPixelsPerTask), [&](const Range& r) {
+                    for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                        const float* p = &strip[i * std::size_t(end - begin)];
+                        glm::vec4& out = raw.pixels.pixels[offset + i];
+                        if (together)
+                            out = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first],
+                                            raw.hasAlpha ? p[alpha - first] : 1.0f);
+                        else
+                            out[c] = p[0];
+                    }
+                });
             }
         }
     } catch (const std::bad_alloc&) {
