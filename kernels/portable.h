@@ -53,7 +53,6 @@ precision highp sampler2D;
 #define IBL_BEGIN_NAMESPACE
 #define IBL_END_NAMESPACE
 #define IBL_UNIFORM_LOOP_HEAD()
-#define IBL_SIMD_SUM(...)
 #define IBL_STRUCT(name) struct name
 #define IBL_FLOAT(x) float(x)
 #define IBL_UINT(x) uint(x)
