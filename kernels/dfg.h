@@ -34,6 +34,22 @@ IBL_FN float dfgTexelCenter(uint i, uint size) {
     return ((float)i + 0.5f) / (float)size;
 }
 
+// One specular sample: the visible normal of the unit-disk point (diskX, diskY) for the view v
+// (NoV = v.z); returns its estimator weight G2/G1(V) (x) and its Fresnel factor Fc = (1 - VoH)^5 (y).
+IBL_FN float2 dfgSpecularSample(vec3 v, VndfView view, float alpha, float invG1V, float diskX, float diskY) {
+    vec3 h = vndfSample(view, diskX, diskY);
+    float VoH = saturate(v3dot(v, h));
+    float NoL = 2.0f * VoH * h.z - v.z; // z of reflect(v, h)
+    return make_float2(G_SmithGGXCorrelated(v.z, fmax(NoL, 0.0f), alpha) * invG1V, pow5(1.0f - VoH));
+}
+
+// One diffuse sample: Fr_DisneyDiffuse for the cosine-sampled light of the unit-disk point (diskX, diskY).
+IBL_FN float dfgDiffuseSample(vec3 v, float perceptualRoughness, float diskX, float diskY) {
+    vec3 l = cosineSampleFromDisk(diskX, diskY);
+    float LoH = sqrt(0.5f * (1.0f + v3dot(v, l))); // cos of the half angle between v and l
+    return Fr_DisneyDiffuse(v.z, l.z, LoH, perceptualRoughness);
+}
+
 // Returns the sums of (DFG1, DFG2, Disney) over samples [firstSample, endSample) for one (NoV,
 // perceptual roughness) from the sample table. Callers sum chunks of at most
 // kDfgChunkSamples in fp32 and divide by the sample count: chunking bounds the fp32 rounding of a
@@ -42,6 +58,10 @@ IBL_FN float dfgTexelCenter(uint i, uint size) {
 // albedo is G2/G1(V), the same expectation as Listing 18's GVis under NDF sampling with far less
 // variance. DFG1 = E[(1 - Fc) G2/G1], DFG2 = E[Fc G2/G1], Fc = (1 - VoH)^5.
 // Diffuse: E[Fr_DisneyDiffuse] under cosine sampling (Listing 18: the pdf cancels the 1/pi and NoL).
+// The C++ build vectorizes the sample loop across samples (IBL_SIMD_SUM). For that its body declares no
+// vec3 (GCC gives every struct declared in an OpenMP SIMD loop a per-lane array, and does not vectorize
+// one of 3 floats; one of 2 it does) and its index is an int (4 * i of a uint may wrap, which hides the
+// stride from GCC).
 IBL_FN vec3 integrateDfgChunk(float NoV, float perceptualRoughness, IBL_GLOBAL const float* table,
                               uint firstSample, uint endSample) {
     float alpha = alphaFromPerceptual(perceptualRoughness);
@@ -52,21 +72,15 @@ IBL_FN vec3 integrateDfgChunk(float NoV, float perceptualRoughness, IBL_GLOBAL c
 
     float dfg1 = 0.0f, dfg2 = 0.0f, diffuse = 0.0f;
     const IBL_GLOBAL float* chunk = table + IBL_DFG_SAMPLE_FLOATS * firstSample;
-    uint count = endSample - firstSample;
-    for (uint i = 0; i < count; ++i) {
+    int count = (int)(endSample - firstSample);
+    IBL_SIMD_SUM(dfg1, dfg2, diffuse)
+    for (int i = 0; i < count; ++i) {
         IBL_UNIFORM_LOOP_HEAD();
         const IBL_GLOBAL float* e = chunk + IBL_DFG_SAMPLE_FLOATS * i;
-        vec3 h = vndfSample(view, e[0], e[1]);
-        float VoH = saturate(v3dot(v, h));
-        float NoL = 2.0f * VoH * h.z - NoV; // z of reflect(v, h)
-        float weight = G_SmithGGXCorrelated(NoV, fmax(NoL, 0.0f), alpha) * invG1V;
-        float Fc = pow5(1.0f - VoH);
-        dfg1 += (1.0f - Fc) * weight;
-        dfg2 += Fc * weight;
-
-        vec3 l = cosineSampleFromDisk(e[2], e[3]);
-        float LoH = sqrt(0.5f * (1.0f + v3dot(v, l))); // cos of the half angle between v and l
-        diffuse += Fr_DisneyDiffuse(NoV, l.z, LoH, perceptualRoughness);
+        float2 specular = dfgSpecularSample(v, view, alpha, invG1V, e[0], e[1]); // (G2/G1, Fc)
+        dfg1 += (1.0f - specular.y) * specular.x;
+        dfg2 += specular.y * specular.x;
+        diffuse += dfgDiffuseSample(v, perceptualRoughness, e[2], e[3]);
     }
     return v3(dfg1, dfg2, diffuse);
 }

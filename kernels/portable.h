@@ -35,6 +35,7 @@ typedef struct {
 #else
 #define IBL_UNIFORM_LOOP_HEAD()
 #endif
+#define IBL_SIMD_SUM(...)
 
 #elif defined(IBL_GLSL)
 
@@ -107,6 +108,11 @@ using float4 = glm::vec4;
 using uint = std::uint32_t;
 using vec3 = glm::vec3;
 #define IBL_UNIFORM_LOOP_HEAD()
+// Before a sample loop whose iterations are independent but for the sums named: vectorize it across
+// samples (OpenMP SIMD, -fopenmp-simd on iblbake_shading, no OpenMP runtime). The lanes' partial sums
+// are added at the end, so the fp32 sums differ from the scalar loop's by summation order only.
+#define IBL_PRAGMA(text) _Pragma(#text)
+#define IBL_SIMD_SUM(...) IBL_PRAGMA(omp simd reduction(+ : __VA_ARGS__))
 using glm::clamp;
 using glm::cross;
 using glm::dot;
@@ -122,8 +128,6 @@ using std::copysign;
 using std::cos;
 using std::fabs;
 using std::floor;
-using std::fmax;
-using std::fmin;
 using std::log2;
 using std::max;
 using std::min;
@@ -137,6 +141,15 @@ inline float3 make_float3(float x, float y, float z) {
 }
 inline float4 make_float4(float x, float y, float z, float w) {
     return float4(x, y, z, w);
+}
+// fmax/fmin as C and OpenCL define them (a NaN operand loses; of equal operands, such as -0 and +0, the
+// second is returned, as glibc's do), written as selects: GCC calls glibc's fmaxf, which keeps a loop
+// from vectorizing, where these become vector compares and blends.
+inline float fmax(float a, float b) {
+    return (a > b || b != b) ? a : b;
+}
+inline float fmin(float a, float b) {
+    return (a < b || b != b) ? a : b;
 }
 // OpenCL's select(a, b, c) returns b where c is true, a otherwise.
 inline float select(float a, float b, bool c) {

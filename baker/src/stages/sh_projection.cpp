@@ -6,6 +6,7 @@
 #include <cube.h>
 #include <sh.h>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -94,89 +95,118 @@ struct Grid {
     }
 };
 
+// E at the check directions for band factors w, channel by channel: mean + w1 band1_j + w2 band2_j, each
+// channel's band parts in their own arrays, face after face, so that the scans over the directions
+// vectorize.
 class NonNegativityCheck {
   public:
     explicit NonNegativityCheck(const ShRgb& radiance) : prescaled_(prescaleIrradiance(radiance)) {
         const Grid& grid = Grid::get();
-        band1_.resize(grid.p.size());
-        band2_.resize(grid.p.size());
+        for (int ch = 0; ch < 3; ++ch) {
+            band1_[ch].resize(grid.p.size());
+            band2_[ch].resize(grid.p.size());
+        }
         for (std::size_t j = 0; j < grid.p.size(); ++j) {
             glm::dvec3 b1(0.0), b2(0.0);
             for (int i = 1; i < 4; ++i)
                 b1 += prescaled_[i] * grid.p[j][i];
             for (int i = 4; i < 9; ++i)
                 b2 += prescaled_[i] * grid.p[j][i];
-            band1_[j] = b1;
-            band2_[j] = b2;
+            for (int ch = 0; ch < 3; ++ch) {
+                band1_[ch][j] = b1[ch];
+                band2_[ch][j] = b2[ch];
+            }
         }
         mean_ = prescaled_[0];
     }
 
     const glm::dvec3& mean() const { return mean_; }
 
-    // Lowest E over the check directions (no refinement), per channel.
-    glm::dvec3 gridMinimum(const std::array<double, 3>& w) const {
-        glm::dvec3 lowest(std::numeric_limits<double>::infinity());
-        for (std::size_t j = 0; j < band1_.size(); ++j)
-            lowest = glm::min(lowest, mean_ + w[1] * band1_[j] + w[2] * band2_[j]);
-        return lowest;
-    }
-
     ShMinimum minimum(const std::array<double, 3>& w) const {
-        const Grid& grid = Grid::get();
-        const std::size_t perFace = std::size_t(kGridSize) * kGridSize;
         ShMinimum result;
         for (int ch = 0; ch < 3; ++ch) {
-            Scalar9 c = channel(prescaled_, ch);
-            for (int i = 1; i < 9; ++i)
-                c[i] *= w[std::size_t(shBand(i))];
-            // Each face's lowest check direction; the descent starts from those within a margin of the
-            // lowest of all. Between check directions (at most ~0.045 rad apart) E can dip below its
-            // samples by at most curvature x 0.0225^2 / 2; for non-negative radiance the curvature is
-            // below 6 x the mean E (a delta's L2 irradiance is the worst case), so the dip is under
-            // 1.5e-3 of the mean, and a face whose lowest sample is 1e-2 of the mean above the lowest of
-            // all cannot hold the minimum. (Windows only lower the curvature.)
-            std::array<std::size_t, 6> arg{};
-            std::array<double, 6> lowest;
-            lowest.fill(std::numeric_limits<double>::infinity());
-            for (int f = 0; f < 6; ++f)
-                for (std::size_t j = f * perFace; j < (f + 1) * perFace; ++j) {
-                    double e = mean_[ch] + w[1] * band1_[j][ch] + w[2] * band2_[j][ch];
-                    if (e < lowest[std::size_t(f)]) {
-                        lowest[std::size_t(f)] = e;
-                        arg[std::size_t(f)] = j;
-                    }
-                }
-            const double lowestOfAll = *std::min_element(lowest.begin(), lowest.end());
-            double best = std::numeric_limits<double>::infinity();
-            glm::dvec3 bestDirection(0, 1, 0);
-            for (std::size_t f = 0; f < 6; ++f) {
-                if (lowest[f] > lowestOfAll + 1e-2 * std::abs(mean_[ch])) continue;
-                auto [refined, direction] = refineMinimum(c, grid.directions[arg[f]]);
-                if (refined < best) {
-                    best = refined;
-                    bestDirection = direction;
-                }
-            }
-            result.value[ch] = best;
-            result.direction[std::size_t(ch)] = bestDirection;
+            auto [value, direction] = channelMinimum(ch, w, faceLowest(ch, w));
+            result.value[ch] = value;
+            result.direction[std::size_t(ch)] = direction;
         }
         return result;
     }
 
     bool nonNegative(const std::array<double, 3>& w) const {
-        glm::dvec3 grid = gridMinimum(w); // refinement only lowers it: a negative grid point decides
+        // Refinement only lowers the grid's minimum: a channel whose grid is negative decides alone.
+        std::array<FaceLowest, 3> lowest;
+        for (int ch = 0; ch < 3; ++ch) {
+            lowest[std::size_t(ch)] = faceLowest(ch, w);
+            const double grid =
+                *std::min_element(lowest[std::size_t(ch)].begin(), lowest[std::size_t(ch)].end());
+            if (grid < kNonNegativeMargin * mean_[ch]) return false;
+        }
         for (int ch = 0; ch < 3; ++ch)
-            if (grid[ch] < kNonNegativeMargin * mean_[ch]) return false;
-        ShMinimum m = minimum(w);
-        for (int ch = 0; ch < 3; ++ch)
-            if (m.value[ch] < kNonNegativeMargin * mean_[ch]) return false;
+            if (channelMinimum(ch, w, lowest[std::size_t(ch)]).first < kNonNegativeMargin * mean_[ch])
+                return false;
         return true;
     }
 
   private:
+    using FaceLowest = std::array<double, 6>;
+    static constexpr std::size_t kPerFace = std::size_t(kGridSize) * kGridSize;
+
+    double gridValue(int ch, const std::array<double, 3>& w, std::size_t j) const {
+        return mean_[ch] + w[1] * band1_[ch][j] + w[2] * band2_[ch][j];
+    }
+
+    // The lowest E of each face's check directions.
+    FaceLowest faceLowest(int ch, const std::array<double, 3>& w) const {
+        FaceLowest lowest;
+        const double mean = mean_[ch], w1 = w[1], w2 = w[2];
+        const double* b1 = band1_[ch].data();
+        const double* b2 = band2_[ch].data();
+        // 8 interleaved running minima (kPerFace is a multiple of 8): independent chains that the
+        // compiler vectorizes, where one would wait on each comparison.
+        for (std::size_t f = 0; f < 6; ++f) {
+            std::array<double, 8> low;
+            low.fill(std::numeric_limits<double>::infinity());
+            for (std::size_t j = f * kPerFace; j < (f + 1) * kPerFace; j += 8)
+                for (std::size_t k = 0; k < 8; ++k)
+                    low[k] = std::min(low[k], mean + w1 * b1[j + k] + w2 * b2[j + k]);
+            lowest[f] = *std::min_element(low.begin(), low.end());
+        }
+        return lowest;
+    }
+
+    // The minimum of E over the sphere for one channel and its direction, from the faces' lowest grid
+    // values. The descent starts from the first direction of a face holding its lowest value, for each
+    // face whose lowest value is within a margin of the lowest of all. Between check directions (at most
+    // ~0.045 rad apart) E can dip below its samples by at most curvature x 0.0225^2 / 2; for
+    // non-negative radiance the curvature is below 6 x the mean E (a delta's L2 irradiance is the worst
+    // case), so the dip is under 1.5e-3 of the mean, and a face whose lowest sample is 1e-2 of the mean
+    // above the lowest of all cannot hold the minimum. (Windows only lower the curvature.)
+    std::pair<double, glm::dvec3> channelMinimum(int ch, const std::array<double, 3>& w,
+                                                 const FaceLowest& lowest) const {
+        const Grid& grid = Grid::get();
+        Scalar9 c = channel(prescaled_, ch);
+        for (int i = 1; i < 9; ++i)
+            c[i] *= w[std::size_t(shBand(i))];
+        const double lowestOfAll = *std::min_element(lowest.begin(), lowest.end());
+        double best = std::numeric_limits<double>::infinity();
+        glm::dvec3 bestDirection(0, 1, 0);
+        for (std::size_t f = 0; f < 6; ++f) {
+            if (lowest[f] > lowestOfAll + 1e-2 * std::abs(mean_[ch])) continue;
+            std::size_t arg = f * kPerFace;
+            while (arg < (f + 1) * kPerFace && !(gridValue(ch, w, arg) == lowest[f]))
+                ++arg;
+            if (arg == (f + 1) * kPerFace) arg = 0; // no value below infinity (NaN coefficients)
+            auto [refined, direction] = refineMinimum(c, grid.directions[arg]);
+            if (refined < best) {
+                best = refined;
+                bestDirection = direction;
+            }
+        }
+        return {best, bestDirection};
+    }
+
     ShRgb prescaled_;
-    std::vector<glm::dvec3> band1_, band2_;
+    std::array<std::vector<double>, 3> band1_, band2_;
     glm::dvec3 mean_{0.0};
 };
 
@@ -236,38 +266,70 @@ double texelSolidAngle(int x, int y, int n) {
     return areaElement(x0, y0) - areaElement(x0, y1) - areaElement(x1, y0) + areaElement(x1, y1);
 }
 
+namespace {
+// sum_x r[x] w[x] in 8 interleaved partial sums: independent chains that the compiler vectorizes, where
+// one running sum would wait on each addition.
+double dotProduct(const double* r, const double* w, std::size_t count) {
+    std::array<double, 8> partial{};
+    std::size_t x = 0;
+    for (; x + 8 <= count; x += 8)
+        for (std::size_t k = 0; k < 8; ++k)
+            partial[k] += r[x + k] * w[x + k];
+    for (; x < count; ++x)
+        partial[0] += r[x] * w[x];
+    return ((partial[0] + partial[1]) + (partial[2] + partial[3])) +
+           ((partial[4] + partial[5]) + (partial[6] + partial[7]));
+}
+} // namespace
+
 ShRgb projectRadianceSH(const CubeMap& source) {
     const int n = source.faceSize;
     if (n <= 0) throw Error("SH projection: empty source cube");
-    // One task per row index y, over all six faces: the faces share their texels' solid angles.
-    std::vector<std::array<double, 27>> rows(static_cast<std::size_t>(n));
-    tbb::parallel_for(0, n, [&](int y) {
-        // texelSolidAngle() of the row, each corner's area element computed once.
-        std::vector<double> omega(static_cast<std::size_t>(n));
-        const double inv = 2.0 / n, y0 = y * inv - 1.0, y1 = y0 + inv;
-        double top = areaElement(-1.0, y0), bottom = areaElement(-1.0, y1);
-        for (int x = 0; x < n; ++x) {
-            const double x1 = (x + 1) * inv - 1.0;
-            const double nextTop = areaElement(x1, y0), nextBottom = areaElement(x1, y1);
-            omega[std::size_t(x)] = top - bottom - nextTop + nextBottom;
-            top = nextTop;
-            bottom = nextBottom;
-        }
-        std::array<double, 27> sum{};
-        for (int face = 0; face < 6; ++face)
-            for (int x = 0; x < n; ++x) {
-                vec3 d = glm::normalize(
-                    cubeFaceDirection(face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
-                ShBasis basis = shBasis(d);
-                const glm::vec4& p = source.faces[std::size_t(face)].at(x, y);
-                for (int i = 0; i < 9; ++i) {
-                    const double w = double(basis.v[i]) * omega[std::size_t(x)];
-                    sum[3 * i] += p.x * w;
-                    sum[3 * i + 1] += p.y * w;
-                    sum[3 * i + 2] += p.z * w;
+    const std::size_t width = std::size_t(n);
+    const double inv = 2.0 / n;
+    // Rows of texels in tasks over all six faces: the faces share their texels' solid angles. Per face
+    // row, the texels' weights Y_i(d) omega and radiances go to arrays first, then each of the 27 sums
+    // is a dot product over the row.
+    std::vector<std::array<double, 27>> rows(width);
+    tbb::parallel_for(tbb::blocked_range<int>(0, n), [&](const tbb::blocked_range<int>& range) {
+        std::vector<double> omega(width), weights(9 * width), radiance(3 * width);
+        std::vector<float> s(width); // the texels' face coordinate along the row
+        for (std::size_t x = 0; x < width; ++x)
+            s[x] = (float(x) + 0.5f) / float(n);
+        // The area elements of the texel corners above and below the row, each row of corners computed
+        // once per task: texelSolidAngle() = top - bottom - next top + next bottom.
+        std::vector<double> top(width + 1), bottom(width + 1);
+        auto cornerRow = [&](std::vector<double>& corners, double v) {
+            for (std::size_t x = 0; x <= width; ++x)
+                corners[x] = areaElement(double(x) * inv - 1.0, v);
+        };
+        double y0 = range.begin() * inv - 1.0;
+        cornerRow(top, y0);
+        for (int y = range.begin(); y < range.end(); ++y) {
+            const double y1 = y0 + inv;
+            cornerRow(bottom, y1);
+            for (std::size_t x = 0; x < width; ++x)
+                omega[x] = top[x] - bottom[x] - top[x + 1] + bottom[x + 1];
+            std::swap(top, bottom);
+            y0 = y1;
+            const float t = (float(y) + 0.5f) / float(n);
+            std::array<double, 27> sum{};
+            for (int face = 0; face < 6; ++face) {
+                const glm::vec4* texels = &source.faces[std::size_t(face)].at(0, y);
+                for (std::size_t x = 0; x < width; ++x) {
+                    vec3 d = glm::normalize(cubeFaceDirection(face, s[x], t));
+                    ShBasis basis = shBasis(d);
+                    for (std::size_t i = 0; i < 9; ++i)
+                        weights[i * width + x] = double(basis.v[i]) * omega[x];
+                    for (std::size_t c = 0; c < 3; ++c)
+                        radiance[c * width + x] = texels[x][int(c)];
                 }
+                for (std::size_t i = 0; i < 9; ++i)
+                    for (std::size_t c = 0; c < 3; ++c)
+                        sum[3 * i + c] += dotProduct(&radiance[c * width], &weights[i * width], width);
             }
-        rows[std::size_t(y)] = sum;
+            rows[std::size_t(y)] = sum;
+        }
     });
     ShRgb sh{};
     for (const std::array<double, 27>& r : rows) // fixed order: deterministic
@@ -394,15 +456,20 @@ ShWindowResult chooseShWindow(const ShRgb& radiance, const ShWindowSettings& set
         return p ? finish(settings.window, *p, true) : finish(ShWindow::None, 0.0, true);
     }
 
+    if (check.nonNegative({1.0, 1.0, 1.0})) return finish(ShWindow::None, 0.0, true); // nothing to fix
+    // The three searches are independent: run them side by side, then compare in a fixed order.
+    const std::array<ShWindow, 3> families{ShWindow::Sloan, ShWindow::Hanning, ShWindow::Lanczos};
+    std::array<double, 3> parameters{};
+    tbb::parallel_for(0, 3, [&](int k) {
+        parameters[std::size_t(k)] = *weakestParameter(check, families[std::size_t(k)]);
+    });
     ShWindow best = ShWindow::None;
     double bestParameter = 0.0, bestChange = std::numeric_limits<double>::infinity();
-    for (ShWindow family : {ShWindow::Sloan, ShWindow::Hanning, ShWindow::Lanczos}) {
-        std::optional<double> p = weakestParameter(check, family);
-        if (!p) return finish(ShWindow::None, 0.0, true); // nothing to fix
-        double change = windowChange(radiance, shWindowFactors(family, *p));
+    for (std::size_t k = 0; k < families.size(); ++k) {
+        double change = windowChange(radiance, shWindowFactors(families[k], parameters[k]));
         if (change < bestChange) {
-            best = family;
-            bestParameter = *p;
+            best = families[k];
+            bestParameter = parameters[k];
             bestChange = change;
         }
     }
