@@ -192,10 +192,15 @@ class NonNegativityCheck {
         glm::dvec3 bestDirection(0, 1, 0);
         for (std::size_t f = 0; f < 6; ++f) {
             if (lowest[f] > lowestOfAll + 1e-2 * std::abs(mean_[ch])) continue;
+            // The face's first lowest direction, by its own scan: an equality test against lowest[f]
+            // would depend on both scans rounding alike.
             std::size_t arg = f * kPerFace;
-            while (arg < (f + 1) * kPerFace && !(gridValue(ch, w, arg) == lowest[f]))
-                ++arg;
-            if (arg == (f + 1) * kPerFace) arg = 0; // no value below infinity (NaN coefficients)
+            double argValue = gridValue(ch, w, arg);
+            for (std::size_t j = arg + 1; j < (f + 1) * kPerFace; ++j)
+                if (const double e = gridValue(ch, w, j); e < argValue) {
+                    arg = j;
+                    argValue = e;
+                }
             auto [refined, direction] = refineMinimum(c, grid.directions[arg]);
             if (refined < best) {
                 best = refined;
@@ -210,9 +215,9 @@ class NonNegativityCheck {
     glm::dvec3 mean_{0.0};
 };
 
-// Weakest parameter of a family with E >= 0 everywhere; nullopt when no window is needed.
-std::optional<double> weakestParameter(const NonNegativityCheck& check, ShWindow family) {
-    if (check.nonNegative({1.0, 1.0, 1.0})) return std::nullopt;
+// Weakest parameter of a family with E >= 0 everywhere, for an E that is negative somewhere without a
+// window (callers check that first).
+double weakestParameter(const NonNegativityCheck& check, ShWindow family) {
     auto ok = [&](double p) { return check.nonNegative(shWindowFactors(family, p)); };
     if (family == ShWindow::Sloan) { // stronger as lambda grows; find the smallest feasible lambda
         double lo = 0.0, hi = 1e-3;
@@ -452,17 +457,15 @@ ShWindowResult chooseShWindow(const ShRgb& radiance, const ShWindowSettings& set
                                        " window (Sloan: lambda >= 0; Hanning, Lanczos: width w > 0)");
             return finish(settings.window, p, false);
         }
-        std::optional<double> p = weakestParameter(check, settings.window);
-        return p ? finish(settings.window, *p, true) : finish(ShWindow::None, 0.0, true);
     }
-
     if (check.nonNegative({1.0, 1.0, 1.0})) return finish(ShWindow::None, 0.0, true); // nothing to fix
+    if (!settings.automatic) return finish(settings.window, weakestParameter(check, settings.window), true);
+
     // The three searches are independent: run them side by side, then compare in a fixed order.
     const std::array<ShWindow, 3> families{ShWindow::Sloan, ShWindow::Hanning, ShWindow::Lanczos};
     std::array<double, 3> parameters{};
-    tbb::parallel_for(0, 3, [&](int k) {
-        parameters[std::size_t(k)] = *weakestParameter(check, families[std::size_t(k)]);
-    });
+    tbb::parallel_for(
+        0, 3, [&](int k) { parameters[std::size_t(k)] = weakestParameter(check, families[std::size_t(k)]); });
     ShWindow best = ShWindow::None;
     double bestParameter = 0.0, bestChange = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < families.size(); ++k) {
