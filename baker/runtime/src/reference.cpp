@@ -70,6 +70,18 @@ struct ReferenceLighting::Data {
     }
     bool inSun(const glm::dvec3& l) const { return sun && glm::dot(l, sunDirection) >= sunCos; }
 
+    // A uniform disk whose illuminance on a surface facing it is E_perp color.
+    void setSun(const std::optional<SunDisk>& disk) {
+        if (!disk || !(disk->illuminance > 0.0f)) return;
+        sun = disk;
+        sunDirection = glm::normalize(glm::dvec3(disk->direction));
+        double radius = std::max(double(disk->angularRadius), 1e-5);
+        sunCos = std::cos(radius);
+        sunSolidAngle = 2.0 * kPi * (1.0 - sunCos);
+        double projected = kPi * std::sin(radius) * std::sin(radius);
+        sunRadiance = glm::dvec3(disk->color) * double(disk->illuminance) / projected;
+    }
+
     double environmentPdf(const glm::dvec3& l) const {
         CubeCoord c = cubeCoordFromDirection(vec3(l));
         const int n = faceSize;
@@ -140,15 +152,7 @@ ReferenceLighting ReferenceLighting::distant(const CubeMap& environment, std::op
     }
     for (double& c : d->cdf)
         c /= d->cdf.back();
-    if (sun && sun->illuminance > 0.0f) {
-        d->sun = sun;
-        d->sunDirection = glm::normalize(glm::dvec3(sun->direction));
-        double radius = std::max(double(sun->angularRadius), 1e-5);
-        d->sunCos = std::cos(radius);
-        d->sunSolidAngle = 2.0 * kPi * (1.0 - d->sunCos);
-        double projected = kPi * std::sin(radius) * std::sin(radius);
-        d->sunRadiance = glm::dvec3(sun->color) * double(sun->illuminance) / projected;
-    }
+    d->setSun(sun);
     ReferenceLighting r;
     r.data_ = d;
     return r;
@@ -170,7 +174,8 @@ ReferenceLighting ReferenceLighting::projected(const CubeMap& capture, const Pro
 ReferenceLighting ReferenceLighting::projectedWithVisibility(const CubeMap& premultipliedCapture,
                                                              const ProbeVolume& proxy,
                                                              const glm::vec3& captureOffset,
-                                                             const CubeMap& distant) {
+                                                             const CubeMap& distant,
+                                                             std::optional<SunDisk> sun) {
     auto d = std::make_shared<Data>();
     d->projected = true;
     d->env = baseLevelPyramid(premultipliedCapture, ChainAlpha::PremultipliedVisibility);
@@ -179,6 +184,7 @@ ReferenceLighting ReferenceLighting::projectedWithVisibility(const CubeMap& prem
     d->captureOffset = captureOffset;
     d->background = true;
     d->distant = baseLevelPyramid(distant);
+    d->setSun(sun);
     ReferenceLighting r;
     r.data_ = d;
     return r;
@@ -191,9 +197,10 @@ glm::dvec3 ReferenceLighting::radiance(const glm::vec3& position, const glm::dve
         const glm::dvec3 towardProxy = h.hit ? glm::dvec3(h.direction) : l;
         glm::dvec3 c = d.environment(towardProxy);
         if (d.background) {
-            vec3 far =
-                cubeSampleLevel(d.distant.data.data(), d.distant.layout, 0, cubeCoordFromDirection(vec3(l)));
-            c += d.transparency(towardProxy) * glm::dvec3(far);
+            glm::dvec3 far = glm::dvec3(
+                cubeSampleLevel(d.distant.data.data(), d.distant.layout, 0, cubeCoordFromDirection(vec3(l))));
+            if (d.inSun(l)) far += d.sunRadiance;
+            c += d.transparency(towardProxy) * far;
         }
         return c;
     }
@@ -209,7 +216,7 @@ std::vector<ReferenceResult> renderReference(const ReferenceLighting& lighting,
     if (settings.samplesPerStrategy == 0) throw Error("reference: zero samples per strategy");
     const ReferenceLighting::Data& d = lighting.data();
     const bool envSampling = !d.projected;
-    const bool sunSampling = !d.projected && d.sun.has_value();
+    const bool sunSampling = d.sun.has_value();
     const uint32_t n = settings.samplesPerStrategy;
     std::vector<ReferenceResult> out(points.size());
 

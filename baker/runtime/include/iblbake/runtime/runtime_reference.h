@@ -32,10 +32,12 @@ class ReferenceLighting {
     // The same with the capture's visibility (Frostbite 4.9.1.2; RGB colour x visibility, A the visibility,
     // as bakeSpecularWithVisibility takes it) and a distant map behind: from direction l, the capture's
     // bilinear RGB toward the proxy plus (1 - its bilinear visibility there) x the distant map in l. What the
-    // 4.9.5 composition of one local probe of influence weight 1 and the distant probe approximates.
+    // 4.9.5 composition of one local probe of influence weight 1 and the distant probe approximates. An
+    // optional sun (as in distant()) lies behind the capture like the distant map: seen where the capture
+    // is transparent, as a shadow-mapped analytic sun is seen through a window.
     static ReferenceLighting projectedWithVisibility(const CubeMap& premultipliedCapture,
                                                      const ProbeVolume& proxy, const glm::vec3& captureOffset,
-                                                     const CubeMap& distant);
+                                                     const CubeMap& distant, std::optional<SunDisk> sun = {});
 
     ReferenceLighting(const ReferenceLighting&);
     ReferenceLighting& operator=(const ReferenceLighting&);
