@@ -82,17 +82,19 @@ std::vector<SourceTexel> texelList(const CubeMap& source, std::span<const std::s
     return out;
 }
 
-// What the bake averages over an output texel where ldFootprintApplies (kernels/ld.h): the excess of its
-// bright texels (bright_split.h, at SpecularSettings' threshold and count); the residual is taken at the
-// texel's centre, like every texel of other levels.
+// What is averaged over an output texel where ldFootprintApplies (kernels/ld.h): the excess of the bright
+// texels (bright_split.h, above SpecularSettings' threshold, up to the references' own count
+// kMaxBrightTexels, whatever count a bake splits off); the residual is taken at the texel's centre, like
+// every texel of other levels. A bake that splits off fewer texels than pass the threshold leaves the others'
+// narrow lobes at their centres, and is measured so.
 struct FootprintSplit {
     CubeMap residual;
     std::vector<SourceTexel> excess;
 };
 
 FootprintSplit footprintSplit(const CubeMap& source) {
-    const SpecularSettings defaults;
-    BrightSplit split = splitBrightTexels(source, defaults.brightThreshold, defaults.maxBrightTexels);
+    BrightSplit split =
+        splitBrightTexels(source, SpecularSettings{}.brightThreshold, std::uint32_t(kMaxBrightTexels));
     FootprintSplit out{std::move(split.residual), {}};
     for (std::size_t i = 0; i < split.bright.entries.size(); i += IBL_BRIGHT_ENTRY_FLOATS) {
         const float* e = &split.bright.entries[i];
