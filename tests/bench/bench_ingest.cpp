@@ -87,6 +87,14 @@ void cubeStatistics(benchmark::State& state) {
         benchmark::DoNotOptimize(ibl::computeEnvironmentStats(cube, ibl::kRec709Luminance));
 }
 
+// The part of the statistics a calibration reads (computeCalibration).
+void cubeTotals(benchmark::State& state) {
+    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(
+            ibl::computeEnvironmentTotals(ibl::SphereTexels(cube), ibl::kRec709Luminance));
+}
+
 void cubeSunDetection(benchmark::State& state) {
     const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
     for (auto _ : state)
@@ -129,6 +137,7 @@ BENCHMARK(ingestMaxLuminance)->Apply(timed);
 BENCHMARK(ingestResample)->Arg(256)->Apply(timed);
 BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(timed);
 BENCHMARK(cubeStatistics)->Arg(256)->Apply(timed);
+BENCHMARK(cubeTotals)->Arg(256)->Apply(timed);
 BENCHMARK(cubeSunDetection)->Arg(256)->Apply(timed);
 BENCHMARK(cubeZenithLuminance)->Arg(256)->Apply(timed);
 
