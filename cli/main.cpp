@@ -4,6 +4,7 @@
 #include "setting_flags.h"
 
 #include <iblbake/bake_state/code_identity.h>
+#include <iblbake/baker/process_memory.h>
 #include <iblbake/core/error.h>
 
 #include <cstdio>
@@ -35,6 +36,7 @@ std::string oneLine(std::string message) {
 } // namespace
 
 int main(int argc, char** argv) {
+    ibl::prepareBakeHeap();
     CLI::App app{"iblbake: image-based-lighting and light-probe baker", "iblbake"};
     app.require_subcommand(1);
     // The stage-code digest names the code behind cached stages (README "Cache").

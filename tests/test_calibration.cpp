@@ -29,6 +29,7 @@
 #include <functional>
 #include <map>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -312,6 +313,31 @@ TEST(EnvironmentStats, MatchPerTexelSumsAndSameBitsOnAnyThreadCount) {
         EXPECT_EQ(again.upwardIlluminance, one.upwardIlluminance);
         EXPECT_EQ(again.logMeanLuminance, one.logMeanLuminance);
         EXPECT_EQ(again.lowPercentileLuminance, one.lowPercentileLuminance);
+    }
+}
+
+// The totals a calibration reads are the statistics' own to the last bit (the same sums without the
+// samples): on a cube and a lat-long, with negative, zero and bright texels.
+TEST(EnvironmentStats, TotalsAreTheStatisticsOwn) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> uni(-0.2f, 1.0f);
+    CubeMap cube(40);
+    for (ImageRGBA& face : cube.faces)
+        for (glm::vec4& p : face.pixels)
+            p = glm::vec4(uni(rng), uni(rng), uni(rng), 1.0f);
+    cube.faces[2].at(7, 9) = glm::vec4(6.5e4f, 6.0e4f, 5.0e4f, 1.0f);
+    ImageRGBA latlong(96, 48);
+    for (glm::vec4& p : latlong.pixels)
+        p = glm::vec4(uni(rng), uni(rng), 0.0f, 1.0f);
+    const glm::dvec3 weights(0.2126, 0.7152, 0.0722);
+    for (const SphereTexels& texels : {SphereTexels(cube), SphereTexels(latlong, LatLongPixels::Centre)}) {
+        const EnvironmentStats stats = computeEnvironmentStats(texels, weights);
+        const EnvironmentTotals totals = computeEnvironmentTotals(texels, weights);
+        EXPECT_EQ(totals.solidAngle, stats.solidAngle);
+        EXPECT_EQ(totals.minLuminance, stats.minLuminance);
+        EXPECT_EQ(totals.maxLuminance, stats.maxLuminance);
+        EXPECT_EQ(totals.meanLuminance, stats.meanLuminance);
+        EXPECT_EQ(totals.upwardIlluminance, stats.upwardIlluminance);
     }
 }
 

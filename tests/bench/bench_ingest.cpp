@@ -87,6 +87,14 @@ void cubeStatistics(benchmark::State& state) {
         benchmark::DoNotOptimize(ibl::computeEnvironmentStats(cube, ibl::kRec709Luminance));
 }
 
+// The part of the statistics a calibration reads (computeCalibration).
+void cubeTotals(benchmark::State& state) {
+    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(
+            ibl::computeEnvironmentTotals(ibl::SphereTexels(cube), ibl::kRec709Luminance));
+}
+
 void cubeSunDetection(benchmark::State& state) {
     const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
     for (auto _ : state)
@@ -101,15 +109,15 @@ void cubeZenithLuminance(benchmark::State& state) {
 }
 
 // The whole of issue 18 item 2's budget: the ingest (read, repair, colour, resampling into n-texel faces)
-// and the measurements a calibration makes on its cube (statistics, sun detection, zenith luminance
-// without the sun's texels).
+// and the measurements a calibration makes on its cube (the statistics' totals computeCalibration reads,
+// sun detection, zenith luminance without the sun's texels).
 void ingestAndMeasure(benchmark::State& state) {
     ibl::IngestSettings settings;
     settings.sourceFaceSize = int(state.range(0));
     for (auto _ : state) {
         const ibl::SourceEnvironment env = ibl::ingestEnvironment({IBLBAKE_SAMPLE_HDRI}, settings);
         const ibl::SphereTexels texels(env.cube);
-        benchmark::DoNotOptimize(ibl::computeEnvironmentStats(texels, ibl::kRec709Luminance));
+        benchmark::DoNotOptimize(ibl::computeEnvironmentTotals(texels, ibl::kRec709Luminance));
         const ibl::SunDetection sun = ibl::detectSun(texels, ibl::SunDetectSettings{});
         benchmark::DoNotOptimize(
             ibl::zenithLuminance(texels, ibl::kZenithCapDegrees, ibl::kRec709Luminance, sun.region));
@@ -129,6 +137,7 @@ BENCHMARK(ingestMaxLuminance)->Apply(timed);
 BENCHMARK(ingestResample)->Arg(256)->Apply(timed);
 BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(timed);
 BENCHMARK(cubeStatistics)->Arg(256)->Apply(timed);
+BENCHMARK(cubeTotals)->Arg(256)->Apply(timed);
 BENCHMARK(cubeSunDetection)->Arg(256)->Apply(timed);
 BENCHMARK(cubeZenithLuminance)->Arg(256)->Apply(timed);
 

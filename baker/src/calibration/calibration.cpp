@@ -69,7 +69,7 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
     CalibrationRecord rec;
     rec.source = source;
     rec.sourceValue = needsValue ? value : 0.0;
-    const EnvironmentStats stats = computeEnvironmentStats(texels, settings.luminanceWeights);
+    const EnvironmentTotals stats = computeEnvironmentTotals(texels, settings.luminanceWeights);
     rec.upwardIlluminanceBefore = stats.upwardIlluminance;
     rec.meanLuminanceBefore = stats.meanLuminance;
     rec.quantity = "mean luminance";
@@ -225,8 +225,9 @@ ImageRGBA readWorkingLatLong(const std::filesystem::path& file, const IngestSett
         r.negativeRepaired += n.negative;
     };
     add(ingest::sanitize(raw.pixels));
-    ingest::convertColor(raw.pixels, r.inputColorSpace, r.workingColorSpace, raw.file);
-    add(ingest::sanitize(raw.pixels));
+    // A repaired image that no conversion changed has nothing left to repair.
+    if (ingest::convertColor(raw.pixels, r.inputColorSpace, r.workingColorSpace, raw.file))
+        add(ingest::sanitize(raw.pixels));
     r.maxLuminanceIn = ingest::maxLuminance(raw.pixels, weights);
     if (report) *report = r;
     return std::move(raw.pixels);

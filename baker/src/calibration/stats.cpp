@@ -258,32 +258,31 @@ float lowPercentile(std::vector<LuminanceSample>& positive, const std::array<std
     }
 }
 
-} // namespace
+struct Sums {
+    double omega = 0.0, energy = 0.0, upward = 0.0;
+    double logOmega = 0.0, logSum = 0.0;
+    double minY = std::numeric_limits<double>::infinity(), maxY = -std::numeric_limits<double>::infinity();
+};
 
-EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::dvec3& weights) {
-    struct Sums {
-        double omega = 0.0, energy = 0.0, upward = 0.0;
-        double logOmega = 0.0, logSum = 0.0;
-        double minY = std::numeric_limits<double>::infinity(),
-               maxY = -std::numeric_limits<double>::infinity();
-    };
-    // Deterministic: the same split into ranges on any number of threads, so the same sums to the last
-    // bit (a calibration factor from them reaches every product, which must not depend on the machine).
-    // Each texel's (luminance, solid angle) is kept for the percentile, luminance -1 when not positive.
+// The sums over the texels; with `samples` (one per texel), also each texel's (luminance, solid angle),
+// luminance -1 when not positive, and the log sums. Deterministic: the same split into ranges on any
+// number of threads, so the same sums to the last bit (a calibration factor from them reaches every
+// product, which must not depend on the machine), with or without `samples`.
+Sums sumTexels(const SphereTexels& texels, const glm::dvec3& weights, LuminanceSample* samples) {
     using Range = tbb::blocked_range<std::size_t>;
-    std::vector<LuminanceSample> samples(texels.size());
-    const Sums s = tbb::parallel_deterministic_reduce(
+    return tbb::parallel_deterministic_reduce(
         Range(0, texels.size(), 4096), Sums{},
         [&](const Range& range, Sums a) {
             for (std::size_t i = range.begin(); i != range.end(); ++i) {
                 const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
                 const double omega = texels.solidAngle(i);
-                samples[i] = {y > 0.0 ? float(y) : -1.0f, float(omega)};
                 a.omega += omega;
                 a.energy += y * omega;
                 a.upward += y * texels.upwardCosine(i);
                 a.minY = std::min(a.minY, y);
                 a.maxY = std::max(a.maxY, y);
+                if (!samples) continue;
+                samples[i] = {y > 0.0 ? float(y) : -1.0f, float(omega)};
                 if (y > 0.0) {
                     a.logOmega += omega;
                     a.logSum += omega * std::log(y);
@@ -301,25 +300,50 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
             a.maxY = std::max(a.maxY, b.maxY);
             return a;
         });
+}
+
+EnvironmentTotals totalsOf(const Sums& s) {
+    EnvironmentTotals t;
+    t.solidAngle = s.omega;
+    t.minLuminance = s.minY;
+    t.maxLuminance = s.maxY;
+    t.meanLuminance = s.energy / s.omega;
+    t.upwardIlluminance = s.upward;
+    return t;
+}
+
+} // namespace
+
+EnvironmentTotals computeEnvironmentTotals(const SphereTexels& texels, const glm::dvec3& weights) {
+    return totalsOf(sumTexels(texels, weights, nullptr));
+}
+
+EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::dvec3& weights) {
+    std::vector<LuminanceSample> samples(texels.size());
+    const Sums s = sumTexels(texels, weights, samples.data());
+    const EnvironmentTotals totals = totalsOf(s);
 
     EnvironmentStats st;
     st.texels = texels.size();
-    st.solidAngle = s.omega;
-    st.minLuminance = s.minY;
-    st.maxLuminance = s.maxY;
-    st.meanLuminance = s.energy / s.omega;
+    st.solidAngle = totals.solidAngle;
+    st.minLuminance = totals.minLuminance;
+    st.maxLuminance = totals.maxLuminance;
+    st.meanLuminance = totals.meanLuminance;
     st.logMeanLuminance = s.logOmega > 0.0 ? std::exp(s.logSum / s.logOmega) : 0.0;
-    st.upwardIlluminance = s.upward;
+    st.upwardIlluminance = totals.upwardIlluminance;
 
-    // 0.1th percentile of the positive luminances by solid angle.
-    std::vector<LuminanceSample> positive;
-    positive.reserve(texels.size());
+    // 0.1th percentile of the positive luminances by solid angle. The positive samples are moved to the
+    // front of `samples` in their order, not copied: a second array as large (3 MB at 256-px faces) is
+    // memory first touched, a page fault per 4 KB (ingest/read_image.cpp).
     std::array<std::uint32_t, kBins> binCounts{};
+    std::size_t positiveCount = 0;
     for (const LuminanceSample& sample : samples)
         if (sample.first >= 0.0f) {
-            positive.push_back(sample);
+            samples[positiveCount++] = sample;
             ++binCounts[binOf(sample.first)];
         }
+    std::vector<LuminanceSample> positive = std::move(samples);
+    positive.resize(positiveCount);
     if (!positive.empty()) {
         st.lowPercentileLuminance = lowPercentile(positive, binCounts, 0.001 * s.logOmega);
         st.dynamicRangeStops = std::log2(st.maxLuminance / st.lowPercentileLuminance);

@@ -96,8 +96,9 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     for (auto& image : images) {
         add(report, ingest::sanitize(image.pixels));
         if (image.hasAlpha) add(report, ingest::sanitizeAlpha(image.pixels));
-        ingest::convertColor(image.pixels, report.inputColorSpace, report.workingColorSpace, image.file);
-        add(report, ingest::sanitize(image.pixels));
+        // A repaired image that no conversion changed has nothing left to repair.
+        if (ingest::convertColor(image.pixels, report.inputColorSpace, report.workingColorSpace, image.file))
+            add(report, ingest::sanitize(image.pixels));
         if (image.unassociatedAlpha) ingest::premultiplyAlpha(image.pixels);
         report.maxLuminanceIn = std::max(report.maxLuminanceIn, ingest::maxLuminance(image.pixels, weights));
     }

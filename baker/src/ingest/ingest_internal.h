@@ -85,8 +85,9 @@ LatLongPixels resolveLatLongPixels(const RawImage& image, LatLongPixels requeste
 std::string resolveInputColorSpace(const RawImage& image, const std::string& requested);
 // The config's own name of a colour space given by name or alias, "" if it has none.
 std::string colorSpaceName(const std::string& nameOrAlias);
-// Converts in place (RGB; alpha untouched). Throws ibl::Error naming `file` on OCIO errors.
-void convertColor(ImageRGBA& image, const std::string& from, const std::string& to, const std::string& file);
+// Converts in place (RGB; alpha untouched); false when the conversion is the identity and nothing was done.
+// Throws ibl::Error naming `file` on OCIO errors.
+bool convertColor(ImageRGBA& image, const std::string& from, const std::string& to, const std::string& file);
 // Luminance weights of a linear colour space: the Y row of its RGB -> XYZ (via lin_rec709 in the config).
 glm::dvec3 luminanceWeights(const std::string& linearSpace);
 // Path of the OCIO config in use: $OCIO if set, else the one shipped in data/ocio.

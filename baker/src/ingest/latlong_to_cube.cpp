@@ -388,20 +388,37 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
     CubeMap cube(faceSize);
     const double step = 2.0 / faceSize;
     const int corners = faceSize + 1; // per face and axis
-    // Corner longitudes of the faces whose texels are computed (face texel (i, j)'s corners (i..i+1,
-    // j..j+1)).
-    std::array<bool, 6> computed{};
-    for (int face = 0; face < 6; ++face)
-        computed[std::size_t(face)] = symmetry.computes(face, 0, 0, faceSize);
-    std::vector<double> cornerLongitude(std::size_t(6) * corners * corners);
-    tbb::parallel_for(0, 6 * corners, [&](int fr) {
-        const int face = fr / corners, j = fr % corners;
-        if (!computed[std::size_t(face)]) return;
+    // Corner longitudes of the texels whose cuts are computed (texel (i, j)'s corners (i..i+1, j..j+1)): a
+    // side face's first two rows of corners (its columns' cuts are those of their first texel, below), +-Y's
+    // up to the last computed texel (a quadrant with quarter turns). Only these: each is an atan2, and
+    // memory first touched costs a page fault per 4 KB (read_image.cpp), so a table of every corner of
+    // every face took 6x as much time and 10x as much memory.
+    struct CornerTable {
+        std::size_t offset = 0;
+        int rows = 0, columns = 0;
+    };
+    std::array<CornerTable, 6> cornerTable{};
+    std::vector<std::array<int, 2>> cornerRows; // (face, j)
+    std::size_t cornerCount = 0;
+    for (int face = 0; face < 6; ++face) {
+        if (!symmetry.computes(face, 0, 0, faceSize)) continue;
+        const bool pole = face == 2 || face == 3;
+        const int extent = pole && symmetry.quarterTurns ? faceSize / 2 + 1 : corners;
+        CornerTable& table = cornerTable[std::size_t(face)];
+        table = {cornerCount, pole ? extent : std::min(2, corners), extent};
+        cornerCount += std::size_t(table.rows) * std::size_t(table.columns);
+        for (int j = 0; j < table.rows; ++j)
+            cornerRows.push_back({face, j});
+    }
+    std::vector<double> cornerLongitude(cornerCount);
+    tbb::parallel_for(std::size_t(0), cornerRows.size(), [&](std::size_t k) {
+        const auto [face, j] = cornerRows[k];
+        const CornerTable& table = cornerTable[std::size_t(face)];
         const FaceFrame frame = faceFrame(face);
-        for (int i = 0; i < corners; ++i) {
+        double* row = &cornerLongitude[table.offset + std::size_t(j) * std::size_t(table.columns)];
+        for (int i = 0; i < table.columns; ++i) {
             const glm::dvec3 d = frame.at(-1.0 + i * step, -1.0 + j * step);
-            cornerLongitude[std::size_t(fr) * corners + std::size_t(i)] =
-                d.x * d.x + d.z * d.z < 1e-24 ? std::numeric_limits<double>::quiet_NaN() : longitude(d);
+            row[i] = d.x * d.x + d.z * d.z < 1e-24 ? std::numeric_limits<double>::quiet_NaN() : longitude(d);
         }
     });
     // Each computed texel writes its whole orbit; orbits do not overlap, so tasks never write the same texel,
@@ -410,8 +427,9 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
         return Square{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step, -1.0 + (j + 1) * step};
     };
     auto cornerLongitudes = [&](int face, int i, int j) {
-        const double* below = &cornerLongitude[(std::size_t(face) * corners + std::size_t(j)) * corners];
-        const double* above = below + corners;
+        const CornerTable& table = cornerTable[std::size_t(face)];
+        const double* below = &cornerLongitude[table.offset + std::size_t(j) * std::size_t(table.columns)];
+        const double* above = below + table.columns;
         return CornerLongitudes{below[i], above[i], below[i + 1], above[i + 1]};
     };
     auto resampleTexel = [&](int face, const FaceFrame& frame, int i, int j,
