@@ -36,7 +36,7 @@ std::string oneLine(std::string message) {
 } // namespace
 
 int main(int argc, char** argv) {
-    ibl::prepareBakeHeap();
+    ibl::reuseFreedBlocks();
     CLI::App app{"iblbake: image-based-lighting and light-probe baker", "iblbake"};
     app.require_subcommand(1);
     // The stage-code digest names the code behind cached stages (README "Cache").

@@ -84,7 +84,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
     baker/src/io/shipped_file.cpp baker/src/io/shipped_file.h # where shipped files are, not what they hold
-    baker/src/io/process_memory.cpp # where memory comes from, decides no bytes
+    baker/src/io/process_memory.cpp # where freed memory goes, decides no bytes
     baker/src/stages/specular_reference.cpp baker/src/stages/specular_settings.cpp
     kernels/dispatch_check.cl kernels/dispatch_check.h # dispatch_check: the dispatch helper's test kernel
     kernels/area_lights.cl # the runtime's area lights: no stage renders them
