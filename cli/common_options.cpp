@@ -14,7 +14,11 @@ void BackendOptions::addTo(CLI::App& command) {
 }
 
 Executor BackendOptions::makeExecutor() const {
-    return Executor::create(parseBackend(backend), device, std::cerr);
+    return makeExecutor(parseBackend(backend));
+}
+
+Executor BackendOptions::makeExecutor(Backend chosen) const {
+    return Executor::create(chosen, device, std::cerr);
 }
 
 std::future<Executor> BackendOptions::startExecutor() const {

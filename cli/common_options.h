@@ -21,7 +21,8 @@ struct BackendOptions {
     bool timing = false;
 
     void addTo(CLI::App& command);
-    Executor makeExecutor() const; // warnings go to stderr
+    Executor makeExecutor() const;               // warnings go to stderr
+    Executor makeExecutor(Backend chosen) const; // `chosen` instead of --backend's
     // makeExecutor() on its own thread, so that the OpenCL set-up (PoCL loads LLVM: ~40 ms) overlaps the
     // ingest; get() rethrows its error.
     std::future<Executor> startExecutor() const;

@@ -39,7 +39,8 @@ Action addDfgCommand(CLI::App& app) {
 
     return [opts] {
         checkOutputFile(opts->output); // before the work
-        Executor executor = opts->backend.makeExecutor();
+        Executor executor = opts->backend.makeExecutor(
+            standaloneDfgBackend(parseBackend(opts->backend.backend), !opts->backend.device.empty()));
         auto start = std::chrono::steady_clock::now();
         ImageRGBA lut = bakeDfgLut(opts->settings, executor);
         double ms =

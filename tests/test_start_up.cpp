@@ -3,6 +3,7 @@
 // trace (LD_DEBUG=files) lists every shared object a process initialises, dlopen'ed ones included.
 #include "cli_runner.h"
 
+#include <iblbake/baker/dfg_lut.h>
 #include <iblbake/baker/exr_output.h>
 #include <iblbake/baker/preview.h>
 
@@ -47,6 +48,25 @@ TEST(StartUp, OpenExrAndRadianceWorkLoadNoOpenImageIO) {
         EXPECT_EQ(t.run.exitCode, 0) << args;
         EXPECT_FALSE(t.initialisedOiio) << args;
     }
+    fs::remove_all(dir);
+}
+
+// `iblbake dfg` with --backend auto runs on the CPU backend (dfg_lut.h standaloneDfgBackend): the OpenCL
+// driver (PoCL here, which the ICD loader dlopens on the platform query) is never initialised; asked for
+// OpenCL, it is.
+TEST(StartUp, StandaloneDfgLoadsNoOpenClDriverUnlessAsked) {
+    const fs::path dir = fs::temp_directory_path() / ("iblbake_start_up_dfg_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string lut = "dfg --size 8 --samples 16 -o " + (dir / "dfg.exr").string();
+    const Traced automatic = traced(lut);
+    EXPECT_EQ(automatic.run.exitCode, 0) << automatic.run.err.substr(0, 400);
+    EXPECT_EQ(automatic.run.err.find("libpocl"), std::string::npos);
+    EXPECT_NE(automatic.run.out.find("cpu (TBB)"), std::string::npos) << automatic.run.out;
+    const Traced opencl = traced(lut + " --backend opencl");
+    EXPECT_EQ(opencl.run.exitCode, 0) << opencl.run.err.substr(0, 400);
+    EXPECT_NE(opencl.run.err.find("libpocl"), std::string::npos);
+    EXPECT_EQ(ibl::standaloneDfgBackend(ibl::Backend::Auto, true), ibl::Backend::Auto) << "a named device";
+    EXPECT_EQ(ibl::standaloneDfgBackend(ibl::Backend::OpenCL, false), ibl::Backend::OpenCL);
     fs::remove_all(dir);
 }
 

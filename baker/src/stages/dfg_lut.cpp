@@ -38,6 +38,10 @@ void dfgChunkItemHost(WorkItem t, float* out, DfgParams params, const float* tab
 
 } // namespace
 
+Backend standaloneDfgBackend(Backend requested, bool deviceNamed) {
+    return requested == Backend::Auto && !deviceNamed ? Backend::Cpu : requested;
+}
+
 void validate(const DfgSettings& s) {
     if (s.size == 0 || s.size > 8192)
         throw SettingError("dfgSize", "the LUT size " + std::to_string(s.size) + " is outside 1..8192");
