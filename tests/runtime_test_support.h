@@ -7,6 +7,7 @@
 #include <iblbake/baker/specular.h>
 #include <iblbake/opencl/executor.h>
 #include <iblbake/runtime/runtime.h>
+#include <iblbake/runtime/runtime_reference.h>
 
 #include <cube.h>
 
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <sstream>
 
 namespace rt_test {
@@ -129,6 +131,20 @@ inline ProbeSet distantSetWithSun(const CubeMap& full, const CubeMap& residual, 
     set.setIrradianceCube(bakeIrradianceCube(residual, IrradianceSettings{}, executor));
     set.setSun(sun);
     return set;
+}
+
+// Relative mean absolute error of runtime results against the reference's: sum |runtime - reference| /
+// sum |reference| over the points and RGB.
+inline double relativeError(std::span<const glm::vec4> runtime, std::span<const ReferenceResult> reference) {
+    double err = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < runtime.size(); ++i) {
+        const glm::dvec3 ref = reference[i].total();
+        for (int c = 0; c < 3; ++c) {
+            err += std::abs(double(runtime[i][c]) - ref[c]);
+            sum += std::abs(ref[c]);
+        }
+    }
+    return err / sum;
 }
 
 inline double relativeDifference(const glm::vec4& a, const glm::vec4& b, float floor) {

@@ -43,18 +43,6 @@ std::vector<ShadingPoint> sphereGrid(float perceptualRoughness, float metallic, 
     return points;
 }
 
-double relativeError(std::span<const glm::vec4> runtime, std::span<const ReferenceResult> reference) {
-    double err = 0.0, sum = 0.0;
-    for (std::size_t i = 0; i < runtime.size(); ++i) {
-        glm::dvec3 ref = reference[i].total();
-        for (int c = 0; c < 3; ++c) {
-            err += std::abs(double(runtime[i][c]) - ref[c]);
-            sum += std::abs(ref[c]);
-        }
-    }
-    return err / sum;
-}
-
 // LD of the environment in direction d for a perceptual roughness, integrated exactly (N = V = R, GGX
 // importance sampling, 4096 samples of the continuous environment): what a perfect LD chain would return.
 glm::dvec3 exactLd(const ReferenceLighting& environment, glm::vec3 d, float perceptualRoughness) {

@@ -169,16 +169,6 @@ TEST(VisibilityRoomEndToEnd, MirrorsThroughTheWindowGetTheDistantMapAndTheOthers
     EXPECT_BACKENDS_AGREE(room.set, points, options);
 }
 
-double relativeError(std::span<const glm::vec4> runtime, std::span<const ReferenceResult> reference) {
-    double err = 0.0, sum = 0.0;
-    for (std::size_t i = 0; i < runtime.size(); ++i)
-        for (int c = 0; c < 3; ++c) {
-            err += std::abs(double(runtime[i][c]) - reference[i].total()[c]);
-            sum += std::abs(reference[i].total()[c]);
-        }
-    return err / sum;
-}
-
 // A glossy metal floor whose reflections run up the window wall, against the reference of the same room
 // (the capture projected onto the proxy, the distant map behind the window), in three configurations of
 // the outside:

@@ -225,9 +225,7 @@ ImageRGBA readWorkingLatLong(const std::filesystem::path& file, const IngestSett
         r.negativeRepaired += n.negative;
     };
     add(ingest::sanitize(raw.pixels));
-    // A repaired image that no conversion changed has nothing left to repair.
-    if (ingest::convertColor(raw.pixels, r.inputColorSpace, r.workingColorSpace, raw.file))
-        add(ingest::sanitize(raw.pixels));
+    add(ingest::convertColorRepaired(raw.pixels, r.inputColorSpace, r.workingColorSpace, raw.file));
     r.maxLuminanceIn = ingest::maxLuminance(raw.pixels, weights);
     if (report) *report = r;
     return std::move(raw.pixels);

@@ -141,6 +141,11 @@ bool convertColor(ImageRGBA& image, const std::string& from, const std::string& 
     return true;
 }
 
+RepairCounts convertColorRepaired(ImageRGBA& image, const std::string& from, const std::string& to,
+                                  const std::string& file) {
+    return convertColor(image, from, to, file) ? sanitize(image) : RepairCounts{};
+}
+
 glm::dvec3 luminanceWeights(const std::string& linearSpace) {
     // Y row of the Rec.709 RGB -> XYZ matrix, from the BT.709 primaries and D65 (see config.ocio).
     const glm::dvec3 rec709Y(0.2126390059, 0.7151686788, 0.0721923154);

@@ -96,9 +96,8 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     for (auto& image : images) {
         add(report, ingest::sanitize(image.pixels));
         if (image.hasAlpha) add(report, ingest::sanitizeAlpha(image.pixels));
-        // A repaired image that no conversion changed has nothing left to repair.
-        if (ingest::convertColor(image.pixels, report.inputColorSpace, report.workingColorSpace, image.file))
-            add(report, ingest::sanitize(image.pixels));
+        add(report, ingest::convertColorRepaired(image.pixels, report.inputColorSpace,
+                                                 report.workingColorSpace, image.file));
         if (image.unassociatedAlpha) ingest::premultiplyAlpha(image.pixels);
         report.maxLuminanceIn = std::max(report.maxLuminanceIn, ingest::maxLuminance(image.pixels, weights));
     }

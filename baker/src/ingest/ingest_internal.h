@@ -99,6 +99,11 @@ struct RepairCounts {
 };
 // NaN -> 0, +Inf -> largest finite value of the image (65504 if none), -Inf and negatives -> 0 (RGB only).
 RepairCounts sanitize(ImageRGBA& image);
+// convertColor on an image sanitize() has repaired, then the repair of what the conversion made (a wide-gamut
+// source gives negatives in a smaller space); none when no conversion ran, as a repaired image that nothing
+// changed has nothing left to repair.
+RepairCounts convertColorRepaired(ImageRGBA& image, const std::string& from, const std::string& to,
+                                  const std::string& file);
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
 struct AlphaRepairCounts {
     std::uint64_t nan = 0, negative = 0, overOne = 0;

@@ -60,8 +60,7 @@ LightCardTexture readLightCardTexture(const std::filesystem::path& file, const L
     const glm::dvec3 weights = ingest::luminanceWeights(workingColorSpace); // also checks linearity
     texture.workingColorSpace = ingest::colorSpaceName(workingColorSpace);
     ingest::sanitize(raw.pixels);
-    ingest::convertColor(raw.pixels, texture.inputColorSpace, texture.workingColorSpace, raw.file);
-    ingest::sanitize(raw.pixels);
+    ingest::convertColorRepaired(raw.pixels, texture.inputColorSpace, texture.workingColorSpace, raw.file);
     texture.emission = boxResample(raw.pixels, settings.size);
     double sum = 0.0;
     for (const glm::vec4& p : texture.emission.pixels)
