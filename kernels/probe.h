@@ -58,6 +58,15 @@ IBL_STRUCT(LdChain) {
     uint32_t mapping;        // IBL_MIP_* (mip_mapping.h)
 };
 
+// A chain's rough layers (mip_mapping.h IBL_ROUGH_LAYER_*) in the same buffer: layerCount one-level bordered
+// cubes of faceSize texels from dataOffset on, each cubePyramidFloatCount({faceSize, 1}) floats apart.
+// layerCount 0: none, the chain alone.
+IBL_STRUCT(RoughLayers) {
+    uint32_t faceSize;
+    uint32_t layerCount;
+    uint32_t dataOffset;
+};
+
 // Pre-scaled SH L2 irradiance (DESIGN.md order, 9 RGB coefficients, coefficient i's RGB at 3i..3i+2).
 IBL_STRUCT(ShIrradiance) {
     float c[27];
@@ -100,6 +109,8 @@ IBL_STRUCT(RuntimeParams) {
     // One bordered level of E / pi in the distant buffer after the LD pyramid (IBL_RT_IRRADIANCE_CUBE):
     // the baker's irradiance cube, free of L2 SH's ringing and its limit to low frequencies.
     LdChain irradiance;
+    // The distant chain's rough layers in the distant buffer (layerCount 0: none).
+    RoughLayers distantRoughLayers;
 };
 
 // A shading point. view points from the surface toward the eye (Filament's v); neither vector has to be
@@ -130,6 +141,34 @@ IBL_FN float ldLodForRoughness(LdChain ld, float perceptualRoughness) {
 // Trilinear LD in direction d (non-zero, need not be unit) for a perceptual roughness.
 IBL_FN vec3 sampleLd(IBL_FLOAT_BUFFER data, LdChain ld, vec3 d, float perceptualRoughness) {
     return cubeSampleLod(data + ld.dataOffset, ld.shape, d, ldLodForRoughness(ld, perceptualRoughness));
+}
+
+// The rough layers' LD in direction d (non-zero, need not be unit): bilinear in the two layers around r's
+// fractional layer (clamped to the layers), linear between them.
+IBL_FN vec3 sampleRoughLayers(IBL_FLOAT_BUFFER data, RoughLayers layers, vec3 d, float perceptualRoughness) {
+    CubePyramidLayout one;
+    one.baseFaceSize = layers.faceSize;
+    one.levelCount = 1u;
+    uint stride = cubePyramidFloatCount(one);
+    float t = clamp(roughLayerForRoughness(perceptualRoughness), 0.0f, IBL_FLOAT(layers.layerCount - 1u));
+    uint k = min(IBL_UINT(t), layers.layerCount - 1u);
+    uint k1 = min(k + 1u, layers.layerCount - 1u);
+    float fraction = t - IBL_FLOAT(k);
+    CubeCoord c = cubeCoordFromDirection(d);
+    vec3 a = cubeSampleLevel(data + layers.dataOffset + k * stride, one, 0u, c);
+    vec3 b = cubeSampleLevel(data + layers.dataOffset + k1 * stride, one, 0u, c);
+    return v3add(v3scale(a, 1.0f - fraction), v3scale(b, fraction));
+}
+
+// LD from a chain and its rough layers: the chain up to r_0, the layers from r_1 on, blended between
+// (mip_mapping.h roughLayerWeight). Without layers, or below r_0, exactly sampleLd.
+IBL_FN vec3 sampleLdWithLayers(IBL_FLOAT_BUFFER data, LdChain ld, RoughLayers layers, vec3 d,
+                               float perceptualRoughness) {
+    float w = layers.layerCount != 0u ? roughLayerWeight(perceptualRoughness) : 0.0f;
+    if (!(w > 0.0f)) return sampleLd(data, ld, d, perceptualRoughness); // NaN too: as without layers
+    vec3 rough = sampleRoughLayers(data, layers, d, perceptualRoughness);
+    if (w >= 1.0f) return rough;
+    return v3madd(sampleLd(data, ld, d, perceptualRoughness), 1.0f - w, v3scale(rough, w));
 }
 
 // Bilinear DFG LUT (DESIGN.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped to the
@@ -370,7 +409,9 @@ IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd
         alpha = saturate(a + alpha);
     }
     if (alpha < 1.0f)
-        rgb = v3madd(sampleLd(distantLd, p.distant, dominantR, perceptualRoughness), 1.0f - alpha, rgb);
+        rgb = v3madd(
+            sampleLdWithLayers(distantLd, p.distant, p.distantRoughLayers, dominantR, perceptualRoughness),
+            1.0f - alpha, rgb);
     ProbeSample result;
     result.radiance = rgb;
     result.alpha = alpha;
@@ -469,8 +510,15 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER
                                                                      flags & IBL_RT_SUN_NORMALIZATION),
                                       NoD);
             float sunWeight = p.sun.illuminance;
-            if ((flags & IBL_RT_SUN_IN_LEVEL0) != 0u)
-                sunWeight *= saturate(ldLodForRoughness(p.distant, perceptualRoughness));
+            if ((flags & IBL_RT_SUN_IN_LEVEL0) != 0u) {
+                // The disk gets what level 0 does not: the chain reads it with weight 1 - lod, and the
+                // chain has 1 - w of the lookup where rough layers (baked without the sun) take w.
+                float beyondLevel0 = saturate(ldLodForRoughness(p.distant, perceptualRoughness));
+                sunWeight *=
+                    p.distantRoughLayers.layerCount != 0u
+                        ? 1.0f - (1.0f - roughLayerWeight(perceptualRoughness)) * (1.0f - beyondLevel0)
+                        : beyondLevel0;
+            }
             result.specular = v3add(result.specular, v3(spec.x * energy.x * p.sun.color.x * sunWeight,
                                                         spec.y * energy.y * p.sun.color.y * sunWeight,
                                                         spec.z * energy.z * p.sun.color.z * sunWeight));

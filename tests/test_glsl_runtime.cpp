@@ -8,6 +8,8 @@
 
 #include <iblbake/runtime/runtime_manifest.h>
 
+#include <cube.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -50,7 +52,11 @@ json paramsJson(const ibl::RuntimeParams& p) {
               {"illuminance", p.sun.illuminance}}},
             {"dielectricF0", p.dielectricF0},
             {"sh", {{"c", std::vector<float>(std::begin(p.sh.c), std::end(p.sh.c))}}},
-            {"irradiance", chainJson(p.irradiance)}};
+            {"irradiance", chainJson(p.irradiance)},
+            {"distantRoughLayers",
+             {{"faceSize", p.distantRoughLayers.faceSize},
+              {"layerCount", p.distantRoughLayers.layerCount},
+              {"dataOffset", p.distantRoughLayers.dataOffset}}}};
 }
 
 json localProbeJson(const ibl::LocalProbe& probe) {
@@ -266,10 +272,26 @@ class GlslRuntime : public ::testing::Test {
 // disk quadrature, dominant direction, occlusions, distance-based roughness.
 TEST_F(GlslRuntime, ManifestOptionsAgreeWithTheCppRuntime) {
     const fs::path dir = testDir("manifest_options");
-    const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba16f"));
+    ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba16f"));
     ASSERT_TRUE(loaded.set.sun().has_value());
     ASSERT_EQ(loaded.set.localProbes().size(), 1u);
     ASSERT_TRUE(loaded.set.hasIrradianceCube());
+    // Rough layers after the irradiance cube in the distant buffer (what GLSL must read is the C++ read,
+    // so any smooth data does): the spheres' roughness 0-1 crosses the chain, the blend and the layers.
+    const std::uint32_t n = ibl::roughLayerFaceSize(loaded.set.distantLd().layout.baseFaceSize);
+    std::vector<ibl::CubeMap> layers;
+    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k) {
+        ibl::CubeMap layer{int(n)};
+        for (int f = 0; f < 6; ++f)
+            for (std::uint32_t y = 0; y < n; ++y)
+                for (std::uint32_t x = 0; x < n; ++x) {
+                    const glm::vec3 d = ibl::cubeTexelDirection(f, x, y, n);
+                    layer.faces[f].at(int(x), int(y)) =
+                        glm::vec4(1.0f + d.x, 1.0f + d.y, 0.5f * float(k), 1.0f);
+                }
+        layers.push_back(std::move(layer));
+    }
+    loaded.set.setRoughLayers(layers);
     expectAgreement(dir, loaded.set, loaded.options);
 }
 

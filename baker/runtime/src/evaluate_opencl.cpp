@@ -16,8 +16,9 @@ static_assert(sizeof(ProbeVolume) == 64, "ProbeVolume must match kernels/paralla
 static_assert(sizeof(LocalProbe) == 168 && offsetof(LocalProbe, fadeDistance) == 156 &&
                   offsetof(LocalProbe, visibilityOffset) == 164,
               "LocalProbe must match kernels/probe.h");
-static_assert(sizeof(RuntimeParams) == 192 && offsetof(RuntimeParams, sh) == 68 &&
-                  offsetof(RuntimeParams, irradiance) == 176,
+static_assert(sizeof(RuntimeParams) == 204 && offsetof(RuntimeParams, sh) == 68 &&
+                  offsetof(RuntimeParams, irradiance) == 176 &&
+                  offsetof(RuntimeParams, distantRoughLayers) == 192,
               "RuntimeParams must match kernels/probe.h");
 
 struct OpenCLProbeEvaluator::Buffers {

@@ -125,13 +125,47 @@ void ProbeSet::setIrradianceCube(const CubeMap& irradianceOverPi) {
             throw Error("probe set: an irradiance cube face is not " + std::to_string(n) + "x" +
                         std::to_string(n));
     CubePyramidLayout layout{uint32_t(n), 1u};
-    std::vector<float> level(cubePyramidFloatCount(layout), 0.0f);
-    storeBorderedLevel(irradianceOverPi, 0, layout, level.data());
-    if (distant_.data.size() + level.size() > std::size_t(UINT32_MAX))
+    irradianceData_.assign(cubePyramidFloatCount(layout), 0.0f);
+    storeBorderedLevel(irradianceOverPi, 0, layout, irradianceData_.data());
+    irradianceLayout_ = layout;
+    joinDistantData();
+}
+
+void ProbeSet::setRoughLayers(const std::vector<CubeMap>& layers) {
+    const uint32_t n = roughLayerFaceSize(distant_.layout.baseFaceSize);
+    if (layers.size() != IBL_ROUGH_LAYER_COUNT)
+        throw Error("probe set: " + std::to_string(layers.size()) + " rough layers, expected " +
+                    std::to_string(IBL_ROUGH_LAYER_COUNT));
+    const CubePyramidLayout one{n, 1u};
+    std::vector<float> data(layers.size() * cubePyramidFloatCount(one), 0.0f);
+    for (std::size_t k = 0; k < layers.size(); ++k) {
+        for (const ImageRGBA& face : layers[k].faces)
+            if (layers[k].faceSize != int(n) || face.width != int(n) || face.height != int(n) ||
+                face.pixels.size() != std::size_t(n) * n)
+                throw Error("probe set: rough layer " + std::to_string(k) + " is not " + std::to_string(n) +
+                            "x" + std::to_string(n) + " per face");
+        storeBorderedLevel(layers[k], 0, one, data.data() + k * cubePyramidFloatCount(one));
+    }
+    roughLayerData_ = std::move(data);
+    roughLayerFaceSize_ = n;
+    roughLayerCount_ = uint32_t(layers.size());
+    joinDistantData();
+}
+
+RoughLayers ProbeSet::roughLayers() const {
+    RoughLayers layers{};
+    layers.faceSize = roughLayerFaceSize_;
+    layers.layerCount = roughLayerCount_;
+    layers.dataOffset = uint32_t(distant_.data.size() + irradianceData_.size());
+    return layers;
+}
+
+void ProbeSet::joinDistantData() {
+    if (distant_.data.size() + irradianceData_.size() + roughLayerData_.size() > std::size_t(UINT32_MAX))
         throw Error("probe set: distant data exceeds 2^32 floats");
     distantData_ = distant_.data;
-    distantData_.insert(distantData_.end(), level.begin(), level.end());
-    irradianceLayout_ = layout;
+    distantData_.insert(distantData_.end(), irradianceData_.begin(), irradianceData_.end());
+    distantData_.insert(distantData_.end(), roughLayerData_.begin(), roughLayerData_.end());
 }
 
 std::size_t ProbeSet::addLocalProbe(const LocalProbeDesc& desc, const LdPyramid& ld) {
@@ -194,6 +228,7 @@ RuntimeParams makeRuntimeParams(const ProbeSet& set, const RuntimeOptions& o, st
     p.dielectricF0 = o.dielectricF0;
     p.irradiance.shape = set.irradianceLayout();
     p.irradiance.dataOffset = uint32_t(set.distantLd().data.size());
+    p.distantRoughLayers = set.roughLayers();
     for (int i = 0; i < 9; ++i)
         for (int c = 0; c < 3; ++c)
             p.sh.c[3 * i + c] = set.sh().c[std::size_t(i)][c];

@@ -129,19 +129,57 @@ void checkSpecularSource(const CubeMap& source) {
                     " is not a power of two up to 8192");
 }
 
+// What one LD bake of a source (its bright texels taken out by `split`) shares between its levels: the
+// sampled residual's pyramid and the bright texels, on the device. Holds pointers into `split` (the CPU
+// backend reads the host arrays), so `split` outlives it.
+class LdBake {
+  public:
+    LdBake(const BrightSplit& split, const SpecularSettings& settings, const Executor& executor)
+        : settings_(settings), dispatcher_(executor), pyramid_(buildCubePyramid(split.residual)),
+          sourceFaceSize_(split.residual.faceSize), clusterCount_(split.bright.clusterCount()),
+          pyramidData_(dispatcher_.upload("specular source pyramid", pyramid_.data)),
+          clusters_(dispatcher_.upload("bright-texel clusters", split.bright.clusters)),
+          bright_(dispatcher_.upload("bright texels", split.bright.entries)) {}
+
+    // The LD of perceptual roughness r (N = V = R) on faces of n texels.
+    CubeMap level(int n, float perceptualRoughness) const {
+        const float alpha = alphaFromPerceptual(perceptualRoughness);
+        // Rough levels are small (a 16-texel face has 1/64 of the texels of a 128 one) and their wide
+        // lobes want more samples, so faces under 32 texels get 32/n times the preset's count, up to 16x.
+        const std::uint32_t levelSamples = samplesFor(settings_) * std::uint32_t(std::clamp(32 / n, 1, 16));
+        LevelTable table =
+            levelTable(samplesForLobe(levelSamples, alpha, sourceFaceSize_), alpha, sourceFaceSize_,
+                       settings_.lodBias, float(pyramid_.layout.levelCount - 1));
+        LdParams params{pyramid_.layout,
+                        std::uint32_t(n),
+                        table.count(),
+                        table.invWeightSum,
+                        clusterCount_,
+                        alpha,
+                        float(1.0 / lobeIntegral(alpha))};
+        DispatchOutput out = dispatcher_.output(DispatchGrid::cube(std::uint32_t(n)));
+        dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItem), out, params, pyramidData_,
+                        dispatcher_.upload("LD sample table", table.samples));
+        if (params.brightCount > 0)
+            dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItem), out, params, clusters_, bright_);
+        return dispatcher_.downloadCube(out);
+    }
+
+  private:
+    const SpecularSettings& settings_;
+    const Dispatcher dispatcher_;
+    const CubePyramid pyramid_;
+    const int sourceFaceSize_;
+    const std::uint32_t clusterCount_;
+    const DeviceArray<float> pyramidData_, clusters_, bright_;
+};
+
 // The chain of `source` whose bright texels `split` took out (split.residual is what is sampled).
 CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
                                const SpecularSettings& settings, const Executor& executor,
                                std::vector<SpecularLevelTiming>* timings) {
     const int levelCount = levelCountFor(source.faceSize, settings);
-    const std::uint32_t samples = samplesFor(settings);
-    CubePyramid pyramid = buildCubePyramid(split.residual);
-    const float maxLod = float(pyramid.layout.levelCount - 1);
-    const Dispatcher dispatcher(executor);
-    const DeviceArray<float> pyramidData = dispatcher.upload("specular source pyramid", pyramid.data);
-    const DeviceArray<float> clusters = dispatcher.upload("bright-texel clusters", split.bright.clusters);
-    const DeviceArray<float> bright = dispatcher.upload("bright texels", split.bright.entries);
-
+    const LdBake bake(split, settings, executor);
     CubeMapChain chain;
     chain.levels.push_back(source); // level 0: the mirror, unconvolved (Frostbite footnote 43)
     for (int m = 1; m < levelCount; ++m) {
@@ -150,27 +188,8 @@ CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
             continue;
         }
         auto start = std::chrono::steady_clock::now();
-        float r = perceptualRoughnessForLevel(m, levelCount, settings.mapping);
-        float alpha = alphaFromPerceptual(r);
-        const int n = std::max(1, source.faceSize >> m);
-        // Rough levels are small (a 16-texel face has 1/64 of the texels of a 128 one) and their wide
-        // lobes want more samples, so faces under 32 texels get 32/n times the preset's count, up to 16x.
-        const std::uint32_t levelSamples = samples * std::uint32_t(std::clamp(32 / n, 1, 16));
-        LevelTable table = levelTable(samplesForLobe(levelSamples, alpha, source.faceSize), alpha,
-                                      source.faceSize, settings.lodBias, maxLod);
-        LdParams params{pyramid.layout,
-                        std::uint32_t(n),
-                        table.count(),
-                        table.invWeightSum,
-                        split.bright.clusterCount(),
-                        alpha,
-                        float(1.0 / lobeIntegral(alpha))};
-        DispatchOutput level = dispatcher.output(DispatchGrid::cube(std::uint32_t(n)));
-        dispatcher.run(kernel("ld.cl", "ldLevel", ldLevelItem), level, params, pyramidData,
-                       dispatcher.upload("LD sample table", table.samples));
-        if (params.brightCount > 0)
-            dispatcher.run(kernel("ld.cl", "ldBright", ldBrightItem), level, params, clusters, bright);
-        chain.levels.push_back(dispatcher.downloadCube(level));
+        const float r = perceptualRoughnessForLevel(m, levelCount, settings.mapping);
+        chain.levels.push_back(bake.level(std::max(1, source.faceSize >> m), r));
         if (timings)
             timings->push_back(
                 {m, r,
@@ -188,6 +207,18 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
     return bakeSpecularSplit(source,
                              splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels),
                              settings, executor, timings);
+}
+
+std::vector<CubeMap> bakeRoughLayers(const CubeMap& source, const SpecularSettings& settings,
+                                     const Executor& executor) {
+    checkSpecularSource(source);
+    const BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
+    const LdBake bake(split, settings, executor);
+    const int faceSize = int(roughLayerFaceSize(std::uint32_t(source.faceSize)));
+    std::vector<CubeMap> layers;
+    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k)
+        layers.push_back(bake.level(faceSize, roughLayerRoughness(k)));
+    return layers;
 }
 
 VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const SpecularSettings& settings,

@@ -62,6 +62,14 @@ struct SpecularLevelTiming {
 CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
                           std::vector<SpecularLevelTiming>* timings = nullptr);
 
+// The rough layers of the chain bakeSpecular bakes from `source` (kernels/mip_mapping.h IBL_ROUGH_LAYER_*):
+// IBL_ROUGH_LAYER_COUNT cubes of roughLayerFaceSize(source.faceSize) texels, layer k the LD of
+// roughLayerRoughness(k), integrated as the chain's levels are (the same settings, bright-texel split and
+// sample tables for the face size). A runtime reads them instead of the chain's coarse levels
+// (kernels/probe.h sampleLdWithLayers).
+std::vector<CubeMap> bakeRoughLayers(const CubeMap& source, const SpecularSettings& settings,
+                                     const Executor& executor);
+
 // A local probe's capture with its visibility (Frostbite 4.9.1.2: alpha 1 for the close surroundings, 0 for
 // sky the composition fetches from farther probes), premultiplied: RGB = colour x visibility, A = the
 // visibility (OpenEXR's associated alpha). The chain holds the same: each level's RGB is the LD of colour x

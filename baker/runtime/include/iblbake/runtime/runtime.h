@@ -146,6 +146,13 @@ class ProbeSet {
     void setIrradianceCube(const CubeMap& irradianceOverPi);
     bool hasIrradianceCube() const { return irradianceLayout_.levelCount != 0; }
 
+    // The distant chain's rough layers (kernels/mip_mapping.h IBL_ROUGH_LAYER_*; the baker's bakeRoughLayers
+    // of the source the chain's levels 1+ come from): IBL_ROUGH_LAYER_COUNT cubes of
+    // roughLayerFaceSize(the chain's base face size) texels. Lookups from r_0 on then blend into them
+    // (kernels/probe.h sampleLdWithLayers). Throws ibl::Error for another count or face size.
+    void setRoughLayers(const std::vector<CubeMap>& layers);
+    RoughLayers roughLayers() const; // layerCount 0 when none; dataOffset into distantData()
+
     void setSun(const SunDisk& sun) { sun_ = sun; }
     void clearSun() { sun_.reset(); }
     const std::optional<SunDisk>& sun() const { return sun_; }
@@ -157,7 +164,8 @@ class ProbeSet {
     std::size_t addLocalProbe(const LocalProbeDesc& desc, const LdPyramid& ld);
 
     const LdPyramid& distantLd() const { return distant_; }
-    // What the kernels read as the distant buffer: the LD pyramid, then the irradiance cube if set.
+    // What the kernels read as the distant buffer: the LD pyramid, then the irradiance cube and the rough
+    // layers if set.
     const std::vector<float>& distantData() const { return distantData_; }
     const CubePyramidLayout& irradianceLayout() const { return irradianceLayout_; }
     const DfgTable& dfg() const { return dfg_; }
@@ -166,9 +174,14 @@ class ProbeSet {
     const std::vector<float>& localLdData() const { return localData_; }  // local pyramids, visibilities
 
   private:
+    void joinDistantData();
+
     LdPyramid distant_;
     std::vector<float> distantData_;
     CubePyramidLayout irradianceLayout_{};
+    std::vector<float> irradianceData_;
+    std::uint32_t roughLayerFaceSize_ = 0, roughLayerCount_ = 0;
+    std::vector<float> roughLayerData_;
     DfgTable dfg_;
     ShCoefficients sh_;
     std::optional<SunDisk> sun_;
