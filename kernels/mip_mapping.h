@@ -53,10 +53,11 @@ IBL_FN float mipLevelForRoughness(uint mapping, float perceptualRoughness, uint 
 #define IBL_ROUGH_LAYER_COUNT 12u
 #define IBL_ROUGH_LAYER_MAX_FACE_SIZE 32u
 
-// The perceptual roughness rough layer k holds.
+// The perceptual roughness rough layer k holds (integers squared, then one division: the float nearest r_k,
+// which files write as its short decimal).
 IBL_FN float roughLayerRoughness(uint layer) {
-    float t = IBL_FLOAT(IBL_ROUGH_LAYER_FIRST + layer) / IBL_FLOAT(IBL_ROUGH_LAYER_GRID);
-    return t * t;
+    float k = IBL_FLOAT(IBL_ROUGH_LAYER_FIRST + layer);
+    return k * k / IBL_FLOAT(IBL_ROUGH_LAYER_GRID * IBL_ROUGH_LAYER_GRID);
 }
 
 // The fractional layer that holds perceptual roughness r (clamped to [0, 1] first): negative below r_0.
@@ -82,9 +83,11 @@ IBL_END_NAMESPACE
 
 #include <array>
 #include <cctype>
+#include <charconv>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace ibl {
 
@@ -127,6 +130,45 @@ inline std::optional<MipMapping> mipMappingFromStoredValue(std::string_view text
 
 inline float perceptualRoughnessForLevel(int level, int levelCount, MipMapping mapping) {
     return mipLevelRoughness(std::uint32_t(mapping), std::uint32_t(level), std::uint32_t(levelCount));
+}
+
+inline constexpr const char* kRoughLayerRoughnessKey = "iblbake.roughLayerRoughness";
+
+// The rough layers' roughness as files store it (KTX2 key kRoughLayerRoughnessKey: the shortest decimal of
+// each r_k that reads back to the same float, space-separated; the manifest's
+// products.specular.roughLayers.roughness: the same decimals as numbers).
+inline std::string roughLayerRoughnessText() {
+    std::string text;
+    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k) {
+        char number[32];
+        const std::to_chars_result end =
+            std::to_chars(number, number + sizeof number, roughLayerRoughness(k));
+        if (!text.empty()) text += ' ';
+        text.append(number, end.ptr);
+    }
+    return text;
+}
+
+inline std::vector<double> roughLayerRoughnessValues() {
+    std::vector<double> values;
+    const std::string text = roughLayerRoughnessText();
+    for (const char *at = text.data(), *end = text.data() + text.size(); at < end; ++at) {
+        double value = 0.0;
+        at = std::from_chars(at, end, value).ptr;
+        values.push_back(value);
+    }
+    return values;
+}
+
+// What a reader does with them (the KTX2 key "iblbake.roughLayerMeaning", the manifest's "meaning").
+inline const char* roughLayerMeaning() {
+    return "layer k of 12 holds the LD of perceptual roughness r_k = ((9 + k) / 20)^2 on faces of min(32, "
+           "the "
+           "chain's base) texels; a lookup at r reads the chain up to r_0, the layers from r_1 (bilinear in "
+           "a "
+           "layer, linear in sqrt(r) between layers), and blends chain and layers linearly in sqrt(r) "
+           "between "
+           "r_0 and r_1";
 }
 
 inline int mipLevelCount(int faceSize) {

@@ -150,6 +150,34 @@ TEST_P(Ktx2ByKtxParse, TwoDimensionalImage) {
     fs::remove_all(dir);
 }
 
+// writeKtx2CubeArray (a scene bake's rough layers, README "Rough layers"): 12 layers of 6 faces, one level.
+TEST_P(Ktx2ByKtxParse, CubeMapArray) {
+    const auto [format, vkFormat] = GetParam();
+    const fs::path dir = ibl::test::freshTempDir(std::string("ktx_cube_array_") + format);
+    std::vector<ibl::CubeMap> layers;
+    for (int k = 0; k < 12; ++k) {
+        ibl::CubeMap layer(8);
+        for (ibl::ImageRGBA& face : layer.faces)
+            for (glm::vec4& texel : face.pixels)
+                texel = glm::vec4(0.1f * float(k), 1.0f, 2.0f, 1.0f);
+        layers.push_back(std::move(layer));
+    }
+    const std::string name = format;
+    const ibl::Ktx2Format ktxFormat = name == "rgba16f"     ? ibl::Ktx2Format::RGBA16F
+                                      : name == "rgba32f"   ? ibl::Ktx2Format::RGBA32F
+                                      : name == "b10g11r11" ? ibl::Ktx2Format::B10G11R11
+                                                            : ibl::Ktx2Format::E5B9G9R9;
+    ibl::writeKtx2CubeArray(dir / "layers.ktx2", layers, ktxFormat,
+                            {{"iblbake.product", "specular-rough-layers"}});
+    const nlohmann::json expect = {
+        {"vkFormat", vkFormat}, {"pixelWidth", 8},
+        {"levelCount", 1},      {"faceCount", 6},
+        {"layerCount", 12},     {"keyValues", {{"iblbake.product", "specular-rough-layers"}}}};
+    NodeRun r = runNode("check_ktx2.mjs", (dir / "layers.ktx2").string() + " " + quoted(expect));
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryFormat, Ktx2ByKtxParse, ::testing::ValuesIn(kFormats), formatName);
 
 // The light card (`iblbake lightcard`): a 2D array of every level down to 1x1, layer 0 the specular chain and

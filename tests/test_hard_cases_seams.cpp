@@ -92,8 +92,9 @@ TEST(HardCases, SunOnACubeEdgeAndCornerStaysSymmetric) {
                     high = std::max(high, faceEnergy(level, f, kSky));
                 }
                 EXPECT_LT(high / low - 1.0, 0.01) << "level " << m;
-                if (level.faceSize >= 2)
+                if (level.faceSize >= 2) {
                     EXPECT_NEAR(energy(level, kSky) / source, 1.0, 0.01) << "level " << m;
+                }
                 std::printf(" L%zu %.3f", m, energy(level, kSky) / source);
             }
             std::printf("\n");

@@ -685,7 +685,7 @@ TEST(Ktx2Reader, BitFlippedHeaderFieldsThrow) {
         {23, 7, "pixelWidth"},
         {26, 0, "pixelHeight"},
         {28, 0, "pixelDepth"},
-        {32, 0, "layerCount"},
+        {32, 1, "layerCount"}, // 0 -> 2 (0 -> 1: OneLayerCubeArrayHoldsTheSameCube)
         {36, 0, "faceCount"},
         {36, 2, "faceCount"},
         {40, 2, "levelCount"},
@@ -730,6 +730,7 @@ TEST(Ktx2Reader, EverySingleBitFlipOfTheMetadataIsHandled) {
     int undetectedInIndex = 0;
     for (std::size_t byte = 0; byte < metadataEnd; ++byte)
         for (int bit = 0; bit < 8; ++bit) {
+            if (byte == 32 && bit == 0) continue; // layerCount 0 -> 1: OneLayerCubeArrayHoldsTheSameCube
             writeBytes(bad, flipped(bytes, byte, bit));
             try {
                 ibl::readKtx2(bad);
@@ -739,6 +740,23 @@ TEST(Ktx2Reader, EverySingleBitFlipOfTheMetadataIsHandled) {
             }
         }
     EXPECT_EQ(undetectedInIndex, 0);
+}
+
+// The one header flip no reader can detect: layerCount 0 -> 1 makes a cube map a cube map array of one
+// layer, a valid KTX2 file of the same size; it reads as the same images, so nothing is misread.
+TEST(Ktx2Reader, OneLayerCubeArrayHoldsTheSameCube) {
+    TempDir dir;
+    const fs::path good = dir / "good.ktx2";
+    ibl::writeKtx2Cube(good, randomChain(4, 3, true, 5), Ktx2Format::E5B9G9R9, {{"key", "value"}});
+    const fs::path oneLayer = dir / "one_layer.ktx2";
+    writeBytes(oneLayer, flipped(readBytes(good), 32, 0));
+    const ibl::Ktx2Image a = ibl::readKtx2(good), b = ibl::readKtx2(oneLayer);
+    EXPECT_EQ(b.layerCount, 1u);
+    EXPECT_EQ(b.faceCount, 6u);
+    ASSERT_EQ(a.levels.size(), b.levels.size());
+    for (std::size_t m = 0; m < a.levels.size(); ++m)
+        for (std::size_t f = 0; f < 6; ++f)
+            EXPECT_EQ(a.levels[m].at(f).pixels, b.levels[m].at(f).pixels) << m << " " << f;
 }
 
 // A level moved by 4 bytes into its mipPadding is still inside the file and after the metadata, but no

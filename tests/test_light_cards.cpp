@@ -211,7 +211,9 @@ TEST(LightCards, HardCasesAreFinite) {
                 for (float v : {r[i].diffuse[c], r[i].specular[c]}) {
                     EXPECT_TRUE(std::isfinite(v));
                     EXPECT_GE(v, 0.0f);
-                    if (unlit[i]) EXPECT_EQ(v, 0.0f);
+                    if (unlit[i]) {
+                        EXPECT_EQ(v, 0.0f);
+                    }
                 }
         }
     }

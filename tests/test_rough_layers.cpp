@@ -1,10 +1,13 @@
 // Rough layers (kernels/mip_mapping.h IBL_ROUGH_LAYER_*): a fixed-size cube array on a fine roughness grid
 // that takes over from the chain's coarse levels. Analytic cases, the blend's continuity, OpenCL against the
 // CPU, bad inputs, and lookups on the shared HDRIs against the exact LD (issue 14, "coarse levels").
+#include "cli_runner.h"
 #include "runtime_test_support.h"
 #include "test_support.h"
 
+#include <iblbake/baker/products.h>
 #include <iblbake/core/error.h>
+#include <iblbake/ktx2/cube_profile.h>
 
 #include <gtest/gtest.h>
 
@@ -147,6 +150,49 @@ TEST(RoughLayers, OpenCLRuntimeAgreesWithCpu) {
     const double difference = rt_test::backendDifference(set, points, RuntimeOptions{});
     if (difference < 0.0) GTEST_SKIP() << "no OpenCL device";
     EXPECT_LT(difference, rt_test::kBackendTolerance);
+}
+
+// The product file (a scene bake's specular_rough.ktx2): written with a storage scale and either cube
+// profile, read back by the runtime's loader as the layers it was given; a file of another grid, another
+// layer count or no grid key is refused with its name.
+TEST(RoughLayers, FilesRoundTripAndForeignOnesAreRefused) {
+    const std::filesystem::path dir = ibl::test::freshTempDir("rough_layer_files");
+    const CubeMap source = rt_test::makeCube(64, rt_test::skyLike);
+    const std::vector<CubeMap> layers = bakeRoughLayers(source, SpecularSettings{}, Executor::cpu());
+    Ktx2KeyValues keys = roughLayerKeyValues(LdChainProduct{}, CalibrationRecord{}, std::nullopt);
+    for (const char* profile : {"standard", "three"}) {
+        ProductStorage storage;
+        storage.scale = 0.25;
+        Ktx2KeyValues withProfile = keys;
+        withProfile.emplace_back(kCubeProfileKey, profile);
+        const std::filesystem::path file = dir / (std::string(profile) + ".ktx2");
+        writeProductCubeArray(file, layers, Ktx2Format::RGBA32F, withProfile, storage);
+        const std::vector<CubeMap> loaded = loadRoughLayersKtx2(file);
+        ASSERT_EQ(loaded.size(), layers.size());
+        for (std::size_t k = 0; k < layers.size(); ++k)
+            for (int f = 0; f < 6; ++f)
+                EXPECT_EQ(loaded[k].faces[f].pixels, layers[k].faces[f].pixels)
+                    << profile << " " << k << " " << f;
+    }
+    const auto refused = [&](const std::string& name, const Ktx2KeyValues& kv, std::vector<CubeMap> cubes,
+                             const std::string& cause) {
+        const std::filesystem::path file = dir / name;
+        writeKtx2CubeArray(file, cubes, Ktx2Format::RGBA16F, kv);
+        try {
+            loadRoughLayersKtx2(file);
+            ADD_FAILURE() << name << " was read";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(cause), std::string::npos) << e.what();
+        }
+    };
+    Ktx2KeyValues otherGrid = keys;
+    for (auto& [key, value] : otherGrid)
+        if (key == kRoughLayerRoughnessKey) value = "0.4 0.5 0.6 0.7 0.8 0.9 1 1 1 1 1 1";
+    refused("other_grid.ktx2", otherGrid, layers, "another grid");
+    refused("no_grid.ktx2", {{"iblbake.product", kRoughLayerProduct}}, layers, "is missing");
+    refused("eleven.ktx2", keys, std::vector<CubeMap>(layers.begin(), layers.end() - 1), "11 layers");
+    std::filesystem::remove_all(dir);
 }
 
 // The shared HDRIs at production (256-px faces, sun in the map): lookups through the layers against the

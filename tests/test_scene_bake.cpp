@@ -12,6 +12,7 @@
 #include <iblbake/ktx2/storage_scale.h>
 #include <iblbake/runtime/runtime_manifest.h>
 #include <iblbake/scene/scene.h>
+#include <iblbake/scene/scene_plan.h>
 
 #include <gtest/gtest.h>
 
@@ -178,6 +179,38 @@ TEST(SceneBake, RunsExactlyThePlannedStagesForEachNeed) {
                 EXPECT_TRUE(fs::exists(d.dir / ("out-" + v.name) / product["file"].get<std::string>()))
                     << name;
             }
+    }
+}
+
+// Rough layers (README "Rough layers") only where a material reads past their first roughness: listed with
+// the specular stage's products and in the manifest, and loaded; a scene whose roughest material is 0.2
+// gets none.
+TEST(SceneBake, RoughLayersOnlyWhenAMaterialReadsPastTheirFirstRoughness) {
+    SceneDir d("scene_rough_layers");
+    for (const double roughnessMax : {1.0, 0.2}) {
+        SCOPED_TRACE(roughnessMax);
+        json scene = d.scene;
+        scene["materials"] = {{"roughness", {{"min", 0.0}, {"max", roughnessMax}}}};
+        scene["outputs"]["directory"] = "out-" + std::to_string(int(roughnessMax * 10));
+        const fs::path file = d.dir / ("rough" + std::to_string(int(roughnessMax * 10)) + ".json");
+        writeText(file, scene.dump());
+        const ibl::BakeSummary summary = bakeOnCpu(file);
+        ASSERT_TRUE(summary.ok) << summary.error;
+        const fs::path out = d.dir / scene["outputs"]["directory"].get<std::string>();
+        const json specular = json::parse(readBytes(out / "manifest.json"))["products"]["specular"];
+        const bool expected = roughnessMax > 0.2025;
+        EXPECT_EQ(specular.contains("roughLayers"), expected);
+        EXPECT_EQ(fs::exists(out / ibl::kRoughLayersFile), expected);
+        EXPECT_EQ(ibl::loadProbeSetFromManifest(out).set.roughLayers().layerCount,
+                  expected ? IBL_ROUGH_LAYER_COUNT : 0u);
+        if (expected) {
+            EXPECT_EQ(specular["roughLayers"]["file"], ibl::kRoughLayersFile);
+            EXPECT_EQ(specular["roughLayers"]["layerCount"], IBL_ROUGH_LAYER_COUNT);
+            EXPECT_EQ(specular["roughLayers"]["roughness"].front(), 0.2025);
+            EXPECT_EQ(specular["roughLayers"]["roughness"].back(), 1.0);
+            EXPECT_TRUE(specular["roughLayers"].contains("contentHash"));
+            EXPECT_TRUE(specular["roughLayers"].contains("storageScale"));
+        }
     }
 }
 
@@ -513,7 +546,8 @@ TEST(SceneBake, OutputsAreByteIdenticalAcrossRunsWithSeparateCaches) {
     ASSERT_EQ(runCli("bake " + one.string() + " --quiet").exitCode, 0);
     ASSERT_EQ(runCli("bake " + two.string() + " --quiet").exitCode, 0);
     const auto a = snapshot(d.dir / "out"), b = snapshot(d.dir / "out2");
-    EXPECT_EQ(a.size(), 5u); // dfg_lut.ktx2, specular.ktx2, diffuse.json, probe_a.ktx2, manifest.json
+    // dfg_lut.ktx2, specular.ktx2, specular_rough.ktx2, diffuse.json, probe_a.ktx2, manifest.json
+    EXPECT_EQ(a.size(), 6u);
     EXPECT_EQ(a, b);
 }
 
@@ -638,6 +672,8 @@ TEST(SceneBake, ManifestLoadsAndShadesLikeTheHandBuiltSet) {
     ibl::ProbeSet byHand(ibl::loadLdKtx2(d.out() / "specular.ktx2"),
                          ibl::loadDfgKtx2(d.out() / "dfg_lut.ktx2"), ibl::shCoefficientsFrom(sh, false));
     byHand.setSun(ibl::sunDiskFrom(ibl::diskLightFromJson(readBytes(d.out() / "sun.json"))));
+    byHand.setRoughLayers(ibl::loadRoughLayersKtx2(d.out() / ibl::kRoughLayersFile));
+    EXPECT_EQ(loaded.set.roughLayers().layerCount, IBL_ROUGH_LAYER_COUNT);
     const glm::dmat3 rotation(glm::rotate(glm::dmat4(1.0), glm::radians(30.0), glm::dvec3(0, 1, 0)));
     ibl::LocalProbeDesc desc;
     desc.proxy =
@@ -712,8 +748,10 @@ TEST(SceneBake, IrradianceCubeWhenAskedIsPlannedBakedAndLoaded) {
         sh[i] = glm::vec3(c[0].get<float>(), c[1].get<float>(), c[2].get<float>());
     }
     const auto handBuilt = [&] {
-        return ibl::ProbeSet(ibl::loadLdKtx2(d.out() / "specular.ktx2"),
-                             ibl::loadDfgKtx2(d.out() / "dfg_lut.ktx2"), ibl::shCoefficientsFrom(sh, false));
+        ibl::ProbeSet set(ibl::loadLdKtx2(d.out() / "specular.ktx2"),
+                          ibl::loadDfgKtx2(d.out() / "dfg_lut.ktx2"), ibl::shCoefficientsFrom(sh, false));
+        set.setRoughLayers(ibl::loadRoughLayersKtx2(d.out() / ibl::kRoughLayersFile));
+        return set;
     };
     const ibl::ProbeSet shOnly = handBuilt();
     ibl::ProbeSet byHand = handBuilt();

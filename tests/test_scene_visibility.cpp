@@ -12,6 +12,7 @@
 #include <iblbake/ktx2/ktx2.h>
 #include <iblbake/runtime/runtime_manifest.h>
 #include <iblbake/scene/scene.h>
+#include <iblbake/scene/scene_plan.h>
 
 #include <gtest/gtest.h>
 
@@ -291,8 +292,9 @@ TEST(SceneVisibility, AlphaZeroEverywhereIsTransparent) {
                                           glm::normalize(n + glm::vec3(0.3f, 0.5f, 0.2f)), glm::vec3(0.7f),
                                           float(i % 2), t));
     }
-    const ProbeSet distantOnly(loadLdKtx2(d.out() / "specular.ktx2"), loadDfgKtx2(d.out() / "dfg_lut.ktx2"),
-                               ShCoefficients{});
+    ProbeSet distantOnly(loadLdKtx2(d.out() / "specular.ktx2"), loadDfgKtx2(d.out() / "dfg_lut.ktx2"),
+                         ShCoefficients{});
+    distantOnly.setRoughLayers(loadRoughLayersKtx2(d.out() / kRoughLayersFile));
     RuntimeOptions options = loaded.options;
     options.diffuse = false;
     const std::vector<glm::vec4> a = evaluateCpu(loaded.set, points, options);

@@ -56,6 +56,32 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
     }
 }
 
+std::vector<CubeMap> loadRoughLayersKtx2(const std::filesystem::path& path) {
+    Ktx2Image image = readProductKtx2(path);
+    const std::string name = path.string();
+    if (image.faceCount != 6 || image.layerCount != IBL_ROUGH_LAYER_COUNT || image.levels.size() != 1)
+        throw Error(name + ": not a cube map array of " + std::to_string(IBL_ROUGH_LAYER_COUNT) +
+                    " layers and one level (" + std::to_string(image.layerCount) + " layers, " +
+                    std::to_string(image.faceCount) + " faces, " + std::to_string(image.levels.size()) +
+                    " levels)");
+    // Layers of another grid would be read at the wrong roughness: the file must name this one.
+    const std::string expected = roughLayerRoughnessText();
+    auto grid = image.keyValues.find(kRoughLayerRoughnessKey);
+    if (grid == image.keyValues.end())
+        throw Error(name + ": " + kRoughLayerRoughnessKey + " is missing (expected " + expected + ")");
+    if (grid->second != expected)
+        throw Error(name + ": " + kRoughLayerRoughnessKey + " " + quotedForMessage(grid->second) +
+                    " is another grid than this runtime's (" + expected + ")");
+    std::vector<CubeMap> layers;
+    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k) {
+        CubeMap cube(int(image.pixelWidth));
+        for (int f = 0; f < 6; ++f)
+            cube.faces[f] = std::move(image.levels[0].at(6 * k + std::uint32_t(f)));
+        layers.push_back(std::move(cube));
+    }
+    return layers;
+}
+
 CubeMap loadIrradianceKtx2(const std::filesystem::path& path) {
     Ktx2Image image = readProductKtx2(path);
     if (image.faceCount != 6 || image.levels.empty())

@@ -82,7 +82,8 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
                  shCoefficientsFrom(sh, false)),
         {},
         m.at("calibration").at("factor").get<double>(),
-        m.at("runtimeProfile").get<std::string>()};
+        m.at("runtimeProfile").get<std::string>(),
+        {}};
     if (products.contains("sun")) {
         const json& light = products["sun"].at("light");
         SunDisk sun;
@@ -92,6 +93,9 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
         sun.illuminance = light.at("illuminance").get<float>();
         out.set.setSun(sun);
     }
+    if (glossy && products["specular"].contains("roughLayers")) // README "Rough layers"
+        out.set.setRoughLayers(
+            loadRoughLayersKtx2(dir / products["specular"]["roughLayers"].at("file").get<std::string>()));
     if (products.contains("irradiance")) // diffuse then reads the cube instead of the SH (runtime.h)
         out.set.setIrradianceCube(
             loadIrradianceKtx2(dir / products["irradiance"].at("file").get<std::string>()));

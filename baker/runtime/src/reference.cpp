@@ -78,8 +78,8 @@ struct ReferenceLighting::Data {
         double radius = std::max(double(disk->angularRadius), 1e-5);
         sunCos = std::cos(radius);
         sunSolidAngle = 2.0 * kPi * (1.0 - sunCos);
-        double projected = kPi * std::sin(radius) * std::sin(radius);
-        sunRadiance = glm::dvec3(disk->color) * double(disk->illuminance) / projected;
+        const double projectedSolidAngle = kPi * std::sin(radius) * std::sin(radius);
+        sunRadiance = glm::dvec3(disk->color) * double(disk->illuminance) / projectedSolidAngle;
     }
 
     double environmentPdf(const glm::dvec3& l) const {

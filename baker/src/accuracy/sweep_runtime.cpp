@@ -38,8 +38,9 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                         "reference| / sum |reference| over a column's points and RGB";
     stage.maxErrorMetric = "worst roughness column's relative mean absolute error";
     stage.energyErrorMetric = "|sum (runtime - reference)| / sum reference over every point and channel";
-    stage.timeMeaning = "bakeSpecular of the probe's LD chain at the source face size (the only cost that "
-                        "changes; DFG LUT at its defaults and the SH are shared)";
+    stage.timeMeaning =
+        "bakeSpecular and bakeRoughLayers of the probe's LD chain at the source face size (the "
+        "only cost that changes; DFG LUT at its defaults and the SH are shared)";
 
     // The product's setup, as `iblbake specular/diffuse --extract-sun` bake it: a detected sun is extracted
     // into the disk light, the residual goes to the probe (LD chain from level 1 on, SH, irradiance cube) and
@@ -64,9 +65,10 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         "strategy; its own estimated error per column in referenceErrorEstimate) of " +
         std::to_string(c.points.size()) + " points on dielectric and metal spheres, lit by the full " +
         std::to_string(size) + " px environment; the probe: " +
-        (sun ? "the residual (LD chain from level 1, irradiance cube) with the sun's pixels in "
+        (sun ? "the residual (LD chain from level 1, its rough layers, irradiance cube) with the sun's "
+               "pixels in "
                "level 0 and the extracted sun as a disk light"
-             : "LD chain and irradiance cube (no sun detected)");
+             : "LD chain, its rough layers and irradiance cube (no sun detected)");
 
     const DfgTable dfg = dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor));
     auto measure = [&](MeasuredSetting& s, const std::vector<glm::vec4>& shaded) {
@@ -89,7 +91,10 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         settings.quality = quality;
         MeasuredSetting s;
         bakeSpecular(residual, settings, executor); // program build, untimed
-        s.timesMs = timeRuns(repeats, [&] { bakeSpecular(residual, settings, executor); });
+        s.timesMs = timeRuns(repeats, [&] {
+            bakeSpecular(residual, settings, executor);
+            bakeRoughLayers(residual, settings, executor);
+        });
         s.timeMs = median(s.timesMs);
         s.label = std::string(qualityName(quality)) + " LD chain";
         s.knobs = {{"specularQuality", qualityName(quality)}, {"sun", sun ? "extracted" : "none"}};
@@ -101,7 +106,10 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     if (sun) { // the same production bake with the sun left in the probe: what the warning measures
         const SpecularSettings production;
         MeasuredSetting s;
-        s.timesMs = timeRuns(repeats, [&] { bakeSpecular(source, production, executor); });
+        s.timesMs = timeRuns(repeats, [&] {
+            bakeSpecular(source, production, executor);
+            bakeRoughLayers(source, production, executor);
+        });
         s.timeMs = median(s.timesMs);
         s.label = "production LD chain, sun left in the probe";
         s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}};

@@ -123,7 +123,6 @@ FormatInfo checkHeader(const Header& h, const std::string& name) {
         throw Error(name + ": 1D or empty textures are not supported");
     if (h.pixelWidth > INT_MAX || h.pixelHeight > INT_MAX) throw Error(name + ": image size is too large");
     if (h.pixelDepth != 0) throw Error(name + ": 3D textures are not supported");
-    if (h.layerCount != 0 && h.faceCount != 1) throw Error(name + ": cube map arrays are not supported");
     if (h.layerCount > 4096)
         throw Error(name + ": layerCount " + std::to_string(h.layerCount) + " exceeds 4096");
     if (h.faceCount != 1 && h.faceCount != 6)
@@ -327,7 +326,8 @@ Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name)
         try {
             if (parseCubeProfile(profile->second) == CubeProfile::Three)
                 for (std::vector<ImageRGBA>& level : image.levels)
-                    mirrorCubeFacesX(level);
+                    for (std::size_t first = 0; first < level.size(); first += 6) // each layer's cube
+                        mirrorCubeFacesX(std::span<ImageRGBA>(level).subspan(first, 6));
         } catch (const Error& e) {
             throw Error(name + ": " + kCubeProfileKey + ": " + e.what());
         }

@@ -186,14 +186,15 @@ std::vector<std::uint8_t> keyValueData(const std::string& name, const Ktx2KeyVal
     return std::move(kvd.bytes);
 }
 
-// layerCount 0: not an array (each level's images are its faces); else a 2D array of that many layers.
+// layerCount 0: not an array (each level's images are its faces); else an array of that many layers of
+// faceCount faces (1: 2D, 6: cube), each level's images layer by layer, face by face within a layer.
 Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& levels, Ktx2Format format,
                          const Ktx2KeyValues& keyValues, std::uint32_t layerCount = 0,
-                         Ktx2Alpha alpha = Ktx2Alpha::Straight) {
+                         Ktx2Alpha alpha = Ktx2Alpha::Straight, std::uint32_t arrayFaceCount = 1) {
     const std::string name = path.string();
     const FormatInfo& info = ktx2::formatInfo(format);
     const std::uint32_t imagesPerLevel = std::uint32_t(levels.front().faces.size());
-    const std::uint32_t faceCount = layerCount == 0 ? imagesPerLevel : 1;
+    const std::uint32_t faceCount = layerCount == 0 ? imagesPerLevel : arrayFaceCount;
     const std::uint32_t levelCount = std::uint32_t(levels.size());
 
     const std::vector<std::uint32_t> dfd = ktx2::dataFormatDescriptor(format, alpha);
@@ -268,6 +269,17 @@ void checkImage(const std::string& name, const ImageRGBA& image, int width, int 
                     " pixels, expected " + std::to_string(width) + "x" + std::to_string(height));
 }
 
+// Whether the file's iblbake.profile (cube_profile.h) stores cubes mirrored in x (three.js's layout).
+bool storesMirrored(const std::string& name, const Ktx2KeyValues& keyValues) {
+    const auto profile = std::find_if(keyValues.begin(), keyValues.end(),
+                                      [](const auto& kv) { return kv.first == kCubeProfileKey; });
+    try {
+        return profile != keyValues.end() && parseCubeProfile(profile->second) == CubeProfile::Three;
+    } catch (const Error& e) {
+        throw Error(name + ": " + kCubeProfileKey + ": " + e.what());
+    }
+}
+
 } // namespace
 
 Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Ktx2Format format,
@@ -284,16 +296,10 @@ Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Kt
 
     // The layout the file's iblbake.profile declares (cube_profile.h).
     CubeMapChain mirrored;
-    const auto profile = std::find_if(keyValues.begin(), keyValues.end(),
-                                      [](const auto& kv) { return kv.first == kCubeProfileKey; });
-    try {
-        if (profile != keyValues.end() && parseCubeProfile(profile->second) == CubeProfile::Three) {
-            mirrored = chain;
-            for (CubeMap& level : mirrored.levels)
-                mirrorCubeFacesX(level.faces);
-        }
-    } catch (const Error& e) {
-        throw Error(name + ": " + kCubeProfileKey + ": " + e.what());
+    if (storesMirrored(name, keyValues)) {
+        mirrored = chain;
+        for (CubeMap& level : mirrored.levels)
+            mirrorCubeFacesX(level.faces);
     }
     const CubeMapChain& stored = mirrored.levels.empty() ? chain : mirrored;
 
@@ -343,6 +349,30 @@ Ktx2WriteStats writeKtx2Array(const fs::path& path, const std::vector<std::vecto
         views.push_back(std::move(view));
     }
     return writeKtx2(path, views, format, keyValues, std::uint32_t(layers));
+}
+
+Ktx2WriteStats writeKtx2CubeArray(const fs::path& path, const std::vector<CubeMap>& layers, Ktx2Format format,
+                                  const Ktx2KeyValues& keyValues) {
+    const std::string name = path.string();
+    if (layers.empty()) throw Error(name + ": refusing to write a cube map array without layers");
+    const int size = layers.front().faceSize;
+    if (size <= 0)
+        throw Error(name + ": refusing to write a cube map array of face size " + std::to_string(size));
+    std::vector<CubeMap> mirrored;
+    if (storesMirrored(name, keyValues)) {
+        mirrored = layers;
+        for (CubeMap& layer : mirrored)
+            mirrorCubeFacesX(layer.faces);
+    }
+    const std::vector<CubeMap>& stored = mirrored.empty() ? layers : mirrored;
+    LevelView view{size, size, {}};
+    for (std::size_t l = 0; l < stored.size(); ++l)
+        for (std::size_t f = 0; f < stored[l].faces.size(); ++f) {
+            checkImage(name, stored[l].faces[f], size, size,
+                       "layer " + std::to_string(l) + " face " + std::to_string(f));
+            view.faces.push_back(&stored[l].faces[f]);
+        }
+    return writeKtx2(path, {view}, format, keyValues, std::uint32_t(stored.size()), Ktx2Alpha::Straight, 6);
 }
 
 Ktx2WriteStats writeKtx2Image(const fs::path& path, const ImageRGBA& image, Ktx2Format format,

@@ -57,6 +57,21 @@ Ktx2KeyValues ldChainKeyValues(const LdChainProduct& c, const CalibrationRecord&
     return kv;
 }
 
+Ktx2KeyValues roughLayerKeyValues(const LdChainProduct& c, const CalibrationRecord& record,
+                                  const std::optional<DiskLight>& sun) {
+    Ktx2KeyValues kv = {{"iblbake.product", kRoughLayerProduct},
+                        {kRoughLayerRoughnessKey, roughLayerRoughnessText()},
+                        {"iblbake.roughLayerMeaning", roughLayerMeaning()},
+                        {"iblbake.colorSpace", c.colorSpace},
+                        {"iblbake.settings", c.settings}};
+    if (c.source) kv.emplace_back("iblbake.source", *c.source);
+    for (auto& entry : latLongPixelsKeyValues(c.latLongPixels))
+        kv.push_back(std::move(entry));
+    for (auto& entry : calibrationKeyValues(record, sun))
+        kv.push_back(std::move(entry));
+    return kv;
+}
+
 const char* const kIrradianceNormalization =
     "E/pi: each texel stores (1/pi) integral L(l) max(0,n.l) dl, the cosine-weighted mean radiance "
     "(Frostbite Listing 20's LD of a Lambert lobe); irradiance E = pi x value";

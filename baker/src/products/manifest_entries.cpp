@@ -37,6 +37,15 @@ json ldManifestFactsToJson(const LdManifestFacts& f) {
                 {"validRoughnessMax", f.validRoughnessMax},
                 {"quality", f.quality}};
     if (f.sunInLevel0) out["sunInLevel0"] = *f.sunInLevel0;
+    if (f.roughLayers) {
+        json layers = {{"file", f.roughLayers->file},
+                       {"faceSize", f.roughLayers->faceSize},
+                       {"layerCount", IBL_ROUGH_LAYER_COUNT},
+                       {"roughness", roughLayerRoughnessValues()},
+                       {"meaning", roughLayerMeaning()}};
+        layers.update(productStorageToJson(f.roughLayers->storage));
+        out["roughLayers"] = std::move(layers);
+    }
     return out;
 }
 
@@ -55,6 +64,12 @@ LdManifestFacts ldManifestFactsFromJson(const json& j) {
         f.validRoughnessMax = j.at("validRoughnessMax").get<double>();
         f.quality = j.at("quality").get<std::string>();
         if (j.contains("sunInLevel0")) f.sunInLevel0 = j["sunInLevel0"].get<bool>();
+        if (j.contains("roughLayers")) {
+            const json& layers = j["roughLayers"];
+            f.roughLayers = LdManifestFacts::RoughLayers{layers.at("file").get<std::string>(),
+                                                         layers.at("faceSize").get<int>(),
+                                                         productStorageFromJson(layers)};
+        }
         return f;
     } catch (const json::exception& e) {
         throw Error(std::string("LD manifest entry: ") + e.what());

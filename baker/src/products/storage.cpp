@@ -98,23 +98,44 @@ Ktx2KeyValues storageKeyValues(const ProductStorage& storage) {
     return kv;
 }
 
+namespace {
+
+// The cubes with RGB times storage.scale (alpha kept), and the key/values with the storage's.
+std::vector<CubeMap> scaledCubes(std::vector<CubeMap> cubes, const ProductStorage& storage) {
+    const float scale = float(storage.scale);
+    if (storage.scale != 1.0)
+        for (CubeMap& cube : cubes)
+            for (ImageRGBA& face : cube.faces)
+                for (glm::vec4& t : face.pixels) {
+                    t.r *= scale;
+                    t.g *= scale;
+                    t.b *= scale;
+                }
+    return cubes;
+}
+
+Ktx2KeyValues withStorageKeys(Ktx2KeyValues kv, const ProductStorage& storage) {
+    for (auto& entry : storageKeyValues(storage))
+        kv.push_back(std::move(entry));
+    return kv;
+}
+
+} // namespace
+
 Ktx2WriteStats writeProductCube(const std::filesystem::path& path, const CubeMapChain& chain,
                                 Ktx2Format format, const Ktx2KeyValues& keyValues,
                                 const ProductStorage& storage, Ktx2Alpha alpha) {
-    Ktx2KeyValues kv = keyValues;
-    for (auto& entry : storageKeyValues(storage))
-        kv.push_back(std::move(entry));
+    const Ktx2KeyValues kv = withStorageKeys(keyValues, storage);
     if (storage.scale == 1.0) return writeKtx2Cube(path, chain, format, kv, alpha);
-    CubeMapChain scaled = chain;
-    const float scale = float(storage.scale);
-    for (CubeMap& level : scaled.levels)
-        for (ImageRGBA& face : level.faces)
-            for (glm::vec4& t : face.pixels) {
-                t.r *= scale;
-                t.g *= scale;
-                t.b *= scale;
-            }
-    return writeKtx2Cube(path, scaled, format, kv, alpha);
+    return writeKtx2Cube(path, CubeMapChain{scaledCubes(chain.levels, storage)}, format, kv, alpha);
+}
+
+Ktx2WriteStats writeProductCubeArray(const std::filesystem::path& path, const std::vector<CubeMap>& layers,
+                                     Ktx2Format format, const Ktx2KeyValues& keyValues,
+                                     const ProductStorage& storage) {
+    const Ktx2KeyValues kv = withStorageKeys(keyValues, storage);
+    if (storage.scale == 1.0) return writeKtx2CubeArray(path, layers, format, kv);
+    return writeKtx2CubeArray(path, scaledCubes(layers, storage), format, kv);
 }
 
 json productStorageToJson(const ProductStorage& storage) {

@@ -77,6 +77,7 @@ ProbeSet shippedProbe(const CubeMap& probeSource, const CubeMap& full, const std
     ld.sunInLevel0 = sunInLevel0;
     ProbeSet set(std::move(ld), dfg, shCoefficientsFrom(bakeDiffuseSH(probeSource, {}).irradiance, false));
     set.setIrradianceCube(bakeIrradianceCube(probeSource, IrradianceSettings{}, executor));
+    set.setRoughLayers(bakeRoughLayers(probeSource, settings, executor));
     if (sun) set.setSun(*sun);
     if (chainOut) *chainOut = std::move(chain);
     return set;

@@ -162,6 +162,8 @@ json buildManifest(const ManifestInputs& in) {
             ldManifestFactsFromJson(readJsonFile(in.entries.at("specular") / kLdManifestFacts)),
             in.productHashes.at("specular.ktx2"));
         addStorage(products["specular"], "specular");
+        if (products["specular"].contains("roughLayers"))
+            products["specular"]["roughLayers"]["contentHash"] = in.productHashes.at(kRoughLayersFile);
     }
     products["diffuse"] = diffuseManifestEntry(readJsonFile(in.entries.at("diffuse") / "diffuse.json"),
                                                in.productHashes.at("diffuse.json"));

@@ -186,6 +186,15 @@ Plan planScene(const Scene& scene) {
         s.reason = std::string(m.specular ? "materials use specular" : "clear coat is used") + "; levels 0-" +
                    std::to_string(last) + " of " + std::to_string(levels) + " integrated (roughness max " +
                    json(m.roughnessMax).dump() + ")";
+        // The rough layers (README "Rough layers") only when some material reads past r_0; their roughness
+        // grid is part of the settings, so a cache entry of another grid is not reused.
+        const bool roughLayers = m.roughnessMax > double(roughLayerRoughness(0));
+        s.settings["roughLayers"] = roughLayers ? json(roughLayerRoughnessValues()) : json::array();
+        if (roughLayers) {
+            s.products.push_back(kRoughLayersFile);
+            s.reason += "; rough layers for r >= " + json(roughLayerRoughness(0)).dump() + " (" +
+                        std::to_string(roughLayerFaceSize(std::uint32_t(o.faceSize))) + "-px faces)";
+        }
         // Level 0 (the unconvolved source) keeps the sun's pixels when the format holds them (specular.h
         // keepSunInLevel0): the cube from before the extraction is an input too.
         if (env.extractSun) {

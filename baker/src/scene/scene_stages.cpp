@@ -264,15 +264,41 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     return facts;
 }
 
+// Bakes and writes the distant chain's rough layers (README "Rough layers") from the chain's source, with
+// the chain's settings and format and a storage scale of their own.
+LdManifestFacts::RoughLayers writeRoughLayers(const StageContext& c, const CubeMap& source,
+                                              const CachedCalibration& calibration, const fs::path& file) {
+    const json& s = c.stage.settings;
+    SpecularSettings settings;
+    settings.quality = parseQuality(s.at("quality").get<std::string>());
+    const std::vector<CubeMap> layers = bakeRoughLayers(source, settings, *c.executor);
+    const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    const ProductStorage storage =
+        chooseProductStorage(CubeMapChain{layers}, format, s.at("clampToFormat").get<bool>());
+    LdChainProduct about;
+    about.colorSpace = calibration.colorSpace();
+    about.source = calibration.sourceFile();
+    about.latLongPixels = calibration.latLongPixels();
+    about.settings =
+        "quality=" + s.at("quality").get<std::string>() + " samples=" + std::to_string(samplesFor(settings));
+    Ktx2KeyValues keyValues = roughLayerKeyValues(about, calibration.record, calibration.sun);
+    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
+    writeProductCubeArray(file, layers, format, keyValues, storage);
+    return {file.filename().string(), layers.front().faceSize, storage};
+}
+
 void runSpecular(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
     const CubeMap source = readCubeFile(from / kCubeFile);
     // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
     std::optional<CubeMap> withSun;
     if (c.stage.dependsOn.size() > 1) withSun = readCubeFile(c.dependencies.at("environment") / kCubeFile);
-    LdManifestFacts facts = writeLdChain(c, source, readCalibration(from), "specular-ld",
+    const CachedCalibration calibration = readCalibration(from);
+    LdManifestFacts facts = writeLdChain(c, source, calibration, "specular-ld",
                                          c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
     facts.sunInLevel0 = facts.sunInLevel0.value_or(false);
+    if (!c.stage.settings.at("roughLayers").empty())
+        facts.roughLayers = writeRoughLayers(c, source, calibration, c.outputDirectory / kRoughLayersFile);
     writeJsonFile(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
 }
 

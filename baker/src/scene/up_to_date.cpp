@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 // File -> contentHash of every product the manifest lists (products.*, products.probes[] and
-// products.lightCards[], and the files[]
-// of a product made of several: a glTF's images, a preview's EXR).
+// products.lightCards[], the files[] of a product made of several: a glTF's images, a preview's EXR; and
+// the specular chain's roughLayers).
 std::map<std::string, std::string> listedHashes(const json& products) {
     std::map<std::string, std::string> out;
     auto add = [&](const json& p) {
@@ -30,6 +30,7 @@ std::map<std::string, std::string> listedHashes(const json& products) {
         if (p.contains("files"))
             for (const json& f : p["files"])
                 out[f.at("file")] = f.at("contentHash");
+        if (p.contains("roughLayers")) out[p["roughLayers"].at("file")] = p["roughLayers"].at("contentHash");
     };
     for (const auto& [name, value] : products.items()) {
         if (name == "lights") continue; // their cards are in lightCards

@@ -88,6 +88,14 @@ struct LdChainProduct {
 Ktx2KeyValues ldChainKeyValues(const LdChainProduct& chain, const CalibrationRecord& record,
                                const std::optional<DiskLight>& sun);
 
+// The rough layers beside the distant chain ("specular-rough-layers", kernels/mip_mapping.h):
+// "iblbake.product", "iblbake.roughLayerRoughness" (roughLayerRoughnessText), "iblbake.roughLayerMeaning",
+// "iblbake.colorSpace", "iblbake.source", "iblbake.settings", calibrationKeyValues. The runtime's
+// loadRoughLayersKtx2 checks the roughness key (kRoughLayerRoughnessKey, kernels/mip_mapping.h).
+inline constexpr const char* kRoughLayerProduct = "specular-rough-layers";
+Ktx2KeyValues roughLayerKeyValues(const LdChainProduct& chain, const CalibrationRecord& record,
+                                  const std::optional<DiskLight>& sun);
+
 // The irradiance cube's normalization (E / pi), as its KTX2 key and the diffuse document state it.
 extern const char* const kIrradianceNormalization;
 // "sampled: ..." with the sample count, or "sh: ..." (the windowed SH evaluated per texel).
@@ -125,6 +133,12 @@ Ktx2KeyValues storageKeyValues(const ProductStorage& storage);
 Ktx2WriteStats writeProductCube(const std::filesystem::path& path, const CubeMapChain& chain,
                                 Ktx2Format format, const Ktx2KeyValues& keyValues,
                                 const ProductStorage& storage, Ktx2Alpha alpha = Ktx2Alpha::Straight);
+
+// writeKtx2CubeArray of the layers times storage.scale (chosen by chooseProductStorage over the layers as
+// levels), with keyValues and storageKeyValues(storage).
+Ktx2WriteStats writeProductCubeArray(const std::filesystem::path& path, const std::vector<CubeMap>& layers,
+                                     Ktx2Format format, const Ktx2KeyValues& keyValues,
+                                     const ProductStorage& storage);
 
 // The manifest entry's keys (README "Manifest"): "storageScale", and with `clamped` "storageClamp"
 // {"energyLostPercent": [per level], "meaning"}; the same object is a stage's cache record. Its reader
@@ -166,6 +180,14 @@ struct LdManifestFacts {
     double validRoughnessMax = 1.0;
     std::string quality;
     std::optional<bool> sunInLevel0; // the distant chain's (absent for local probes)
+    // The distant chain's rough layers (README "Rough layers"), when baked: the manifest's "roughLayers"
+    // {"file", "faceSize", "layerCount", "roughness", "meaning", "storageScale" ...}.
+    struct RoughLayers {
+        std::string file;
+        int faceSize = 0;
+        ProductStorage storage;
+    };
+    std::optional<RoughLayers> roughLayers;
 };
 nlohmann::json ldManifestEntry(const LdManifestFacts& facts, const std::string& contentHash);
 // The stage-side form of ldManifestEntry (no contentHash): what the specular stage records in its cache

@@ -31,7 +31,8 @@ std::vector<double> columnErrors(const SphereColumns& columns, const ConvergedRe
                                  const std::vector<glm::vec4>* shaded);
 
 // The probe the product ships, from `probeSource` (the residual of an extraction, or the full map when the
-// sun stays in), at a specular quality: LD chain, DFG, SH, irradiance cube, and the disk light (level 0
+// sun stays in), at a specular quality: LD chain with its rough layers (a scene bake ships them when a
+// material reads past r_0, as the columns do), DFG, SH, irradiance cube, and the disk light (level 0
 // keeps the sun's pixels of `full` when a sun is given). `dfg` is the DFG LUT at its defaults
 // (dfgTableFromImage(bakeDfgLut(DfgSettings{}, executor))), baked once by callers that build several probes.
 // `chainOut` receives the LD chain.

@@ -46,6 +46,12 @@ enum class Ktx2Alpha { Straight, Premultiplied };
 Ktx2WriteStats writeKtx2Cube(const std::filesystem::path& path, const CubeMapChain& chain, Ktx2Format format,
                              const Ktx2KeyValues& keyValues, Ktx2Alpha alpha = Ktx2Alpha::Straight);
 
+// Writes a cube map array (faceCount 6, layerCount = layers.size() >= 1, levelCount 1), every layer with the
+// same face size, e.g. the rough layers (kernels/mip_mapping.h). Same conventions as writeKtx2Cube,
+// including the mirrored storage of iblbake.profile "three".
+Ktx2WriteStats writeKtx2CubeArray(const std::filesystem::path& path, const std::vector<CubeMap>& layers,
+                                  Ktx2Format format, const Ktx2KeyValues& keyValues);
+
 // Writes one 2D image (faceCount 1, levelCount 1), e.g. a LUT. Same conventions as writeKtx2Cube.
 Ktx2WriteStats writeKtx2Image(const std::filesystem::path& path, const ImageRGBA& image, Ktx2Format format,
                               const Ktx2KeyValues& keyValues);
@@ -62,13 +68,13 @@ struct Ktx2Image {
     std::uint32_t pixelWidth = 0;
     std::uint32_t pixelHeight = 0;
     std::uint32_t faceCount = 0;
-    std::uint32_t layerCount = 0;                 // 0: not an array (2D arrays only: faceCount 1)
+    std::uint32_t layerCount = 0;                 // 0: not an array; else 2D (faceCount 1) or cube (6) arrays
     std::uint32_t levelCount = 0;                 // as stored in the header; 0 means "base level only"
     std::map<std::string, std::string> keyValues; // one trailing NUL of each value removed
     Ktx2Alpha alpha = Ktx2Alpha::Straight;        // the DFD's premultiplied-alpha flag
-    // levels[m][face], or levels[m][layer] for an array, max(1, levelCount) levels, decoded to float RGBA
-    // (alpha 1 for formats without alpha). Values are decoded as stored: a foreign file may contain Inf/NaN
-    // texels.
+    // levels[m][face], or levels[m][layer * faceCount + face] for an array, max(1, levelCount) levels,
+    // decoded to float RGBA (alpha 1 for formats without alpha). Values are decoded as stored: a foreign file
+    // may contain Inf/NaN texels.
     std::vector<std::vector<ImageRGBA>> levels;
 };
 

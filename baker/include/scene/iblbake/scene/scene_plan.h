@@ -14,6 +14,10 @@
 
 namespace ibl {
 
+// The distant chain's rough layers (README "Rough layers"), beside specular.ktx2 when a material reads past
+// r_0.
+inline constexpr const char* kRoughLayersFile = "specular_rough.ktx2";
+
 struct PlanInput {
     std::string keyPath; // where the scene names it, e.g. "probes[1].capture"
     std::filesystem::path file;
