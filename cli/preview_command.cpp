@@ -105,6 +105,8 @@ Action addPreviewCommand(CLI::App& app) {
                                   settings, o->output, exrPath);
         std::printf("wrote   %s (%d x %d) and %s (%s)\n", o->output.c_str(), preview.width, preview.height,
                     exrPath.c_str(), executor.description().c_str());
+        std::printf("probe   LD chain of %u levels%s\n", bake.set.distantLd().layout.levelCount,
+                    bake.set.roughLayers().layerCount != 0 ? " and its rough layers" : "");
         if (!preview.error.empty()) {
             std::printf("error   relative mean per roughness column (luminance, both rows):");
             for (double e : preview.error)

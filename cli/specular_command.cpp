@@ -21,6 +21,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace ibl::cli {
 
@@ -37,6 +38,7 @@ struct SpecularOptions {
     std::string profile = "standard";
     std::string exrDir;
     std::string preview;
+    std::string roughLayers;
     std::string mipMapping = "frostbite";
     float lodBias = SpecularSettings{}.lodBias;
     bool clampToFormat = false;
@@ -88,6 +90,8 @@ Action addSpecularCommand(CLI::App& app) {
         ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
     cmd->add_option("--preview", o->preview, "also write a tone-mapped PNG of every level");
+    cmd->add_option("--rough-layers", o->roughLayers,
+                    "also write the chain's rough layers (KTX2 cube map array, README \"Rough layers\")");
     cmd->add_option("--mip-mapping", o->mipMapping, "roughness per level: frostbite (eq. 63) or linear")
         ->capture_default_str()
         ->check(CLI::IsMember(std::vector<std::string>(kMipMappingNames.begin(), kMipMappingNames.end())));
@@ -112,6 +116,7 @@ Action addSpecularCommand(CLI::App& app) {
         // Every output checked before any work: a bad --preview must not fail after -o was written.
         checkOutputFile(o->output);
         if (!o->preview.empty()) checkOutputFile(o->preview);
+        if (!o->roughLayers.empty()) checkOutputFile(o->roughLayers);
         if (!o->exrDir.empty() && std::filesystem::exists(o->exrDir) &&
             !std::filesystem::is_directory(o->exrDir))
             throw Error(o->exrDir + ": is not a directory (--exr)");
@@ -166,11 +171,27 @@ Action addSpecularCommand(CLI::App& app) {
             outputs.writeFile(o->preview, [&](const std::filesystem::path& temporary) {
                 writeChainPreview(temporary, chain);
             });
+        std::optional<ProductStorage> roughStorage;
+        if (!o->roughLayers.empty()) {
+            const std::vector<CubeMap> layers = bakeRoughLayers(env.cube, settings, executor);
+            roughStorage = chooseProductStorage(CubeMapChain{layers}, format, o->clampToFormat);
+            Ktx2KeyValues roughKv = roughLayerKeyValues(ld, calibration.record, calibration.sun);
+            roughKv.emplace_back(kCubeProfileKey, o->profile);
+            outputs.writeFile(o->roughLayers, [&](const std::filesystem::path& temporary) {
+                writeProductCubeArray(temporary, layers, format, roughKv, *roughStorage);
+            });
+        }
         outputs.commit();
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
                     (unsigned long long)stats.repairedNonFinite);
         printStorage(o->output, o->format, storage);
+        if (roughStorage) {
+            std::printf("wrote   %s: %u rough layers of %u px (r = %s)\n", o->roughLayers.c_str(),
+                        IBL_ROUGH_LAYER_COUNT, roughLayerFaceSize(std::uint32_t(o->size)),
+                        roughLayerRoughnessText().c_str());
+            printStorage(o->roughLayers, o->format, *roughStorage);
+        }
         std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs, bakeMs,
                     executor.description().c_str(), millisecondsSince(start));
         o->backend.printTiming(executor, "specular", bakeMs);

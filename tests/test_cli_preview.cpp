@@ -76,7 +76,8 @@ TEST(CliPreview, RendersTheBakeBesideTheReference) {
     const std::string d = dir.string();
     const std::string calibration = " --sun-illuminance 100000 --extract-sun --sun-json " + d + "/sun.json";
     ASSERT_EQ(runCli("dfg --size 32 --samples 256 -o " + d + "/dfg_lut.exr").exitCode, 0);
-    ASSERT_EQ(runCli("specular " + kSampleHdri + " --size 64" + calibration + " -o " + d + "/specular.ktx2")
+    ASSERT_EQ(runCli("specular " + kSampleHdri + " --size 64" + calibration + " -o " + d +
+                     "/specular.ktx2 --rough-layers " + d + "/specular_rough.ktx2")
                   .exitCode,
               0);
     ASSERT_EQ(
@@ -85,6 +86,7 @@ TEST(CliPreview, RendersTheBakeBesideTheReference) {
     CliRun r =
         runCli("preview " + d + " --reference " + kSampleHdri + " --sphere-size 16 -o " + d + "/preview.png");
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("and its rough layers"), std::string::npos) << r.out; // the loose file, by its name
     expectLabelledGrid(dir / "preview.png", 16, true);
     auto exr = OIIO::ImageInput::open(d + "/preview.exr");
     ASSERT_TRUE(exr);

@@ -1,9 +1,12 @@
 // `iblbake specular` end to end: the sample HDRI in, a valid KTX2 chain with its metadata, the EXR
 // levels and the preview out; bad input refused with one line and nothing written.
 #include "cli_runner.h"
+#include "scene_test_support.h"
 
 #include <iblbake/ktx2/ktx2.h>
 #include <iblbake/ktx2/storage_scale.h>
+
+#include <mip_mapping.h>
 
 #include <gtest/gtest.h>
 
@@ -114,6 +117,29 @@ TEST(CliSpecular, EveryFormatIsWritten) {
     fs::remove_all(dir);
 }
 
+// --rough-layers: the chain's rough layers beside it, as a scene bake writes them, readable by the runtime
+// loader and equal to the library's bake within the format's rounding; the chain's file is the same bytes
+// as without the option.
+TEST(CliSpecular, RoughLayersBesideTheChain) {
+    fs::path dir = freshTempDir("specular_rough");
+    const std::string common = "specular " + kSampleHdri + " --size 64 --quality draft --backend cpu ";
+    CliRun with = runCli(common + "-o " + (dir / "a.ktx2").string() + " --rough-layers " +
+                         (dir / "a_rough.ktx2").string());
+    ASSERT_EQ(with.exitCode, 0) << with.err;
+    EXPECT_NE(with.out.find("12 rough layers of 32 px"), std::string::npos) << with.out;
+    CliRun without = runCli(common + "-o " + (dir / "b.ktx2").string());
+    ASSERT_EQ(without.exitCode, 0) << without.err;
+    EXPECT_EQ(readBytes(dir / "a.ktx2"), readBytes(dir / "b.ktx2"));
+    ibl::Ktx2Image rough = ibl::readKtx2(dir / "a_rough.ktx2");
+    EXPECT_EQ(rough.faceCount, 6u);
+    EXPECT_EQ(rough.layerCount, 12u);
+    EXPECT_EQ(rough.pixelWidth, 32u);
+    EXPECT_EQ(rough.keyValues.at("iblbake.product"), "specular-rough-layers");
+    EXPECT_EQ(rough.keyValues.at("iblbake.roughLayerRoughness"), ibl::roughLayerRoughnessText());
+    EXPECT_EQ(rough.keyValues.at("iblbake.source"), fs::path(kSampleHdri).filename().string());
+    fs::remove_all(dir);
+}
+
 TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
     fs::path dir = freshTempDir("specular_bad");
     std::ofstream(dir / "notes.txt") << "this is not an image\n";
@@ -127,6 +153,8 @@ TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
         {"specular " + kSampleHdri + " --quality ultra" + out, "--quality"},
         {"specular " + kSampleHdri + " --layout hexagon" + out, "--layout: 'hexagon'"},
         {"specular " + kSampleHdri + " --size 8 -o /nonexistent-dir/env.ktx2", "/nonexistent-dir/env.ktx2"},
+        {"specular " + kSampleHdri + " --size 8" + out + " --rough-layers /nonexistent-dir/rough.ktx2",
+         "/nonexistent-dir/rough.ktx2"},
     };
     for (const auto& [args, named] : cases) {
         CliRun r = runCli(args);

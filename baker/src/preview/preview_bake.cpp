@@ -9,6 +9,7 @@
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/runtime/runtime_manifest.h"
+#include "iblbake/scene/scene_plan.h"
 
 #include <nlohmann/json.hpp>
 
@@ -58,6 +59,7 @@ ProbeSet loadPreviewProbeSet(const PreviewBakeFiles& files) {
     ProbeSet set(std::move(ld), std::move(dfg), shCoefficientsFrom(irradiance, false));
     if (files.sun) set.setSun(sunDiskFrom(diskLightFromJson(readText(*files.sun))));
     if (files.irradiance) set.setIrradianceCube(loadIrradianceKtx2(*files.irradiance));
+    if (files.roughLayers) set.setRoughLayers(loadRoughLayersKtx2(*files.roughLayers));
     return set;
 }
 
@@ -66,9 +68,10 @@ PreviewBake loadPreviewBake(const fs::path& dir) {
         ManifestProbeSet m = loadProbeSetFromManifest(dir / "manifest.json");
         return {std::move(m.set), m.options, m.calibrationFactor};
     }
-    PreviewBakeFiles files{dir / "specular.ktx2", dir / "dfg_lut.exr", dir / "diffuse.json", {}, {}};
+    PreviewBakeFiles files{dir / "specular.ktx2", dir / "dfg_lut.exr", dir / "diffuse.json", {}, {}, {}};
     if (fs::exists(dir / "sun.json")) files.sun = dir / "sun.json";
     if (fs::exists(dir / "irradiance.ktx2")) files.irradiance = dir / "irradiance.ktx2";
+    if (fs::exists(dir / kRoughLayersFile)) files.roughLayers = dir / kRoughLayersFile;
     PreviewBake bake{loadPreviewProbeSet(files), RuntimeOptions{}, 1.0};
     const Ktx2Image ktx = readKtx2(files.specular);
     if (auto it = ktx.keyValues.find("iblbake.calibration.factor"); it != ktx.keyValues.end())

@@ -33,10 +33,16 @@ void runGltfStage(const StageContext& c) {
 void runPreviewStage(const StageContext& c) {
     const json& s = c.stage.settings;
     const auto entry = [&](const char* id) { return c.dependencies.at(id); };
-    PreviewBakeFiles files{entry("specular") / "specular.ktx2", entry("dfg") / "dfg_lut.ktx2",
-                           entry("diffuse") / "diffuse.json", std::nullopt, std::nullopt};
+    PreviewBakeFiles files{entry("specular") / "specular.ktx2",
+                           entry("dfg") / "dfg_lut.ktx2",
+                           entry("diffuse") / "diffuse.json",
+                           std::nullopt,
+                           std::nullopt,
+                           std::nullopt};
     if (c.dependencies.count("sun")) files.sun = entry("sun") / "sun.json";
     if (c.dependencies.count("irradiance")) files.irradiance = entry("irradiance") / "irradiance.ktx2";
+    if (std::filesystem::exists(entry("specular") / kRoughLayersFile))
+        files.roughLayers = entry("specular") / kRoughLayersFile;
     const ProbeSet set = loadPreviewProbeSet(files);
     RuntimeOptions options;
     options.energyCompensation = s.at("energyCompensation").get<bool>();

@@ -32,12 +32,13 @@ struct PreviewBake {
 // .exr as `iblbake dfg`), diffuse.json's SH, and the sun and irradiance cube when given.
 struct PreviewBakeFiles {
     std::filesystem::path specular, dfg, diffuse;
-    std::optional<std::filesystem::path> sun, irradiance;
+    std::optional<std::filesystem::path> sun, irradiance, roughLayers;
 };
 ProbeSet loadPreviewProbeSet(const PreviewBakeFiles& files);
 
 // A scene bake directory through its manifest.json, else the loose files of `iblbake dfg/specular/diffuse`
-// (specular.ktx2, dfg_lut.exr, diffuse.json [, sun.json] [, irradiance.ktx2]), whose calibration factor
+// (specular.ktx2, dfg_lut.exr, diffuse.json [, sun.json] [, irradiance.ktx2] [, specular_rough.ktx2: the
+// chain's rough layers, `iblbake specular --rough-layers`]), whose calibration factor
 // is recorded in specular.ktx2. Throws ibl::Error naming the file.
 PreviewBake loadPreviewBake(const std::filesystem::path& directory);
 
