@@ -162,11 +162,7 @@ TEST_P(Ktx2ByKtxParse, CubeMapArray) {
                 texel = glm::vec4(0.1f * float(k), 1.0f, 2.0f, 1.0f);
         layers.push_back(std::move(layer));
     }
-    const std::string name = format;
-    const ibl::Ktx2Format ktxFormat = name == "rgba16f"     ? ibl::Ktx2Format::RGBA16F
-                                      : name == "rgba32f"   ? ibl::Ktx2Format::RGBA32F
-                                      : name == "b10g11r11" ? ibl::Ktx2Format::B10G11R11
-                                                            : ibl::Ktx2Format::E5B9G9R9;
+    const ibl::Ktx2Format ktxFormat = ibl::parseKtx2Format(format);
     ibl::writeKtx2CubeArray(dir / "layers.ktx2", layers, ktxFormat,
                             {{"iblbake.product", "specular-rough-layers"}});
     const nlohmann::json expect = {
