@@ -14,7 +14,8 @@
 // - A sun 10^6 brighter than the sky in less than one texel: HardCases.SubTexelSunKeepsItsEnergyThroughEvery
 //     Stage (a lat-long pixel of 1/50 of a cube texel; energy through ingest within 0.5%, irradiance
 //     energy pi x radiance energy within 0.2%), Specular.BrightSunStaysFiniteAndBounded,
-//     IngestResample.OnePixelSunKeepsItsEnergy (within 1%), Sun.OneTexelSunOnFlatSkyIsRecoveredExactly.
+//     IngestResample.OnePixelSunKeepsItsEnergy (within 1%), Sun.OneTexelSunOnFlatSkyIsRecoveredExactly,
+//     RoughLayers.SunAMillionTimesTheSkyKeepsEachLayersEnergy (every rough layer within 1%; 0.09%).
 // - Black except one texel: HardCases.BlackExceptOneTexelStaysFiniteAndShKeepsItsEnergy,
 //     Irradiance.SingleBrightTexelIsExact, Sh.SingleBrightTexel.
 // - One bright texel at every face size 1..256: HardCases.OneBrightTexelAtEveryFaceSize (test_hard_cases_
@@ -29,7 +30,8 @@
 //     Ktx2Formats.ClampsToTheFormatRangeAndCountsClampedTexels, Cli.HalfOutput.
 // - 1x1 and 2x2 faces, the 1x1 last level: Specular.TinyFacesAndBadSizes (1x1 and 2x2 sources; a
 //     constant 2x2 within 2e-4), HardCases.LastLevelIsOneTexelAndAWeightedMeanOfTheSource,
-//     Degenerate.EveryCaseFinite (the runtime at roughness 1 reads the 1x1 level).
+//     Degenerate.EveryCaseFinite (the runtime at roughness 1 reads the 1x1 level),
+//     RoughLayers.WhiteFurnaceEveryLayerEveryTexel (rough layers of 1-, 2-, 16- and 32-px faces).
 // - Non-power-of-two lat-long inputs: HardCases.NonPowerOfTwoLatLongFiles (1000x500 and 37x19: a constant
 //     stays constant within 1e-5, energy within 0.5%), IngestResample.EnergyIsPreserved (face size 45).
 // - Extreme aspect ratios rejected clearly: IngestFile.UnknownLayoutIsAnErrorNamingTheFile (7x3 and

@@ -64,6 +64,37 @@ TEST(RoughLayers, WhiteFurnaceEveryLayerEveryTexel) {
         }
 }
 
+// A one-texel sun 10^6 times the sky: every layer finite, non-negative, and holding the source's energy
+// (sum of RGB x solid angle) within 1%, on both backends (the bright texel is integrated exactly: ld.h).
+TEST(RoughLayers, SunAMillionTimesTheSkyKeepsEachLayersEnergy) {
+    CubeMap source = rt_test::makeCube(64, [](glm::vec3) { return glm::vec3(1.0f); });
+    source.faces[2].at(20, 41) = glm::vec4(1e6f, 9e5f, 8e5f, 1.0f);
+    const auto energy = [](const CubeMap& cube) {
+        double sum = 0.0;
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < cube.faceSize; ++y)
+                for (int x = 0; x < cube.faceSize; ++x) {
+                    const glm::vec4 p = cube.faces[f].at(x, y);
+                    sum += (double(p.x) + p.y + p.z) * cubeTexelSolidAngle(x, y, cube.faceSize);
+                }
+        return sum;
+    };
+    const double sourceEnergy = energy(source);
+    for (const Executor& executor : {Executor::cpu(), rt_test::openclOrCpu()}) {
+        const std::vector<CubeMap> layers = bakeRoughLayers(source, SpecularSettings{}, executor);
+        double worst = 0.0;
+        for (std::size_t k = 0; k < layers.size(); ++k) {
+            worst = std::max(worst, std::abs(energy(layers[k]) / sourceEnergy - 1.0));
+            for (const ImageRGBA& face : layers[k].faces)
+                for (const glm::vec4& p : face.pixels)
+                    for (int c = 0; c < 3; ++c)
+                        ASSERT_TRUE(std::isfinite(p[c]) && p[c] >= 0.0f) << k;
+            EXPECT_NEAR(energy(layers[k]) / sourceEnergy, 1.0, 0.01) << k << " " << executor.description();
+        }
+        std::printf("%s: worst layer energy off by %.4f%%\n", executor.description().c_str(), 100.0 * worst);
+    }
+}
+
 TEST(RoughLayers, OpenCLBakeAgreesWithCpu) {
     const Executor cl = rt_test::openclOrCpu();
     if (!cl.usesOpenCL()) GTEST_SKIP() << "no OpenCL device";
