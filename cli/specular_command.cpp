@@ -135,7 +135,12 @@ Action addSpecularCommand(CLI::App& app) {
 
         std::vector<SpecularLevelTiming> timings;
         auto bakeStart = std::chrono::steady_clock::now();
-        CubeMapChain chain = bakeSpecular(env.cube, settings, executor, &timings);
+        SpecularWithRoughLayers baked;
+        if (o->roughLayers.empty())
+            baked.chain = bakeSpecular(env.cube, settings, executor, &timings);
+        else
+            baked = bakeSpecularWithRoughLayers(env.cube, settings, executor, &timings);
+        CubeMapChain& chain = baked.chain;
         const double bakeMs = millisecondsSince(bakeStart);
         for (const SpecularLevelTiming& t : timings)
             std::printf("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.level, t.perceptualRoughness,
@@ -173,7 +178,7 @@ Action addSpecularCommand(CLI::App& app) {
             });
         std::optional<ProductStorage> roughStorage;
         if (!o->roughLayers.empty()) {
-            const std::vector<CubeMap> layers = bakeRoughLayers(env.cube, settings, executor);
+            const std::vector<CubeMap>& layers = baked.roughLayers;
             roughStorage = chooseProductStorage(CubeMapChain{layers}, format, o->clampToFormat);
             Ktx2KeyValues roughKv = roughLayerKeyValues(ld, calibration.record, calibration.sun);
             roughKv.emplace_back(kCubeProfileKey, o->profile);

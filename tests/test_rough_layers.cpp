@@ -95,6 +95,25 @@ TEST(RoughLayers, SunAMillionTimesTheSkyKeepsEachLayersEnergy) {
     }
 }
 
+// One bake of the chain and its layers gives the bits of the two separate bakes, on both backends.
+TEST(RoughLayers, BakedWithTheChainTheyAreTheSameBits) {
+    const CubeMap source = rt_test::makeCube(64, rt_test::skyLike);
+    for (const Executor& executor : {Executor::cpu(), rt_test::openclOrCpu()}) {
+        const SpecularWithRoughLayers both =
+            bakeSpecularWithRoughLayers(source, SpecularSettings{}, executor);
+        const CubeMapChain chain = bakeSpecular(source, SpecularSettings{}, executor);
+        const std::vector<CubeMap> layers = bakeRoughLayers(source, SpecularSettings{}, executor);
+        ASSERT_EQ(both.chain.levels.size(), chain.levels.size());
+        for (std::size_t m = 0; m < chain.levels.size(); ++m)
+            for (int f = 0; f < 6; ++f)
+                EXPECT_EQ(both.chain.levels[m].faces[f].pixels, chain.levels[m].faces[f].pixels) << m;
+        ASSERT_EQ(both.roughLayers.size(), layers.size());
+        for (std::size_t k = 0; k < layers.size(); ++k)
+            for (int f = 0; f < 6; ++f)
+                EXPECT_EQ(both.roughLayers[k].faces[f].pixels, layers[k].faces[f].pixels) << k;
+    }
+}
+
 TEST(RoughLayers, OpenCLBakeAgreesWithCpu) {
     const Executor cl = rt_test::openclOrCpu();
     if (!cl.usesOpenCL()) GTEST_SKIP() << "no OpenCL device";

@@ -39,7 +39,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     stage.maxErrorMetric = "worst roughness column's relative mean absolute error";
     stage.energyErrorMetric = "|sum (runtime - reference)| / sum reference over every point and channel";
     stage.timeMeaning =
-        "bakeSpecular and bakeRoughLayers of the probe's LD chain at the source face size (the "
+        "bakeSpecularWithRoughLayers: the probe's LD chain and its rough layers at the source face size (the "
         "only cost that changes; DFG LUT at its defaults and the SH are shared)";
 
     // The product's setup, as `iblbake specular/diffuse --extract-sun` bake it: a detected sun is extracted
@@ -90,11 +90,8 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         SpecularSettings settings;
         settings.quality = quality;
         MeasuredSetting s;
-        bakeSpecular(residual, settings, executor); // program build, untimed
-        s.timesMs = timeRuns(repeats, [&] {
-            bakeSpecular(residual, settings, executor);
-            bakeRoughLayers(residual, settings, executor);
-        });
+        bakeSpecularWithRoughLayers(residual, settings, executor); // program build, untimed
+        s.timesMs = timeRuns(repeats, [&] { bakeSpecularWithRoughLayers(residual, settings, executor); });
         s.timeMs = median(s.timesMs);
         s.label = std::string(qualityName(quality)) + " LD chain";
         s.knobs = {{"specularQuality", qualityName(quality)}, {"sun", sun ? "extracted" : "none"}};
@@ -106,10 +103,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     if (sun) { // the same production bake with the sun left in the probe: what the warning measures
         const SpecularSettings production;
         MeasuredSetting s;
-        s.timesMs = timeRuns(repeats, [&] {
-            bakeSpecular(source, production, executor);
-            bakeRoughLayers(source, production, executor);
-        });
+        s.timesMs = timeRuns(repeats, [&] { bakeSpecularWithRoughLayers(source, production, executor); });
         s.timeMs = median(s.timesMs);
         s.label = "production LD chain, sun left in the probe";
         s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}};

@@ -71,13 +71,14 @@ std::vector<double> columnErrors(const SphereColumns& c, const ConvergedReferenc
 ProbeSet shippedProbe(const CubeMap& probeSource, const CubeMap& full, const std::optional<SunDisk>& sun,
                       const SpecularSettings& settings, const DfgTable& dfg, const Executor& executor,
                       CubeMapChain* chainOut) {
-    CubeMapChain chain = bakeSpecular(probeSource, settings, executor);
+    SpecularWithRoughLayers baked = bakeSpecularWithRoughLayers(probeSource, settings, executor);
+    CubeMapChain& chain = baked.chain;
     const bool sunInLevel0 = sun && keepSunInLevel0(chain, full, Ktx2Format::RGBA32F);
     LdPyramid ld = ldPyramidFromChain(chain, MipMapping::Frostbite);
     ld.sunInLevel0 = sunInLevel0;
     ProbeSet set(std::move(ld), dfg, shCoefficientsFrom(bakeDiffuseSH(probeSource, {}).irradiance, false));
     set.setIrradianceCube(bakeIrradianceCube(probeSource, IrradianceSettings{}, executor));
-    set.setRoughLayers(bakeRoughLayers(probeSource, settings, executor));
+    set.setRoughLayers(baked.roughLayers);
     if (sun) set.setSun(*sun);
     if (chainOut) *chainOut = std::move(chain);
     return set;

@@ -213,11 +213,14 @@ void runSunInProbe(const StageContext& c) {
 // Bakes and writes an LD chain (the distant environment's or a local probe's). With `withSun`, level 0 may
 // keep the sun's pixels (specular.h keepSunInLevel0); returns the chain's manifest facts.
 // With `visibility` (a local probe's capture whose alpha is not 1 everywhere), the chain carries it
-// (specular.h bakeSpecularWithVisibility) and the file says so (KTX2 key iblbake.visibility).
+// (specular.h bakeSpecularWithVisibility) and the file says so (KTX2 key iblbake.visibility). With
+// `roughLayersFile` (the distant chain when a material reads past r_0), the chain's rough layers too, from
+// the same bake (specular.h bakeSpecularWithRoughLayers), in the chain's format with a storage scale of
+// their own.
 LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                              const CachedCalibration& calibration, const std::string& product,
-                             const fs::path& file, const CubeMap* withSun = nullptr,
-                             bool visibility = false) {
+                             const fs::path& file, const CubeMap* withSun = nullptr, bool visibility = false,
+                             const fs::path* roughLayersFile = nullptr) {
     const json& s = c.stage.settings;
     SpecularSettings settings;
     settings.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
@@ -229,8 +232,14 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                                                      " has no alpha channel for the visibility of " +
                                                      calibration.sourceFile().value_or("the capture") +
                                                      " (use rgba16f or rgba32f)");
-    CubeMapChain chain = visibility ? bakeSpecularWithVisibility(source, settings, *c.executor).chain
-                                    : bakeSpecular(source, settings, *c.executor);
+    SpecularWithRoughLayers baked;
+    if (visibility)
+        baked.chain = bakeSpecularWithVisibility(source, settings, *c.executor).chain;
+    else if (roughLayersFile)
+        baked = bakeSpecularWithRoughLayers(source, settings, *c.executor);
+    else
+        baked.chain = bakeSpecular(source, settings, *c.executor);
+    CubeMapChain& chain = baked.chain;
     LdChainProduct ld;
     ld.product = product;
     ld.mapping = settings.mapping;
@@ -261,30 +270,15 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     facts.validRoughnessMax = s.at("roughnessMax").get<double>();
     facts.quality = s.at("quality").get<std::string>();
     if (withSun) facts.sunInLevel0 = ld.sunInLevel0;
+    if (roughLayersFile) {
+        const std::vector<CubeMap>& layers = baked.roughLayers;
+        const ProductStorage layerStorage = chooseProductStorage(CubeMapChain{layers}, format, clampToFormat);
+        Ktx2KeyValues layerKeyValues = roughLayerKeyValues(ld, calibration.record, calibration.sun);
+        layerKeyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
+        writeProductCubeArray(*roughLayersFile, layers, format, layerKeyValues, layerStorage);
+        facts.roughLayers = {roughLayersFile->filename().string(), layers.front().faceSize, layerStorage};
+    }
     return facts;
-}
-
-// Bakes and writes the distant chain's rough layers (README "Rough layers") from the chain's source, with
-// the chain's settings and format and a storage scale of their own.
-LdManifestFacts::RoughLayers writeRoughLayers(const StageContext& c, const CubeMap& source,
-                                              const CachedCalibration& calibration, const fs::path& file) {
-    const json& s = c.stage.settings;
-    SpecularSettings settings;
-    settings.quality = parseQuality(s.at("quality").get<std::string>());
-    const std::vector<CubeMap> layers = bakeRoughLayers(source, settings, *c.executor);
-    const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
-    const ProductStorage storage =
-        chooseProductStorage(CubeMapChain{layers}, format, s.at("clampToFormat").get<bool>());
-    LdChainProduct about;
-    about.colorSpace = calibration.colorSpace();
-    about.source = calibration.sourceFile();
-    about.latLongPixels = calibration.latLongPixels();
-    about.settings =
-        "quality=" + s.at("quality").get<std::string>() + " samples=" + std::to_string(samplesFor(settings));
-    Ktx2KeyValues keyValues = roughLayerKeyValues(about, calibration.record, calibration.sun);
-    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
-    writeProductCubeArray(file, layers, format, keyValues, storage);
-    return {file.filename().string(), layers.front().faceSize, storage};
 }
 
 void runSpecular(const StageContext& c) {
@@ -293,12 +287,12 @@ void runSpecular(const StageContext& c) {
     // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
     std::optional<CubeMap> withSun;
     if (c.stage.dependsOn.size() > 1) withSun = readCubeFile(c.dependencies.at("environment") / kCubeFile);
-    const CachedCalibration calibration = readCalibration(from);
-    LdManifestFacts facts = writeLdChain(c, source, calibration, "specular-ld",
-                                         c.outputDirectory / "specular.ktx2", withSun ? &*withSun : nullptr);
+    const fs::path roughLayersFile = c.outputDirectory / kRoughLayersFile;
+    LdManifestFacts facts =
+        writeLdChain(c, source, readCalibration(from), "specular-ld", c.outputDirectory / "specular.ktx2",
+                     withSun ? &*withSun : nullptr, false,
+                     c.stage.settings.at("roughLayers").empty() ? nullptr : &roughLayersFile);
     facts.sunInLevel0 = facts.sunInLevel0.value_or(false);
-    if (!c.stage.settings.at("roughLayers").empty())
-        facts.roughLayers = writeRoughLayers(c, source, calibration, c.outputDirectory / kRoughLayersFile);
     writeJsonFile(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
 }
 

@@ -140,6 +140,8 @@ class LdBake {
           pyramidData_(dispatcher_.upload("specular source pyramid", pyramid_.data)),
           clusters_(dispatcher_.upload("bright-texel clusters", split.bright.clusters)),
           bright_(dispatcher_.upload("bright texels", split.bright.entries)) {}
+    LdBake(const LdBake&) = delete; // the host arrays point into its own pyramid
+    LdBake& operator=(const LdBake&) = delete;
 
     // The LD of perceptual roughness r (N = V = R) on faces of n texels.
     CubeMap level(int n, float perceptualRoughness) const {
@@ -174,12 +176,10 @@ class LdBake {
     const DeviceArray<float> pyramidData_, clusters_, bright_;
 };
 
-// The chain of `source` whose bright texels `split` took out (split.residual is what is sampled).
-CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
-                               const SpecularSettings& settings, const Executor& executor,
-                               std::vector<SpecularLevelTiming>* timings) {
+// The chain of `source` from `bake` (its bright texels taken out; the residual is what is sampled).
+CubeMapChain bakeChain(const CubeMap& source, const LdBake& bake, const SpecularSettings& settings,
+                       std::vector<SpecularLevelTiming>* timings) {
     const int levelCount = levelCountFor(source.faceSize, settings);
-    const LdBake bake(split, settings, executor);
     CubeMapChain chain;
     chain.levels.push_back(source); // level 0: the mirror, unconvolved (Frostbite footnote 43)
     for (int m = 1; m < levelCount; ++m) {
@@ -199,6 +199,21 @@ CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
     return chain;
 }
 
+CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
+                               const SpecularSettings& settings, const Executor& executor,
+                               std::vector<SpecularLevelTiming>* timings) {
+    return bakeChain(source, LdBake(split, settings, executor), settings, timings);
+}
+
+// The rough layers of a source from `bake` (kernels/mip_mapping.h).
+std::vector<CubeMap> bakeLayers(const CubeMap& source, const LdBake& bake) {
+    const int faceSize = int(roughLayerFaceSize(std::uint32_t(source.faceSize)));
+    std::vector<CubeMap> layers;
+    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k)
+        layers.push_back(bake.level(faceSize, roughLayerRoughness(k)));
+    return layers;
+}
+
 } // namespace
 
 CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
@@ -213,12 +228,16 @@ std::vector<CubeMap> bakeRoughLayers(const CubeMap& source, const SpecularSettin
                                      const Executor& executor) {
     checkSpecularSource(source);
     const BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
+    return bakeLayers(source, LdBake(split, settings, executor));
+}
+
+SpecularWithRoughLayers bakeSpecularWithRoughLayers(const CubeMap& source, const SpecularSettings& settings,
+                                                    const Executor& executor,
+                                                    std::vector<SpecularLevelTiming>* timings) {
+    checkSpecularSource(source);
+    const BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
     const LdBake bake(split, settings, executor);
-    const int faceSize = int(roughLayerFaceSize(std::uint32_t(source.faceSize)));
-    std::vector<CubeMap> layers;
-    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k)
-        layers.push_back(bake.level(faceSize, roughLayerRoughness(k)));
-    return layers;
+    return {bakeChain(source, bake, settings, timings), bakeLayers(source, bake)};
 }
 
 VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const SpecularSettings& settings,

@@ -70,6 +70,16 @@ CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& setting
 std::vector<CubeMap> bakeRoughLayers(const CubeMap& source, const SpecularSettings& settings,
                                      const Executor& executor);
 
+// bakeSpecular and bakeRoughLayers of one source from one bright-texel split and one source pyramid (each
+// alone builds them again: ~60 ms of CPU at 256-px faces); the same results as the two calls.
+struct SpecularWithRoughLayers {
+    CubeMapChain chain;
+    std::vector<CubeMap> roughLayers;
+};
+SpecularWithRoughLayers bakeSpecularWithRoughLayers(const CubeMap& source, const SpecularSettings& settings,
+                                                    const Executor& executor,
+                                                    std::vector<SpecularLevelTiming>* timings = nullptr);
+
 // A local probe's capture with its visibility (Frostbite 4.9.1.2: alpha 1 for the close surroundings, 0 for
 // sky the composition fetches from farther probes), premultiplied: RGB = colour x visibility, A = the
 // visibility (OpenEXR's associated alpha). The chain holds the same: each level's RGB is the LD of colour x
