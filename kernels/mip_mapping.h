@@ -47,7 +47,7 @@ IBL_FN float mipLevelForRoughness(uint mapping, float perceptualRoughness, uint 
 // against the exact LD (README "Rough layers"): 0.3-2.5% at r = 0.25-1 (2 x 2 design measurements before
 // choosing: 16-px faces keep 4-28% at r = 0.2-0.3; a 0.1 step in r is 2-11% between layers at r < 0.5). The
 // runtime reads the chain for r <= r_0, the layers for r >= r_1, and between them blends the two linearly in
-// sqrt(r) (ldLayerWeight), so the lookup is continuous in r.
+// sqrt(r) (roughLayerWeight), so the lookup is continuous in r.
 #define IBL_ROUGH_LAYER_GRID 20u
 #define IBL_ROUGH_LAYER_FIRST 9u
 #define IBL_ROUGH_LAYER_COUNT 12u
@@ -162,13 +162,10 @@ inline std::vector<double> roughLayerRoughnessValues() {
 
 // What a reader does with them (the KTX2 key "iblbake.roughLayerMeaning", the manifest's "meaning").
 inline const char* roughLayerMeaning() {
-    return "layer k of 12 holds the LD of perceptual roughness r_k = ((9 + k) / 20)^2 on faces of min(32, "
-           "the "
-           "chain's base) texels; a lookup at r reads the chain up to r_0, the layers from r_1 (bilinear in "
-           "a "
-           "layer, linear in sqrt(r) between layers), and blends chain and layers linearly in sqrt(r) "
-           "between "
-           "r_0 and r_1";
+    return "layer k of 12 holds the LD of perceptual roughness r_k = ((9 + k) / 20)^2 on faces of "
+           "min(32, the chain's base) texels; a lookup at r reads the chain up to r_0, the layers from r_1 "
+           "(bilinear in a layer, linear in sqrt(r) between layers), and blends chain and layers linearly "
+           "in sqrt(r) between r_0 and r_1";
 }
 
 inline int mipLevelCount(int faceSize) {

@@ -132,30 +132,32 @@ void ProbeSet::setIrradianceCube(const CubeMap& irradianceOverPi) {
 }
 
 void ProbeSet::setRoughLayers(const std::vector<CubeMap>& layers) {
-    const uint32_t n = roughLayerFaceSize(distant_.layout.baseFaceSize);
+    const CubePyramidLayout one{roughLayerFaceSize(distant_.layout.baseFaceSize), 1u};
+    const int n = int(one.baseFaceSize);
     if (layers.size() != IBL_ROUGH_LAYER_COUNT)
         throw Error("probe set: " + std::to_string(layers.size()) + " rough layers, expected " +
                     std::to_string(IBL_ROUGH_LAYER_COUNT));
-    const CubePyramidLayout one{n, 1u};
     std::vector<float> data(layers.size() * cubePyramidFloatCount(one), 0.0f);
     for (std::size_t k = 0; k < layers.size(); ++k) {
-        for (const ImageRGBA& face : layers[k].faces)
-            if (layers[k].faceSize != int(n) || face.width != int(n) || face.height != int(n) ||
-                face.pixels.size() != std::size_t(n) * n)
-                throw Error("probe set: rough layer " + std::to_string(k) + " is not " + std::to_string(n) +
-                            "x" + std::to_string(n) + " per face");
+        const bool square =
+            std::all_of(layers[k].faces.begin(), layers[k].faces.end(), [&](const ImageRGBA& f) {
+                return f.width == n && f.height == n && f.pixels.size() == std::size_t(n) * std::size_t(n);
+            });
+        if (layers[k].faceSize != n || !square)
+            throw Error("probe set: rough layer " + std::to_string(k) + " is not " + std::to_string(n) + "x" +
+                        std::to_string(n) + " per face");
         storeBorderedLevel(layers[k], 0, one, data.data() + k * cubePyramidFloatCount(one));
     }
     roughLayerData_ = std::move(data);
-    roughLayerFaceSize_ = n;
-    roughLayerCount_ = uint32_t(layers.size());
     joinDistantData();
 }
 
 RoughLayers ProbeSet::roughLayers() const {
     RoughLayers layers{};
-    layers.faceSize = roughLayerFaceSize_;
-    layers.layerCount = roughLayerCount_;
+    if (!roughLayerData_.empty()) {
+        layers.faceSize = roughLayerFaceSize(distant_.layout.baseFaceSize);
+        layers.layerCount = IBL_ROUGH_LAYER_COUNT;
+    }
     layers.dataOffset = uint32_t(distant_.data.size() + irradianceData_.size());
     return layers;
 }

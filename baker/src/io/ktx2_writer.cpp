@@ -269,15 +269,22 @@ void checkImage(const std::string& name, const ImageRGBA& image, int width, int 
                     " pixels, expected " + std::to_string(width) + "x" + std::to_string(height));
 }
 
-// Whether the file's iblbake.profile (cube_profile.h) stores cubes mirrored in x (three.js's layout).
-bool storesMirrored(const std::string& name, const Ktx2KeyValues& keyValues) {
+// The cubes in the layout the file's iblbake.profile declares (cube_profile.h): `cubes` itself, or for
+// three.js's layout their copy in `mirrored`, each mirrored in x.
+const std::vector<CubeMap>& inProfileLayout(const std::string& name, const std::vector<CubeMap>& cubes,
+                                            const Ktx2KeyValues& keyValues, std::vector<CubeMap>& mirrored) {
     const auto profile = std::find_if(keyValues.begin(), keyValues.end(),
                                       [](const auto& kv) { return kv.first == kCubeProfileKey; });
     try {
-        return profile != keyValues.end() && parseCubeProfile(profile->second) == CubeProfile::Three;
+        if (profile == keyValues.end() || parseCubeProfile(profile->second) != CubeProfile::Three)
+            return cubes;
     } catch (const Error& e) {
         throw Error(name + ": " + kCubeProfileKey + ": " + e.what());
     }
+    mirrored = cubes;
+    for (CubeMap& cube : mirrored)
+        mirrorCubeFacesX(cube.faces);
+    return mirrored;
 }
 
 } // namespace
@@ -294,18 +301,12 @@ Ktx2WriteStats writeKtx2Cube(const fs::path& path, const CubeMapChain& chain, Kt
         throw Error(name + ": " + std::to_string(chain.levels.size()) + " levels for face size " +
                     std::to_string(base) + " (at most " + std::to_string(maxLevels) + ")");
 
-    // The layout the file's iblbake.profile declares (cube_profile.h).
-    CubeMapChain mirrored;
-    if (storesMirrored(name, keyValues)) {
-        mirrored = chain;
-        for (CubeMap& level : mirrored.levels)
-            mirrorCubeFacesX(level.faces);
-    }
-    const CubeMapChain& stored = mirrored.levels.empty() ? chain : mirrored;
+    std::vector<CubeMap> mirrored;
+    const std::vector<CubeMap>& stored = inProfileLayout(name, chain.levels, keyValues, mirrored);
 
     std::vector<LevelView> levels;
-    for (std::size_t m = 0; m < stored.levels.size(); ++m) {
-        const CubeMap& level = stored.levels[m];
+    for (std::size_t m = 0; m < stored.size(); ++m) {
+        const CubeMap& level = stored[m];
         const int size = std::max(1, base >> m);
         if (level.faceSize != size)
             throw Error(name + ": level " + std::to_string(m) + " has face size " +
@@ -359,12 +360,7 @@ Ktx2WriteStats writeKtx2CubeArray(const fs::path& path, const std::vector<CubeMa
     if (size <= 0)
         throw Error(name + ": refusing to write a cube map array of face size " + std::to_string(size));
     std::vector<CubeMap> mirrored;
-    if (storesMirrored(name, keyValues)) {
-        mirrored = layers;
-        for (CubeMap& layer : mirrored)
-            mirrorCubeFacesX(layer.faces);
-    }
-    const std::vector<CubeMap>& stored = mirrored.empty() ? layers : mirrored;
+    const std::vector<CubeMap>& stored = inProfileLayout(name, layers, keyValues, mirrored);
     LevelView view{size, size, {}};
     for (std::size_t l = 0; l < stored.size(); ++l)
         for (std::size_t f = 0; f < stored[l].faces.size(); ++f) {

@@ -185,8 +185,7 @@ class ProbeSet {
     std::vector<float> distantData_;
     CubePyramidLayout irradianceLayout_{};
     std::vector<float> irradianceData_;
-    std::uint32_t roughLayerFaceSize_ = 0, roughLayerCount_ = 0;
-    std::vector<float> roughLayerData_;
+    std::vector<float> roughLayerData_; // empty: no rough layers
     DfgTable dfg_;
     ShCoefficients sh_;
     std::optional<SunDisk> sun_;
