@@ -4,6 +4,7 @@
 
 #include <iblbake/baker/products.h>
 #include <iblbake/core/error.h>
+#include <iblbake/core/limits.h>
 
 #include <cstdio>
 #include <fstream>
@@ -46,7 +47,7 @@ void CalibrationOptions::addTo(CLI::App& command) {
                         "largest bright core taken out as the disk (sr); above the default the detector "
                         "also takes a compact area light (a studio softbox: 7e-3 sr) as the disk")
             ->capture_default_str()
-            ->check(CLI::Range(1e-6, 0.5));
+            ->check(CLI::Range(limits::kMinSunMaxSolidAngle, limits::kMaxSunMaxSolidAngle));
     extract->needs(json);
     json->needs(extract);
     maxSolidAngle->needs(extract);

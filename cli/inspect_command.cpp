@@ -101,9 +101,9 @@ Action addInspectCommand(CLI::App& app) {
             if (k == "iblbake:units") units = v;
         const bool absolute = units == "cd/m2";
         constexpr double kDeg = 180.0 / std::numbers::pi;
-        // What a bake that keeps the detected sun in the probe costs at runtime (measured on a 64 px copy).
-        SunInProbe sunInProbe;
-        if (sun.found) sunInProbe = measureSunInProbe(env.cube, Executor::cpu());
+        // What a bake that keeps the detected sun, or a compact light the detector rejects by size, in the
+        // probe costs at runtime (measured on a 64 px copy; without either, a detection only).
+        const SunInProbe sunInProbe = measureSunInProbe(env.cube, Executor::cpu(), 5, sunSettings);
 
         if (o->json) {
             nlohmann::ordered_json j;
@@ -152,6 +152,12 @@ Action addInspectCommand(CLI::App& app) {
             } else {
                 j["sun"] = nullptr;
                 j["noSunReason"] = sun.reason;
+                if (sunInProbe.compactLight)
+                    j["compactLight"] = {{"angularRadiusDegrees", sunInProbe.angularRadiusDegrees},
+                                         {"warning", sunInProbe.warning},
+                                         {"roughness", sunInProbe.roughness},
+                                         {"keptError", sunInProbe.keptError},
+                                         {"extractedError", sunInProbe.extractedError}};
             }
             std::printf("%s\n", j.dump(2).c_str());
             return 0;
@@ -190,6 +196,7 @@ Action addInspectCommand(CLI::App& app) {
             std::printf("warning      %s\n", sunInProbe.warning.c_str());
         } else {
             std::printf("sun          no sun: %s\n", sun.reason.c_str());
+            if (sunInProbe.compactLight) std::printf("warning      %s\n", sunInProbe.warning.c_str());
         }
         return 0;
     };

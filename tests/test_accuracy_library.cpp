@@ -214,3 +214,39 @@ TEST(SunInProbe, WarnsWithTheErrorItCausesAndTheFix) {
     EXPECT_FALSE(noSun.detected);
     EXPECT_TRUE(noSun.warning.empty());
 }
+
+// A compact area light (a 3 x 3-texel softbox of 8.8e-3 sr on a 64 px cube: over the sun detector's
+// 3e-3 sr, under kCompactLightMaxSolidAngle): no sun, but the check measures it and names the limit that
+// extracts it; given that limit, it is the sun (the detection the bake would run).
+TEST(SunInProbe, WarnsOfACompactLightAndNamesTheLimitThatExtractsIt) {
+    auto sky = [](const glm::dvec3& d) {
+        return d.y < 0.0 ? glm::dvec3(0.1) : glm::dvec3(0.2, 0.3, 0.5) + d.y;
+    };
+    ibl::CubeMap cube = ibl::test::makeCube(ibl::kSunInProbeFaceSize, sky);
+    for (int y = 40; y < 43; ++y)
+        for (int x = 20; x < 23; ++x)
+            cube.faces[2].at(x, y) = glm::vec4(400.0f, 380.0f, 300.0f, 1.0f); // on +Y
+    const ibl::SunInProbe compact = ibl::measureSunInProbe(cube, ibl::Executor::cpu(), 4);
+    ASSERT_TRUE(compact.detected);
+    EXPECT_TRUE(compact.compactLight);
+    double kept = 0.0, extracted = 0.0;
+    for (std::size_t k = 0; k < compact.keptError.size(); ++k)
+        kept += compact.keptError[k], extracted += compact.extractedError[k];
+    std::printf("compact light (disk of %.1f degrees) in the probe: mean column error %.1f%% kept, %.1f%% "
+                "extracted\n",
+                compact.angularRadiusDegrees, 100 * kept / 11, 100 * extracted / 11);
+    EXPECT_GT(kept, 2.0 * extracted);
+    EXPECT_EQ(compact.warning.rfind("compact light (disk of ", 0), 0u) << compact.warning;
+    EXPECT_NE(compact.warning.find("extract it: iblbake --extract-sun --sun-max-solid-angle 0.02, scene keys "
+                                   "environment.extractSun and environment.sunMaxSolidAngle"),
+              std::string::npos)
+        << compact.warning;
+
+    ibl::SunDetectSettings limit;
+    limit.maxSolidAngle = ibl::kCompactLightMaxSolidAngle;
+    const ibl::SunInProbe asSun = ibl::measureSunInProbe(cube, ibl::Executor::cpu(), 4, limit);
+    ASSERT_TRUE(asSun.detected);
+    EXPECT_FALSE(asSun.compactLight);
+    EXPECT_EQ(asSun.warning.rfind("sun detected and left in the probe: ", 0), 0u) << asSun.warning;
+    EXPECT_EQ(asSun.keptError, compact.keptError);
+}

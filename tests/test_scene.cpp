@@ -127,6 +127,13 @@ TEST(SceneParse, ErrorsNameTheKeyPathAndTheProblem) {
                      "scene.json: outputs.faceSize: must be a power of two"});
     cases.push_back({with([](json& d) { d["environment"]["extractSun"] = 1; }),
                      "scene.json: environment.extractSun: must be true or false, not a number"});
+    cases.push_back({with([](json& d) { d["environment"]["sunMaxSolidAngle"] = 0.02; }),
+                     "scene.json: environment.sunMaxSolidAngle: needs environment.extractSun"});
+    cases.push_back({with([](json& d) {
+                         d["environment"]["extractSun"] = true;
+                         d["environment"]["sunMaxSolidAngle"] = 1;
+                     }),
+                     "scene.json: environment.sunMaxSolidAngle: must be a number from 1e-06 to 0.5, not 1"});
     cases.push_back({with([](json& d) {
                          d["environment"]["calibration"] = {{"ev100", 12}, {"scale", 2}};
                      }),

@@ -247,6 +247,61 @@ TEST(SceneBake, WarnsOfASunLeftInTheProbe) {
     EXPECT_TRUE(noSun.summary["warnings"].empty()) << noSun.summary.dump();
 }
 
+// A 512 x 256 lat-long sky with a compact area light: a 10 x 6-pixel softbox of ~8e-3 sr, over the sun
+// detector's default 3e-3 sr and under kCompactLightMaxSolidAngle.
+void writeSoftboxLatLong(const fs::path& file) {
+    const int w = 512, h = 256;
+    std::vector<float> pixels(std::size_t(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const bool softbox = x >= 240 && x < 250 && y >= 80 && y < 86;
+            float* p = &pixels[(std::size_t(y) * w + x) * 3];
+            p[0] = softbox ? 400.0f : 0.3f;
+            p[1] = softbox ? 380.0f : 0.5f;
+            p[2] = softbox ? 300.0f : 0.9f;
+        }
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+}
+
+// A compact light left in the probe gets the compact-light warning naming environment.sunMaxSolidAngle;
+// extractSun alone finds no sun in it (one line naming the key, nothing written); with the limit the
+// softbox is extracted, and level 0's metadata carries the limit (the glTF export's re-detection reads it).
+TEST(SceneBake, CompactLightIsExtractedWithItsSolidAngleLimit) {
+    SceneDir d("scene_compact_light");
+    writeSoftboxLatLong(d.dir / "softbox.exr");
+    d.scene["environment"]["file"] = "softbox.exr";
+    d.scene["outputs"]["faceSize"] = 64;
+    JsonRun kept = bakeJson(d.write());
+    ASSERT_EQ(kept.run.exitCode, 0) << kept.run.err;
+    ASSERT_EQ(kept.summary["warnings"].size(), 1u) << kept.summary.dump();
+    const std::string warning = kept.summary["warnings"][0].get<std::string>();
+    EXPECT_EQ(warning.rfind("compact light (disk of ", 0), 0u) << warning;
+    EXPECT_NE(warning.find("scene keys environment.extractSun and environment.sunMaxSolidAngle"),
+              std::string::npos)
+        << warning;
+    fs::remove_all(d.out());
+
+    d.scene["environment"]["extractSun"] = true;
+    JsonRun noSun = bakeJson(d.write());
+    EXPECT_NE(noSun.run.exitCode, 0);
+    EXPECT_NE(noSun.run.err.find("environment.extractSun: no sun detected: "), std::string::npos)
+        << noSun.run.err;
+    EXPECT_FALSE(fs::exists(d.out()));
+
+    d.scene["environment"]["sunMaxSolidAngle"] = 0.02;
+    JsonRun extracted = bakeJson(d.write());
+    ASSERT_EQ(extracted.run.exitCode, 0) << extracted.run.err;
+    EXPECT_TRUE(extracted.summary["warnings"].empty()) << extracted.summary.dump();
+    EXPECT_TRUE(fs::exists(d.out() / "sun.json"));
+    const ibl::Ktx2Image ld = ibl::readKtx2(d.out() / "specular.ktx2");
+    ASSERT_EQ(ld.keyValues.count("iblbake.sunInLevel0"), 1u);
+    EXPECT_DOUBLE_EQ(std::stod(ld.keyValues.at("iblbake.sunMaxSolidAngle")), 0.02);
+}
+
 TEST(ScenePlanCli, TextPlanGivesEveryStageAndEverySkipWithItsReason) {
     SceneDir d("scene_plan_text");
     d.scene["materials"] = {{"specular", false}};

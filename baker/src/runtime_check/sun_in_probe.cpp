@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <numbers>
 
 namespace ibl {
 
@@ -23,17 +24,38 @@ std::string sunInProbeWarning(double keptError, double perceptualRoughness, doub
     return text;
 }
 
-SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executor, int grid) {
+std::string compactLightInProbeWarning(double angularRadiusDegrees, double keptError,
+                                       double perceptualRoughness, double extractedError) {
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "compact light (disk of %.1f degrees) left in the probe: runtime error %.1f%% at roughness "
+                  "%.1f on the "
+                  "sphere grid (%.1f%% with it extracted as a disk light); extract it: iblbake --extract-sun "
+                  "--sun-max-solid-angle %g, scene keys environment.extractSun and "
+                  "environment.sunMaxSolidAngle",
+                  angularRadiusDegrees, 100.0 * keptError, perceptualRoughness, 100.0 * extractedError,
+                  kCompactLightMaxSolidAngle);
+    return text;
+}
+
+SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executor, int grid,
+                             const SunDetectSettings& detection) {
     SunInProbe out;
     CubeMap source = environment;
     while (source.faceSize > kSunInProbeFaceSize)
         source = downsampleCube(source);
     CubeMap residual = source;
-    std::optional<SunDisk> sun;
-    if (auto light = takeSunOut(residual, SunExtraction::IfDetected, SunDetectSettings{}))
-        sun = sunDiskFrom(*light);
-    if (!sun) return out;
+    std::optional<DiskLight> light = takeSunOut(residual, SunExtraction::IfDetected, detection);
+    if (!light && detection.maxSolidAngle < kCompactLightMaxSolidAngle) {
+        SunDetectSettings compact = detection;
+        compact.maxSolidAngle = kCompactLightMaxSolidAngle;
+        light = takeSunOut(residual, SunExtraction::IfDetected, compact);
+        out.compactLight = light.has_value();
+    }
+    if (!light) return out;
+    const std::optional<SunDisk> sun = sunDiskFrom(*light);
     out.detected = true;
+    out.angularRadiusDegrees = light->angularRadius * 180.0 / std::numbers::pi;
     for (int k = 0; k <= 10; ++k)
         out.roughness.push_back(float(k) / 10.0f);
     const SphereColumns c = sphereColumns(out.roughness, grid);
@@ -49,7 +71,11 @@ SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executo
     out.extractedError = columnErrors(c, reference, &extracted);
     const std::size_t worst =
         std::size_t(std::max_element(out.keptError.begin(), out.keptError.end()) - out.keptError.begin());
-    out.warning = sunInProbeWarning(out.keptError[worst], out.roughness[worst], out.extractedError[worst]);
+    out.warning =
+        out.compactLight
+            ? compactLightInProbeWarning(out.angularRadiusDegrees, out.keptError[worst], out.roughness[worst],
+                                         out.extractedError[worst])
+            : sunInProbeWarning(out.keptError[worst], out.roughness[worst], out.extractedError[worst]);
     return out;
 }
 

@@ -46,6 +46,8 @@ std::string shortNumber(double value) {
 
 constexpr double kMaxDistance = limits::kMaxSceneDistance;
 constexpr double kMaxDegrees = limits::kMaxRotationDegrees;
+constexpr double kMinSunMaxSolidAngle = limits::kMinSunMaxSolidAngle;
+constexpr double kMaxSunMaxSolidAngle = limits::kMaxSunMaxSolidAngle;
 
 const char* typeName(const json& v) {
     return v.is_object()    ? "an object"
@@ -265,6 +267,10 @@ SceneEnvironment environment(const json& v, const fs::path& base, const Fail& fa
     e.latLongPixels = r.choice("latlongPixels", "auto", kLatLongPixels);
     if (const json* c = r.take("calibration")) e.calibration = calibration(*c, r.key("calibration"), fail);
     e.extractSun = r.boolean("extractSun", false);
+    if (r.has("sunMaxSolidAngle")) {
+        e.sunMaxSolidAngle = r.number("sunMaxSolidAngle", 0.0, kMinSunMaxSolidAngle, kMaxSunMaxSolidAngle);
+        if (!e.extractSun) fail(r.key("sunMaxSolidAngle"), "needs environment.extractSun");
+    }
     r.finish();
     return e;
 }

@@ -158,6 +158,7 @@ Plan planScene(const Scene& scene) {
     if (env.extractSun) {
         PlanStage s{"sun", "sun-extract", {"environment"}, {}, {}, {"sun.json"}, false, ""};
         s.settings = json::object();
+        if (env.sunMaxSolidAngle) s.settings["sunMaxSolidAngle"] = *env.sunMaxSolidAngle;
         s.reason = "environment.extractSun: the sun becomes an analytic disk light, bakes use the residual";
         plan.stages.push_back(std::move(s));
         plan.skipped.push_back({"sun-check", "sun-in-probe", "environment.extractSun: the sun is extracted"});
@@ -199,6 +200,9 @@ Plan planScene(const Scene& scene) {
         // keepSunInLevel0): the cube from before the extraction is an input too.
         if (env.extractSun) {
             s.dependsOn.push_back("environment");
+            // The detection limit goes into level 0's metadata (iblbake.sunMaxSolidAngle), which the glTF
+            // export's re-detection reads.
+            if (env.sunMaxSolidAngle) s.settings["sunMaxSolidAngle"] = *env.sunMaxSolidAngle;
             s.reason += "; level 0 keeps the sun's pixels where outputs.ktx2Format holds them";
         }
         plan.stages.push_back(std::move(s));

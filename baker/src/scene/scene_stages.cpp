@@ -184,6 +184,8 @@ void runSun(const StageContext& c) {
     json calibration = readJsonFile(from / kCalibrationFile);
     SunDetectSettings detection;
     detection.luminanceWeights = workingLuminanceWeights(calibration.at("colorSpace").get<std::string>());
+    if (c.stage.settings.contains("sunMaxSolidAngle"))
+        detection.maxSolidAngle = c.stage.settings.at("sunMaxSolidAngle").get<double>();
     DiskLight light;
     try {
         light = *takeSunOut(cube, SunExtraction::Required, detection);
@@ -253,6 +255,8 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                   " roughnessMax=" + s.at("roughnessMax").dump();
     const bool clampToFormat = s.at("clampToFormat").get<bool>();
     ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format, clampToFormat);
+    if (ld.sunInLevel0 && s.contains("sunMaxSolidAngle"))
+        ld.sunMaxSolidAngle = s.at("sunMaxSolidAngle").get<double>();
     const ProductStorage storage = chooseProductStorage(chain, format, clampToFormat);
     Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
     keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());

@@ -36,6 +36,11 @@ inline constexpr double kMaxSceneDistance = 1e9;
 // Rotations in degrees (environment, probes, box axes).
 inline constexpr double kMaxRotationDegrees = 360.0;
 
+// The sun extraction's largest bright core, steradians (--sun-max-solid-angle, environment.sunMaxSolidAngle):
+// from about four texels of a 4096-px face to 0.5 sr (4% of the sphere; a softbox is 7e-3).
+inline constexpr double kMinSunMaxSolidAngle = 1e-6;
+inline constexpr double kMaxSunMaxSolidAngle = 0.5;
+
 // The image pixel limit in force: IBLBAKE_MAX_IMAGE_PIXELS (a whole number from 1 to 2^40) or
 // kDefaultMaxImagePixels. Throws ibl::Error naming the variable when it holds anything else.
 std::uint64_t maxImagePixels();

@@ -31,6 +31,9 @@ struct SceneEnvironment {
         "auto"; // latlong_pixels.h parseLatLongPixels spellings: auto, centre, openexr
     SceneCalibrationChoice calibration;
     bool extractSun = false;
+    // The largest bright core the extraction takes as the disk (sr; SunDetectSettings::maxSolidAngle);
+    // unset: the detector's default. Only with extractSun.
+    std::optional<double> sunMaxSolidAngle;
 };
 
 struct SceneVolume {
