@@ -265,7 +265,8 @@ AccuracyStage measureSpecularProduction(const SweepPlan& plan, const CubeMap& so
     stage.knobs = {"faceSize", "samples"};
     stage.reference =
         format("referenceSpecularTexels (referenceSpecularLevel's integral: the source's bright "
-               "texels weighted exactly, the rest by 2 x 2048 stratified GGX samples) at up to %d "
+               "texels weighted exactly, the rest by 2 x 2048 stratified GGX samples per texel, more on "
+               "levels of fewer texels, up to 2 x 131072 on 1 x 1 faces) at up to %d "
                "texels of every level; its own estimated error per level in "
                "referenceErrorEstimate",
                plan.productionTexelsPerLevel);

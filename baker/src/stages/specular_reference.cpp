@@ -196,6 +196,13 @@ CubeMap referenceSpecularLevel(const CubeMap& original, int outputFaceSize, floa
     return out;
 }
 
+std::uint32_t referenceSamplesPerHalf(std::size_t texelCount) {
+    constexpr std::uint64_t kMinPerHalf = 2048, kMaxPerHalf = std::uint64_t(1) << 17;
+    constexpr std::uint64_t kPerLevel = kMinPerHalf * 1536;
+    const std::uint64_t perTexel = kPerLevel / std::max<std::uint64_t>(texelCount, 1);
+    return std::uint32_t(std::clamp(perTexel, kMinPerHalf, kMaxPerHalf));
+}
+
 LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFaceSize,
                                          float perceptualRoughness, std::span<const CubeTexel> texels) {
     const int w = original.faceSize, n = outputFaceSize;
@@ -211,7 +218,7 @@ LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFace
         isBright[k] = 1;
     // GGX sampling of h around the normal: cos theta_h from the CDF variable xi.
     auto cosHalf = [&](double xi) { return std::sqrt((1.0 - xi) / (1.0 + (a2 - 1.0) * xi)); };
-    constexpr std::uint32_t kHalf = 2048; // samples per half
+    const std::uint32_t samplesPerHalf = referenceSamplesPerHalf(texels.size());
     LdTexelReference out;
     out.value.resize(texels.size());
     out.errorEstimate.resize(texels.size());
@@ -235,8 +242,8 @@ LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFace
         double halfWeight[2] = {0.0, 0.0}; // the dim texels' share of the lobe
         const glm::dvec2 shifts[2] = {{0.0, 0.0}, {0.61803398875, 0.41421356237}};
         for (int h = 0; h < 2; ++h)
-            for (std::uint32_t i = 0; i < kHalf; ++i) {
-                glm::dvec2 u = glm::dvec2((i + 0.5) / kHalf, double(radicalInverse2(i))) + shifts[h];
+            for (std::uint32_t i = 0; i < samplesPerHalf; ++i) {
+                glm::dvec2 u = glm::dvec2((i + 0.5) / samplesPerHalf, double(radicalInverse2(i))) + shifts[h];
                 u -= glm::floor(u);
                 const double c = cosHalf(u.x), sn = std::sqrt(std::max(0.0, 1.0 - c * c));
                 const double phi = 2.0 * kPi * u.y;
@@ -249,8 +256,8 @@ LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFace
                           y = std::clamp(int(cc.t * float(w)), 0, w - 1);
                 const std::size_t index = (std::size_t(cc.face) * w + y) * w + x;
                 if (isBright[index]) continue;
-                half[h] += glm::dvec3(source.faces[cc.face].at(x, y)) * (4.0 * NoL / kHalf);
-                halfWeight[h] += 4.0 * NoL / kHalf;
+                half[h] += glm::dvec3(source.faces[cc.face].at(x, y)) * (4.0 * NoL / samplesPerHalf);
+                halfWeight[h] += 4.0 * NoL / samplesPerHalf;
             }
         // The integral of pi D NoL (the weights' measure) over the sphere, bright part exact, dim sampled.
         const double lobe = brightWeight + kPi * 0.5 * (halfWeight[0] + halfWeight[1]);
