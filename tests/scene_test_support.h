@@ -13,6 +13,16 @@
 
 namespace ibl::test {
 
+// An RGB float image of w x h (pixels row by row), in the format the file name says.
+inline void writeRgbFloatImage(const std::filesystem::path& file, int w, int h,
+                               const std::vector<float>& pixels) {
+    auto out = OIIO::ImageOutput::create(file.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    out->close();
+}
+
 // A 64 x 32 lat-long: a sky gradient whose colour depends on `seed`.
 inline void writeLatLong(const std::filesystem::path& file, float seed) {
     const int w = 64, h = 32;
@@ -24,11 +34,7 @@ inline void writeLatLong(const std::filesystem::path& file, float seed) {
             p[1] = 0.5f + 0.5f * float(h - y) / h;
             p[2] = 1.0f - 0.5f * float(y) / h;
         }
-    auto out = OIIO::ImageOutput::create(file.string());
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    out->close();
+    writeRgbFloatImage(file, w, h, pixels);
 }
 
 inline std::string readBytes(const std::filesystem::path& file) {

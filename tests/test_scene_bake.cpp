@@ -260,11 +260,7 @@ void writeSoftboxLatLong(const fs::path& file) {
             p[1] = softbox ? 380.0f : 0.5f;
             p[2] = softbox ? 300.0f : 0.9f;
         }
-    auto out = OIIO::ImageOutput::create(file.string());
-    ASSERT_TRUE(out);
-    ASSERT_TRUE(out->open(file.string(), OIIO::ImageSpec(w, h, 3, OIIO::TypeDesc::FLOAT)));
-    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
-    out->close();
+    writeRgbFloatImage(file, w, h, pixels);
 }
 
 // A compact light left in the probe gets the compact-light warning naming environment.sunMaxSolidAngle;
