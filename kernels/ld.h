@@ -89,6 +89,22 @@ IBL_FN float lobeWeightOfPatch(vec3 n, int face, float u0, float v0, float step,
     return NoL > 0.0f ? D_GGX(v3dot(n, h), alpha) * NoL * omega : 0.0f;
 }
 
+// atan to about 1.3 ulp (Cephes' atanf: the argument reduced to |t| <= tan(pi / 8) about 0, pi / 4 or
+// pi / 2, then an odd degree-9 polynomial). lobeTriangleIntegral's two atans per edge were half of the
+// bright pass on PoCL, whose atan is SLEEF's 1-ulp double-float one (~6x glibc's atanf per call).
+IBL_FN float atanPolynomial(float x) {
+    float a = fabs(x);
+    bool big = a > 2.414213562373095f, mid = !big && a > 0.4142135623730950f;
+    float offset = big ? 0.5f * IBL_PI : mid ? 0.25f * IBL_PI : 0.0f;
+    float t = big ? -1.0f / a : mid ? (a - 1.0f) / (a + 1.0f) : a;
+    float z = t * t;
+    float p =
+        (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) * z *
+            t +
+        t;
+    return copysign(offset + p, x);
+}
+
 // Integral of f(q) = alpha^2 / (pi (alpha^2 + |q|^2)^2) over the triangle (0, a, b) of the plane,
 // signed by the triangle's orientation. In polar form along the edge's line at distance d:
 // (1 / 2 pi) (d / sqrt(alpha^2 + d^2)) [atan(d T / sqrt(alpha^2 + d^2))] between the edge's ends, T the
@@ -102,7 +118,7 @@ IBL_FN float lobeTriangleIntegral(float2 a, float2 b, float alpha) {
     float ex = e.x / len, ey = e.y / len;
     float k = sqrt(alpha * alpha + d * d);
     float ta = (a.x * ex + a.y * ey) / d, tb = (b.x * ex + b.y * ey) / d;
-    float value = (d / k) * (atan(d * tb / k) - atan(d * ta / k)) * (0.5f * IBL_INV_PI);
+    float value = (d / k) * (atanPolynomial(d * tb / k) - atanPolynomial(d * ta / k)) * (0.5f * IBL_INV_PI);
     return cr >= 0.0f ? value : -value;
 }
 
