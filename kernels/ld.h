@@ -237,12 +237,29 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
 
 // Bright texels are grouped into clusters (IBL_BRIGHT_CLUSTER_FLOATS each: centroid direction (3),
 // angular radius, bound on sum of excess * solid angle (max over channels), first entry, entry count,
-// unused). A cluster whose largest possible contribution, D at its nearest point times its energy,
-// stays under `skipBelow` is skipped: the caller sets skipBelow to 1e-3 of the texel's sampled value
-// divided by the cluster count, so all skipped clusters together change a texel by under 0.1%. The bright
-// part of output texel (face, x, y) of an n-texel level: at its centre, or over its footprint where
-// ldFootprintApplies.
+// cosine of half the angular radius). A cluster whose largest possible contribution, D at its nearest point
+// times its energy, stays under `skipBelow` is skipped: the caller sets skipBelow to 1e-3 of the texel's
+// sampled value divided by the cluster count, so all skipped clusters together change a texel by under 0.1%.
+// The bright part of output texel (face, x, y) of an n-texel level: at its centre, or over its footprint
+// where ldFootprintApplies.
 #define IBL_BRIGHT_CLUSTER_FLOATS 8
+
+// cos(max(angle - radius - reach, 0) / 2) for a direction at cosine cosAngle from a cluster's centroid: the
+// half-angle of the nearest point of the cluster widened by reach (1 within it), from the half angles'
+// cosines and sines by the angle-difference identity. Square roots only: acos and cos per cluster and
+// texel were a large part of the bright pass on PoCL, whose acos/cos are SLEEF's.
+IBL_FN float cosHalfNearestAngle(float cosAngle, float cosHalfRadius, float cosHalfReach,
+                                 float sinHalfReach) {
+    float sinHalfRadius = sqrt(fmax(0.0f, 1.0f - cosHalfRadius * cosHalfRadius));
+    float cosHalfBound =
+        cosHalfRadius * cosHalfReach - sinHalfRadius * sinHalfReach; // of (radius + reach) / 2
+    float sinHalfBound = sinHalfRadius * cosHalfReach + cosHalfRadius * sinHalfReach;
+    float cosHalf = sqrt(fmax(0.0f, 0.5f * (1.0f + cosAngle)));
+    float sinHalf = sqrt(fmax(0.0f, 0.5f * (1.0f - cosAngle)));
+    // Half angles lie in [0, pi / 2], where cos falls: within the widened cluster iff cosHalf >=
+    // cosHalfBound.
+    return cosHalf >= cosHalfBound ? 1.0f : cosHalf * cosHalfBound + sinHalf * sinHalfBound;
+}
 
 IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const float* clusters,
                            uint clusterCount, IBL_GLOBAL const float* bright, float alpha,
@@ -255,12 +272,14 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
     float omegaT = cubePatchSolidAngle(u0, v0, outSize);
     // A footprint reaches half a diagonal (~0.71 outSize radians or less) from its centre.
     float reach = footprint ? 0.71f * outSize : 0.0f;
+    float cosHalfReach = cos(0.5f * reach), sinHalfReach = sin(0.5f * reach);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint c = 0; c < clusterCount; ++c) {
         const IBL_GLOBAL float* cl = clusters + IBL_BRIGHT_CLUSTER_FLOATS * c;
-        float angle = acos(clamp(centre.x * cl[0] + centre.y * cl[1] + centre.z * cl[2], -1.0f, 1.0f));
-        float nearest = fmax(angle - cl[3] - reach, 0.0f); // nearest angle to any member
-        float bound = D_GGX(cos(0.5f * nearest), alpha) * cl[4] * invLobeIntegral; // D falls with theta_h
+        float cosAngle = centre.x * cl[0] + centre.y * cl[1] + centre.z * cl[2];
+        // D at the nearest member (D falls with theta_h, half the angle to it) times the cluster's energy.
+        float bound = D_GGX(cosHalfNearestAngle(cosAngle, cl[7], cosHalfReach, sinHalfReach), alpha) * cl[4] *
+                      invLobeIntegral;
         if (bound < skipBelow) continue;
         uint first = (uint)cl[5], count = (uint)cl[6];
         for (uint i = first; i < first + count; ++i) {
