@@ -122,23 +122,42 @@ IBL_FN float lobeTriangleIntegral(float2 a, float2 b, float alpha) {
     return cr >= 0.0f ? value : -value;
 }
 
-// integral_texel D(h) NoL dl for a lobe much narrower than one radian around n, texel [u0, u0 + size] x
-// [v0, v0 + size] of `face` (face-plane coordinates), all of it in front of n. Small-angle form: with
-// the gnomonic offset p of l in the tangent plane and q = p / 2 the half-vector offset, D(h) NoL dl ~
-// 4 alpha^2 / (pi (alpha^2 + |q|^2)^2) d^2q (the total is 4 = W(0)); the texel's projection is a
-// quadrilateral, integrated exactly as four signed triangles from the lobe centre.
-IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, float size, float alpha) {
-    float2 q[4];
+// The corners of the face square [u0, u0 + size] x [v0, v0 + size] (face-plane coordinates) of `face`, as
+// unnormalized directions, counter-clockwise from (u0, v0).
+typedef struct {
+    vec3 corner[4];
+} FaceSquareCorners;
+
+IBL_FN FaceSquareCorners faceSquareCorners(int face, float u0, float v0, float size) {
+    FaceSquareCorners c;
     for (int k = 0; k < 4; ++k) {
         float u = u0 + ((k == 1 || k == 2) ? size : 0.0f), v = v0 + (k >= 2 ? size : 0.0f);
-        vec3 l = cubeFaceDirection(face, 0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
-        vec3 inFrame = frameToLocal(frame, l);
+        c.corner[k] = cubeFaceDirection(face, 0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
+    }
+    return c;
+}
+
+// narrowLobeTexelWeight of a texel given by its corners (brightFootprintWeight integrates one output texel
+// around many lobe centres: its corners once, not per centre).
+IBL_FN float narrowLobeCornersWeight(Frame frame, FaceSquareCorners texel, float alpha) {
+    float2 q[4];
+    for (int k = 0; k < 4; ++k) {
+        vec3 inFrame = frameToLocal(frame, texel.corner[k]);
         q[k] = make_float2(0.5f * inFrame.x / inFrame.z, 0.5f * inFrame.y / inFrame.z);
     }
     float sum = 0.0f;
     for (int k = 0; k < 4; ++k)
         sum += lobeTriangleIntegral(q[k], q[(k + 1) & 3], alpha);
     return 4.0f * fabs(sum);
+}
+
+// integral_texel D(h) NoL dl for a lobe much narrower than one radian around n, texel [u0, u0 + size] x
+// [v0, v0 + size] of `face` (face-plane coordinates), all of it in front of n. Small-angle form: with
+// the gnomonic offset p of l in the tangent plane and q = p / 2 the half-vector offset, D(h) NoL dl ~
+// 4 alpha^2 / (pi (alpha^2 + |q|^2)^2) d^2q (the total is 4 = W(0)); the texel's projection is a
+// quadrilateral, integrated exactly as four signed triangles from the lobe centre.
+IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, float size, float alpha) {
+    return narrowLobeCornersWeight(frame, faceSquareCorners(face, u0, v0, size), alpha);
 }
 
 // Whether a source texel (face-plane size texelSize) at `angle` radians from a lobe of GGX alpha takes
@@ -210,13 +229,14 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
         int sourceFace = (int)e[7];
         float step = sourceTexelSize / (float)S;
         float bu = -1.0f + e[8] * sourceTexelSize, bv = -1.0f + e[9] * sourceTexelSize;
+        FaceSquareCorners texel = faceSquareCorners(face, u0, v0, outSize);
         for (int j = 0; j < S; ++j)
             for (int k = 0; k < S; ++k) {
                 float pu = bu + (float)k * step, pv = bv + (float)j * step;
                 vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
                                                        0.5f * (pv + 0.5f * step + 1.0f)));
                 weight += cubePatchSolidAngle(pu, pv, step) *
-                          narrowLobeTexelWeight(frameFromNormal(l), face, u0, v0, outSize, alpha);
+                          narrowLobeCornersWeight(frameFromNormal(l), texel, alpha);
             }
         return weight;
     }
@@ -269,7 +289,9 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
     Frame frame = frameFromNormal(centre);
     int footprint = ldFootprintApplies(alpha, n);
     float outSize = 2.0f / (float)n, u0 = -1.0f + (float)x * outSize, v0 = -1.0f + (float)y * outSize;
-    float omegaT = cubePatchSolidAngle(u0, v0, outSize);
+    // Omega_t when a cluster first survives the skip test (most texels have none; on faces of 64 texels or
+    // fewer it is four atan2).
+    float omegaT = -1.0f;
     // A footprint reaches half a diagonal (~0.71 outSize radians or less) from its centre.
     float reach = footprint ? 0.71f * outSize : 0.0f;
     float cosHalfReach = cos(0.5f * reach), sinHalfReach = sin(0.5f * reach);
@@ -281,6 +303,7 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
         float bound = D_GGX(cosHalfNearestAngle(cosAngle, cl[7], cosHalfReach, sinHalfReach), alpha) * cl[4] *
                       invLobeIntegral;
         if (bound < skipBelow) continue;
+        if (footprint && omegaT < 0.0f) omegaT = cubePatchSolidAngle(u0, v0, outSize);
         uint first = (uint)cl[5], count = (uint)cl[6];
         for (uint i = first; i < first + count; ++i) {
             const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
