@@ -24,8 +24,17 @@ typedef struct {
 // One sample of a level's table, in the texel's tangent frame: light direction, its weight NoL, and
 // the source LOD whose texel solid angle matches the sample's (Listing 19). Everything here depends
 // on the level only, so the host computes it once per level. IBL_LD_SAMPLE_FLOATS floats in the table,
-// in this order.
+// in this order, stored in blocks of IBL_LD_BLOCK samples component by component (the block's x, then its
+// y, z, weight and lod: ldTableIndex) and padded to whole blocks with weight-0 samples, which add exact
+// zeros: the OpenCL kernel reads a block's components as vectors (ld.cl), the CPU one sample at a time.
 #define IBL_LD_SAMPLE_FLOATS 5
+#define IBL_LD_BLOCK 8u
+
+// Where component `component` (0..4 as above) of sample i is in a table.
+IBL_FN uint ldTableIndex(uint i, uint component) {
+    return IBL_LD_SAMPLE_FLOATS * IBL_LD_BLOCK * (i / IBL_LD_BLOCK) + IBL_LD_BLOCK * component +
+           i % IBL_LD_BLOCK;
+}
 typedef struct {
     float x, y, z;
     float weight; // NoL
@@ -51,20 +60,22 @@ IBL_FN LdSample ldSampleEntry(uint i, uint n, float alpha, float omegaP, float l
     return s;
 }
 
-// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table (x, y, z, weight,
-// lod per sample), with `invWeightSum` = 1 / sum of the weights.
+// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table of sampleCount
+// samples (a whole number of blocks), with `invWeightSum` = 1 / sum of the weights.
 IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
                         IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
     Frame f = frameFromNormal(n);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint i = 0; i < sampleCount; ++i) {
         IBL_UNIFORM_LOOP_HEAD();
-        const IBL_GLOBAL float* e = table + IBL_LD_SAMPLE_FLOATS * i;
-        vec3 l = frameToWorld(f, v3(e[0], e[1], e[2]));
-        vec3 c = cubeSampleLevel(pyramid, layout, (uint)e[4], cubeCoordFromDirection(l));
-        r += c.x * e[3];
-        g += c.y * e[3];
-        b += c.z * e[3];
+        vec3 l = frameToWorld(
+            f, v3(table[ldTableIndex(i, 0u)], table[ldTableIndex(i, 1u)], table[ldTableIndex(i, 2u)]));
+        float weight = table[ldTableIndex(i, 3u)];
+        vec3 c =
+            cubeSampleLevel(pyramid, layout, (uint)table[ldTableIndex(i, 4u)], cubeCoordFromDirection(l));
+        r += c.x * weight;
+        g += c.y * weight;
+        b += c.z * weight;
     }
     return v3(r * invWeightSum, g * invWeightSum, b * invWeightSum);
 }
