@@ -67,7 +67,6 @@ IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayo
     Frame f = frameFromNormal(n);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint i = 0; i < sampleCount; ++i) {
-        IBL_UNIFORM_LOOP_HEAD();
         vec3 l = frameToWorld(
             f, v3(table[ldTableIndex(i, 0u)], table[ldTableIndex(i, 1u)], table[ldTableIndex(i, 2u)]));
         float weight = table[ldTableIndex(i, 3u)];
@@ -171,6 +170,27 @@ IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, fl
     return narrowLobeCornersWeight(frame, faceSquareCorners(face, u0, v0, size), alpha);
 }
 
+// sum over the S x S patches of the bright texel [bu, bu + S step] x [bv, bv + S step] of sourceFace of their
+// solid angle times narrowLobeCornersWeight of `texel` around their centre (brightFootprintWeight). OpenCL
+// puts the patches in vector lanes.
+#ifdef __OPENCL_VERSION__
+#include "narrow_lobe_lanes.h"
+#else
+IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
+                                          float step, int S, float alpha) {
+    float weight = 0.0f;
+    for (int j = 0; j < S; ++j)
+        for (int k = 0; k < S; ++k) {
+            float pu = bu + (float)k * step, pv = bv + (float)j * step;
+            vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
+                                                   0.5f * (pv + 0.5f * step + 1.0f)));
+            weight +=
+                cubePatchSolidAngle(pu, pv, step) * narrowLobeCornersWeight(frameFromNormal(l), texel, alpha);
+        }
+    return weight;
+}
+#endif
+
 // Whether a source texel (face-plane size texelSize) at `angle` radians from a lobe of GGX alpha takes
 // narrowLobeTexelWeight: the lobe under a quarter texel wide and the texel within three texels of it, and
 // within half a radian, so that on coarse faces every corner stays in front of the lobe's tangent plane
@@ -231,7 +251,6 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
     vec3 d = v3(e[0], e[1], e[2]);
     float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(tCentre, d)));
-    float weight = 0.0f;
     if (narrowLobeClosedFormApplies(alpha, outSize, angle)) {
         // Only a bright texel touching t (or a texel away) has t's edges across it.
         int S = angle < outSize + sourceTexelSize
@@ -240,21 +259,13 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
         int sourceFace = (int)e[7];
         float step = sourceTexelSize / (float)S;
         float bu = -1.0f + e[8] * sourceTexelSize, bv = -1.0f + e[9] * sourceTexelSize;
-        FaceSquareCorners texel = faceSquareCorners(face, u0, v0, outSize);
-        for (int j = 0; j < S; ++j)
-            for (int k = 0; k < S; ++k) {
-                float pu = bu + (float)k * step, pv = bv + (float)j * step;
-                vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
-                                                       0.5f * (pv + 0.5f * step + 1.0f)));
-                weight += cubePatchSolidAngle(pu, pv, step) *
-                          narrowLobeCornersWeight(frameFromNormal(l), texel, alpha);
-            }
-        return weight;
+        return narrowFootprintPatchesWeight(faceSquareCorners(face, u0, v0, outSize), sourceFace, bu, bv,
+                                            step, S, alpha);
     }
     if (angle >= 3.0f * outSize)
         return omegaT * brightTexelWeight(tCentre, frameFromNormal(tCentre), e, alpha, sourceTexelSize);
     int S = (int)clamp(ceil(2.0f * outSize / alpha), 2.0f, 8.0f);
-    float step = outSize / (float)S;
+    float step = outSize / (float)S, weight = 0.0f;
     for (int j = 0; j < S; ++j)
         for (int k = 0; k < S; ++k) {
             float pu = u0 + (float)k * step, pv = v0 + (float)j * step;

@@ -1,25 +1,18 @@
 // OpenCL only: ld.h's integrateLd with a table block's IBL_LD_BLOCK samples in the lanes of float8
-// vectors. PoCL did not vectorize the scalar loop across work-items (its pre-work-item-loop
-// optimization packs the bilinear x/y arithmetic into <2 x float>, which the loop vectorizer refuses),
-// so the loop ran scalar at ~80 cycles a sample; with the samples in lanes the frame is per work-item and
-// every per-sample step but the texel reads is a vector operation, on any device. Same arithmetic as
+// vectors (lanes.h). The scalar loop ran unvectorized on PoCL at ~80 cycles a sample; with the samples in
+// lanes the frame is per work-item and every per-sample step but the texel reads is a vector operation,
+// on any device. Same arithmetic as
 // frameToWorld, cubeCoordFromDirection, cubeBilinearTaps and cubeSampleLevel, lane by lane; the lanes'
 // sums are added at the end, so the result differs from the CPU's by summation order only.
 #ifndef IBL_LD_LANES_H
 #define IBL_LD_LANES_H
 
+#include "lanes.h"
 #include "ld.h"
 
-// Eight reads of a buffer at the lanes' indices.
-static inline float8 readLanes(__global const float* buffer, uint8 index) {
-    return (float8)(buffer[index.s0], buffer[index.s1], buffer[index.s2], buffer[index.s3], buffer[index.s4],
-                    buffer[index.s5], buffer[index.s6], buffer[index.s7]);
-}
-
-static inline float sumLanes(float8 v) {
-    float4 pairs = v.lo + v.hi;
-    return (pairs.x + pairs.y) + (pairs.z + pairs.w);
-}
+#if IBL_LD_BLOCK != IBL_LANES
+#error "a table block is read as one float8 per component"
+#endif
 
 // cubeSampleLevel(pyramid, layout, level, cubeCoordFromDirection((dx, dy, dz))) in each lane, into r, g, b.
 static inline void cubeSampleLanes(__global const float* pyramid, CubePyramidLayout layout, uint8 level,
