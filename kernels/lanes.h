@@ -5,7 +5,7 @@
 #ifndef IBL_LANES_H
 #define IBL_LANES_H
 
-#include "portable.h"
+#include "cube.h"
 
 #define IBL_LANES 8u
 
@@ -19,6 +19,45 @@ static inline float8 readLanes(__global const float* buffer, uint8 index) {
 static inline float sumLanes(float8 v) {
     float4 pairs = v.lo + v.hi;
     return (pairs.x + pairs.y) + (pairs.z + pairs.w);
+}
+
+// cubeFaceDirection(face, s, t) of one face in every lane.
+static inline void cubeFaceDirectionLanes(int face, float8 s, float8 t, float8* x, float8* y, float8* z) {
+    float8 sc = 2.0f * s - 1.0f, tc = 2.0f * t - 1.0f, one = 1.0f;
+    switch (face) {
+    case 0:
+        *x = one, *y = -tc, *z = -sc;
+        break;
+    case 1:
+        *x = -one, *y = -tc, *z = sc;
+        break;
+    case 2:
+        *x = sc, *y = one, *z = tc;
+        break;
+    case 3:
+        *x = sc, *y = -one, *z = -tc;
+        break;
+    case 4:
+        *x = sc, *y = -tc, *z = one;
+        break;
+    default:
+        *x = -sc, *y = -tc, *z = -one;
+        break;
+    }
+}
+
+// cubePatchSolidAngle in every lane.
+static inline float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float8 step) {
+    float8 u = u0 + 0.5f * step, v = v0 + 0.5f * step;
+    float8 r2 = 1.0f + u * u + v * v;
+    float8 midpoint = step * step / (r2 * sqrt(r2));
+    int8 exact = isgreaterequal(step, 0.03125f);
+    if (!any(exact)) return midpoint;
+    float8 u1 = u0 + step, v1 = v0 + step;
+    float8 area =
+        fabs(atan2(u0 * v0, sqrt(u0 * u0 + v0 * v0 + 1.0f)) - atan2(u0 * v1, sqrt(u0 * u0 + v1 * v1 + 1.0f)) -
+             atan2(u1 * v0, sqrt(u1 * u1 + v0 * v0 + 1.0f)) + atan2(u1 * v1, sqrt(u1 * u1 + v1 * v1 + 1.0f)));
+    return select(midpoint, area, exact);
 }
 
 #endif

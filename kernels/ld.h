@@ -225,6 +225,31 @@ IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, f
     return weight;
 }
 
+// Patch (j, k) of an S x S grid of step `step` over the output texel at (u0, v0) of `face`: its solid angle
+// times the lobe around its centre over bright entry e (brightTexelWeight).
+IBL_FN float footprintPatchWeight(int face, float u0, float v0, float step, int j, int k,
+                                  IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
+    float pu = u0 + (float)k * step, pv = v0 + (float)j * step;
+    vec3 n = v3normalize(
+        cubeFaceDirection(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f)));
+    return cubePatchSolidAngle(pu, pv, step) *
+           brightTexelWeight(n, frameFromNormal(n), e, alpha, sourceTexelSize);
+}
+
+// The sum of footprintPatchWeight over the S x S grid. OpenCL puts the patches in vector lanes.
+#ifdef __OPENCL_VERSION__
+#include "footprint_lanes.h"
+#else
+IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
+                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
+    float weight = 0.0f;
+    for (int j = 0; j < S; ++j)
+        for (int k = 0; k < S; ++k)
+            weight += footprintPatchWeight(face, u0, v0, step, j, k, e, alpha, sourceTexelSize);
+    return weight;
+}
+#endif
+
 // Footprint-averaged bright texels. Where the lobe is narrower than an output texel, LD at the texel centre
 // sees a sub-texel sun or misses it: a level's energy then depends on where the sun falls (at a cube edge /
 // corner, 0.50 / 1.36 of the source's at 64 px) and a rotating map pulses. Such a texel t stores LD averaged
@@ -265,16 +290,7 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
     if (angle >= 3.0f * outSize)
         return omegaT * brightTexelWeight(tCentre, frameFromNormal(tCentre), e, alpha, sourceTexelSize);
     int S = (int)clamp(ceil(2.0f * outSize / alpha), 2.0f, 8.0f);
-    float step = outSize / (float)S, weight = 0.0f;
-    for (int j = 0; j < S; ++j)
-        for (int k = 0; k < S; ++k) {
-            float pu = u0 + (float)k * step, pv = v0 + (float)j * step;
-            vec3 n = v3normalize(
-                cubeFaceDirection(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f)));
-            weight += cubePatchSolidAngle(pu, pv, step) *
-                      brightTexelWeight(n, frameFromNormal(n), e, alpha, sourceTexelSize);
-        }
-    return weight;
+    return footprintPatchesWeight(face, u0, v0, outSize / (float)S, S, e, alpha, sourceTexelSize);
 }
 
 // Bright texels are grouped into clusters (IBL_BRIGHT_CLUSTER_FLOATS each: centroid direction (3),

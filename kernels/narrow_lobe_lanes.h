@@ -37,19 +37,6 @@ static inline float8 lobeTriangleIntegralLanes(float8 ax, float8 ay, float8 bx, 
     return select(select(-value, value, isgreaterequal(cr, 0.0f)), (float8)0.0f, islessequal(d, 0.0f));
 }
 
-// The patches [pu, pu + step] x [pv, pv + step] of one face: their solid angles and centre directions.
-static inline float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float step) {
-    if (step >= 0.03125f) {
-        float8 u1 = u0 + step, v1 = v0 + step;
-        return fabs(
-            atan2(u0 * v0, sqrt(u0 * u0 + v0 * v0 + 1.0f)) - atan2(u0 * v1, sqrt(u0 * u0 + v1 * v1 + 1.0f)) -
-            atan2(u1 * v0, sqrt(u1 * u1 + v0 * v0 + 1.0f)) + atan2(u1 * v1, sqrt(u1 * u1 + v1 * v1 + 1.0f)));
-    }
-    float8 u = u0 + 0.5f * step, v = v0 + 0.5f * step;
-    float8 r2 = 1.0f + u * u + v * v;
-    return step * step / (r2 * sqrt(r2));
-}
-
 // sum over the S x S patches of the bright texel [bu, bu + S step] x [bv, bv + S step] of sourceFace of
 // their solid angle times narrowLobeCornersWeight of `texel` around their centre.
 static inline float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
@@ -59,31 +46,9 @@ static inline float narrowFootprintPatchesWeight(FaceSquareCorners texel, int so
     for (int first = 0; first < count; first += (int)IBL_LANES) {
         int8 patch = first + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
         float8 pu = bu + convert_float8(patch % S) * step, pv = bv + convert_float8(patch / S) * step;
-        // cubeFaceDirection(sourceFace, 0.5 (pu + 0.5 step + 1), ...): sc and tc are the centre's face-plane
-        // coordinates.
-        float8 sc = 2.0f * (0.5f * (pu + 0.5f * step + 1.0f)) - 1.0f;
-        float8 tc = 2.0f * (0.5f * (pv + 0.5f * step + 1.0f)) - 1.0f;
-        float8 one = 1.0f, dx, dy, dz;
-        switch (sourceFace) {
-        case 0:
-            dx = one, dy = -tc, dz = -sc;
-            break;
-        case 1:
-            dx = -one, dy = -tc, dz = sc;
-            break;
-        case 2:
-            dx = sc, dy = one, dz = tc;
-            break;
-        case 3:
-            dx = sc, dy = -one, dz = -tc;
-            break;
-        case 4:
-            dx = sc, dy = -tc, dz = one;
-            break;
-        default:
-            dx = -sc, dy = -tc, dz = -one;
-            break;
-        }
+        float8 dx, dy, dz;
+        cubeFaceDirectionLanes(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f),
+                               &dx, &dy, &dz);
         float8 inv = 1.0f / sqrt(dx * dx + dy * dy + dz * dz);
         float8 nx = dx * inv, ny = dy * inv, nz = dz * inv;
         // frameFromNormal(n): tangent (tx, ty, tz), bitangent (bx, by, bz).
@@ -104,7 +69,7 @@ static inline float narrowFootprintPatchesWeight(FaceSquareCorners texel, int so
         float8 triangles = 0.0f;
         for (int k = 0; k < 4; ++k)
             triangles += lobeTriangleIntegralLanes(qx[k], qy[k], qx[(k + 1) & 3], qy[(k + 1) & 3], alpha);
-        float8 weight = cubePatchSolidAngleLanes(pu, pv, step) * (4.0f * fabs(triangles));
+        float8 weight = cubePatchSolidAngleLanes(pu, pv, (float8)step) * (4.0f * fabs(triangles));
         sum += select((float8)0.0f, weight, patch < count);
     }
     return sumLanes(sum);
