@@ -1,9 +1,10 @@
 // Specular LD: one work-item per output texel of one level; the work-items and the math live in ld.h.
-#include "ld.h"
+// ldLevel runs ld_lanes.h's vector form of ldLevelItem (the CPU backend's item), a table block per step.
+#include "ld_lanes.h"
 
 __kernel void ldLevel(__global float* out, LdParams params, __global const float* pyramid,
                       __global const float* table) {
-    ldLevelItem(cubeWorkItem(params.faceSize), out, params, pyramid, table);
+    ldLevelLanesItem(cubeWorkItem(params.faceSize), out, params, pyramid, table);
 }
 
 __kernel void ldBright(__global float* out, LdParams params, __global const float* clusters,

@@ -24,8 +24,17 @@ typedef struct {
 // One sample of a level's table, in the texel's tangent frame: light direction, its weight NoL, and
 // the source LOD whose texel solid angle matches the sample's (Listing 19). Everything here depends
 // on the level only, so the host computes it once per level. IBL_LD_SAMPLE_FLOATS floats in the table,
-// in this order.
+// in this order, stored in blocks of IBL_LD_BLOCK samples component by component (the block's x, then its
+// y, z, weight and lod: ldTableIndex) and padded to whole blocks with weight-0 samples, which add exact
+// zeros: the OpenCL kernel reads a block's components as vectors (ld.cl), the CPU one sample at a time.
 #define IBL_LD_SAMPLE_FLOATS 5
+#define IBL_LD_BLOCK 8u
+
+// Where component `component` (0..4 as above) of sample i is in a table.
+IBL_FN uint ldTableIndex(uint i, uint component) {
+    return IBL_LD_SAMPLE_FLOATS * IBL_LD_BLOCK * (i / IBL_LD_BLOCK) + IBL_LD_BLOCK * component +
+           i % IBL_LD_BLOCK;
+}
 typedef struct {
     float x, y, z;
     float weight; // NoL
@@ -51,20 +60,21 @@ IBL_FN LdSample ldSampleEntry(uint i, uint n, float alpha, float omegaP, float l
     return s;
 }
 
-// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table (x, y, z, weight,
-// lod per sample), with `invWeightSum` = 1 / sum of the weights.
+// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table of sampleCount
+// samples (a whole number of blocks), with `invWeightSum` = 1 / sum of the weights.
 IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
                         IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
     Frame f = frameFromNormal(n);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint i = 0; i < sampleCount; ++i) {
-        IBL_UNIFORM_LOOP_HEAD();
-        const IBL_GLOBAL float* e = table + IBL_LD_SAMPLE_FLOATS * i;
-        vec3 l = frameToWorld(f, v3(e[0], e[1], e[2]));
-        vec3 c = cubeSampleLevel(pyramid, layout, (uint)e[4], cubeCoordFromDirection(l));
-        r += c.x * e[3];
-        g += c.y * e[3];
-        b += c.z * e[3];
+        vec3 l = frameToWorld(
+            f, v3(table[ldTableIndex(i, 0u)], table[ldTableIndex(i, 1u)], table[ldTableIndex(i, 2u)]));
+        float weight = table[ldTableIndex(i, 3u)];
+        vec3 c =
+            cubeSampleLevel(pyramid, layout, (uint)table[ldTableIndex(i, 4u)], cubeCoordFromDirection(l));
+        r += c.x * weight;
+        g += c.y * weight;
+        b += c.z * weight;
     }
     return v3(r * invWeightSum, g * invWeightSum, b * invWeightSum);
 }
@@ -89,6 +99,22 @@ IBL_FN float lobeWeightOfPatch(vec3 n, int face, float u0, float v0, float step,
     return NoL > 0.0f ? D_GGX(v3dot(n, h), alpha) * NoL * omega : 0.0f;
 }
 
+// atan to about 1.3 ulp (Cephes' atanf: the argument reduced to |t| <= tan(pi / 8) about 0, pi / 4 or
+// pi / 2, then an odd degree-9 polynomial). lobeTriangleIntegral's two atans per edge were half of the
+// bright pass on PoCL, whose atan is SLEEF's 1-ulp double-float one (~6x glibc's atanf per call).
+IBL_FN float atanPolynomial(float x) {
+    float a = fabs(x);
+    bool big = a > 2.414213562373095f, mid = !big && a > 0.4142135623730950f;
+    float offset = big ? 0.5f * IBL_PI : mid ? 0.25f * IBL_PI : 0.0f;
+    float t = big ? -1.0f / a : mid ? (a - 1.0f) / (a + 1.0f) : a;
+    float z = t * t;
+    float p =
+        (((8.05374449538e-2f * z - 1.38776856032e-1f) * z + 1.99777106478e-1f) * z - 3.33329491539e-1f) * z *
+            t +
+        t;
+    return copysign(offset + p, x);
+}
+
 // Integral of f(q) = alpha^2 / (pi (alpha^2 + |q|^2)^2) over the triangle (0, a, b) of the plane,
 // signed by the triangle's orientation. In polar form along the edge's line at distance d:
 // (1 / 2 pi) (d / sqrt(alpha^2 + d^2)) [atan(d T / sqrt(alpha^2 + d^2))] between the edge's ends, T the
@@ -102,8 +128,37 @@ IBL_FN float lobeTriangleIntegral(float2 a, float2 b, float alpha) {
     float ex = e.x / len, ey = e.y / len;
     float k = sqrt(alpha * alpha + d * d);
     float ta = (a.x * ex + a.y * ey) / d, tb = (b.x * ex + b.y * ey) / d;
-    float value = (d / k) * (atan(d * tb / k) - atan(d * ta / k)) * (0.5f * IBL_INV_PI);
+    float value = (d / k) * (atanPolynomial(d * tb / k) - atanPolynomial(d * ta / k)) * (0.5f * IBL_INV_PI);
     return cr >= 0.0f ? value : -value;
+}
+
+// The corners of the face square [u0, u0 + size] x [v0, v0 + size] (face-plane coordinates) of `face`, as
+// unnormalized directions, counter-clockwise from (u0, v0).
+typedef struct {
+    vec3 corner[4];
+} FaceSquareCorners;
+
+IBL_FN FaceSquareCorners faceSquareCorners(int face, float u0, float v0, float size) {
+    FaceSquareCorners c;
+    for (int k = 0; k < 4; ++k) {
+        float u = u0 + ((k == 1 || k == 2) ? size : 0.0f), v = v0 + (k >= 2 ? size : 0.0f);
+        c.corner[k] = cubeFaceDirection(face, 0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
+    }
+    return c;
+}
+
+// narrowLobeTexelWeight of a texel given by its corners (brightFootprintWeight integrates one output texel
+// around many lobe centres: its corners once, not per centre).
+IBL_FN float narrowLobeCornersWeight(Frame frame, FaceSquareCorners texel, float alpha) {
+    float2 q[4];
+    for (int k = 0; k < 4; ++k) {
+        vec3 inFrame = frameToLocal(frame, texel.corner[k]);
+        q[k] = make_float2(0.5f * inFrame.x / inFrame.z, 0.5f * inFrame.y / inFrame.z);
+    }
+    float sum = 0.0f;
+    for (int k = 0; k < 4; ++k)
+        sum += lobeTriangleIntegral(q[k], q[(k + 1) & 3], alpha);
+    return 4.0f * fabs(sum);
 }
 
 // integral_texel D(h) NoL dl for a lobe much narrower than one radian around n, texel [u0, u0 + size] x
@@ -112,18 +167,29 @@ IBL_FN float lobeTriangleIntegral(float2 a, float2 b, float alpha) {
 // 4 alpha^2 / (pi (alpha^2 + |q|^2)^2) d^2q (the total is 4 = W(0)); the texel's projection is a
 // quadrilateral, integrated exactly as four signed triangles from the lobe centre.
 IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, float size, float alpha) {
-    float2 q[4];
-    for (int k = 0; k < 4; ++k) {
-        float u = u0 + ((k == 1 || k == 2) ? size : 0.0f), v = v0 + (k >= 2 ? size : 0.0f);
-        vec3 l = cubeFaceDirection(face, 0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
-        vec3 inFrame = frameToLocal(frame, l);
-        q[k] = make_float2(0.5f * inFrame.x / inFrame.z, 0.5f * inFrame.y / inFrame.z);
-    }
-    float sum = 0.0f;
-    for (int k = 0; k < 4; ++k)
-        sum += lobeTriangleIntegral(q[k], q[(k + 1) & 3], alpha);
-    return 4.0f * fabs(sum);
+    return narrowLobeCornersWeight(frame, faceSquareCorners(face, u0, v0, size), alpha);
 }
+
+// sum over the S x S patches of the bright texel [bu, bu + S step] x [bv, bv + S step] of sourceFace of their
+// solid angle times narrowLobeCornersWeight of `texel` around their centre (brightFootprintWeight). OpenCL
+// puts the patches in vector lanes.
+#ifdef __OPENCL_VERSION__
+#include "narrow_lobe_lanes.h"
+#else
+IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
+                                          float step, int S, float alpha) {
+    float weight = 0.0f;
+    for (int j = 0; j < S; ++j)
+        for (int k = 0; k < S; ++k) {
+            float pu = bu + (float)k * step, pv = bv + (float)j * step;
+            vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
+                                                   0.5f * (pv + 0.5f * step + 1.0f)));
+            weight +=
+                cubePatchSolidAngle(pu, pv, step) * narrowLobeCornersWeight(frameFromNormal(l), texel, alpha);
+        }
+    return weight;
+}
+#endif
 
 // Whether a source texel (face-plane size texelSize) at `angle` radians from a lobe of GGX alpha takes
 // narrowLobeTexelWeight: the lobe under a quarter texel wide and the texel within three texels of it, and
@@ -159,6 +225,31 @@ IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, f
     return weight;
 }
 
+// Patch (j, k) of an S x S grid of step `step` over the output texel at (u0, v0) of `face`: its solid angle
+// times the lobe around its centre over bright entry e (brightTexelWeight).
+IBL_FN float footprintPatchWeight(int face, float u0, float v0, float step, int j, int k,
+                                  IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
+    float pu = u0 + (float)k * step, pv = v0 + (float)j * step;
+    vec3 n = v3normalize(
+        cubeFaceDirection(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f)));
+    return cubePatchSolidAngle(pu, pv, step) *
+           brightTexelWeight(n, frameFromNormal(n), e, alpha, sourceTexelSize);
+}
+
+// The sum of footprintPatchWeight over the S x S grid. OpenCL puts the patches in vector lanes.
+#ifdef __OPENCL_VERSION__
+#include "footprint_lanes.h"
+#else
+IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
+                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
+    float weight = 0.0f;
+    for (int j = 0; j < S; ++j)
+        for (int k = 0; k < S; ++k)
+            weight += footprintPatchWeight(face, u0, v0, step, j, k, e, alpha, sourceTexelSize);
+    return weight;
+}
+#endif
+
 // Footprint-averaged bright texels. Where the lobe is narrower than an output texel, LD at the texel centre
 // sees a sub-texel sun or misses it: a level's energy then depends on where the sun falls (at a cube edge /
 // corner, 0.50 / 1.36 of the source's at 64 px) and a rotating map pulses. Such a texel t stores LD averaged
@@ -185,7 +276,6 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
     vec3 d = v3(e[0], e[1], e[2]);
     float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(tCentre, d)));
-    float weight = 0.0f;
     if (narrowLobeClosedFormApplies(alpha, outSize, angle)) {
         // Only a bright texel touching t (or a texel away) has t's edges across it.
         int S = angle < outSize + sourceTexelSize
@@ -194,39 +284,40 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
         int sourceFace = (int)e[7];
         float step = sourceTexelSize / (float)S;
         float bu = -1.0f + e[8] * sourceTexelSize, bv = -1.0f + e[9] * sourceTexelSize;
-        for (int j = 0; j < S; ++j)
-            for (int k = 0; k < S; ++k) {
-                float pu = bu + (float)k * step, pv = bv + (float)j * step;
-                vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
-                                                       0.5f * (pv + 0.5f * step + 1.0f)));
-                weight += cubePatchSolidAngle(pu, pv, step) *
-                          narrowLobeTexelWeight(frameFromNormal(l), face, u0, v0, outSize, alpha);
-            }
-        return weight;
+        return narrowFootprintPatchesWeight(faceSquareCorners(face, u0, v0, outSize), sourceFace, bu, bv,
+                                            step, S, alpha);
     }
     if (angle >= 3.0f * outSize)
         return omegaT * brightTexelWeight(tCentre, frameFromNormal(tCentre), e, alpha, sourceTexelSize);
     int S = (int)clamp(ceil(2.0f * outSize / alpha), 2.0f, 8.0f);
-    float step = outSize / (float)S;
-    for (int j = 0; j < S; ++j)
-        for (int k = 0; k < S; ++k) {
-            float pu = u0 + (float)k * step, pv = v0 + (float)j * step;
-            vec3 n = v3normalize(
-                cubeFaceDirection(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f)));
-            weight += cubePatchSolidAngle(pu, pv, step) *
-                      brightTexelWeight(n, frameFromNormal(n), e, alpha, sourceTexelSize);
-        }
-    return weight;
+    return footprintPatchesWeight(face, u0, v0, outSize / (float)S, S, e, alpha, sourceTexelSize);
 }
 
 // Bright texels are grouped into clusters (IBL_BRIGHT_CLUSTER_FLOATS each: centroid direction (3),
 // angular radius, bound on sum of excess * solid angle (max over channels), first entry, entry count,
-// unused). A cluster whose largest possible contribution, D at its nearest point times its energy,
-// stays under `skipBelow` is skipped: the caller sets skipBelow to 1e-3 of the texel's sampled value
-// divided by the cluster count, so all skipped clusters together change a texel by under 0.1%. The bright
-// part of output texel (face, x, y) of an n-texel level: at its centre, or over its footprint where
-// ldFootprintApplies.
+// cosine of half the angular radius). A cluster whose largest possible contribution, D at its nearest point
+// times its energy, stays under `skipBelow` is skipped: the caller sets skipBelow to 1e-3 of the texel's
+// sampled value divided by the cluster count, so all skipped clusters together change a texel by under 0.1%.
+// The bright part of output texel (face, x, y) of an n-texel level: at its centre, or over its footprint
+// where ldFootprintApplies.
 #define IBL_BRIGHT_CLUSTER_FLOATS 8
+
+// cos(max(angle - radius - reach, 0) / 2) for a direction at cosine cosAngle from a cluster's centroid: the
+// half-angle of the nearest point of the cluster widened by reach (1 within it), from the half angles'
+// cosines and sines by the angle-difference identity. Square roots only: acos and cos per cluster and
+// texel were a large part of the bright pass on PoCL, whose acos/cos are SLEEF's.
+IBL_FN float cosHalfNearestAngle(float cosAngle, float cosHalfRadius, float cosHalfReach,
+                                 float sinHalfReach) {
+    float sinHalfRadius = sqrt(fmax(0.0f, 1.0f - cosHalfRadius * cosHalfRadius));
+    float cosHalfBound =
+        cosHalfRadius * cosHalfReach - sinHalfRadius * sinHalfReach; // of (radius + reach) / 2
+    float sinHalfBound = sinHalfRadius * cosHalfReach + cosHalfRadius * sinHalfReach;
+    float cosHalf = sqrt(fmax(0.0f, 0.5f * (1.0f + cosAngle)));
+    float sinHalf = sqrt(fmax(0.0f, 0.5f * (1.0f - cosAngle)));
+    // Half angles lie in [0, pi / 2], where cos falls: within the widened cluster iff cosHalf >=
+    // cosHalfBound.
+    return cosHalf >= cosHalfBound ? 1.0f : cosHalf * cosHalfBound + sinHalf * sinHalfBound;
+}
 
 IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const float* clusters,
                            uint clusterCount, IBL_GLOBAL const float* bright, float alpha,
@@ -236,16 +327,21 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
     Frame frame = frameFromNormal(centre);
     int footprint = ldFootprintApplies(alpha, n);
     float outSize = 2.0f / (float)n, u0 = -1.0f + (float)x * outSize, v0 = -1.0f + (float)y * outSize;
-    float omegaT = cubePatchSolidAngle(u0, v0, outSize);
+    // Omega_t when a cluster first survives the skip test (most texels have none; on faces of 64 texels or
+    // fewer it is four atan2).
+    float omegaT = -1.0f;
     // A footprint reaches half a diagonal (~0.71 outSize radians or less) from its centre.
     float reach = footprint ? 0.71f * outSize : 0.0f;
+    float cosHalfReach = cos(0.5f * reach), sinHalfReach = sin(0.5f * reach);
     float r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint c = 0; c < clusterCount; ++c) {
         const IBL_GLOBAL float* cl = clusters + IBL_BRIGHT_CLUSTER_FLOATS * c;
-        float angle = acos(clamp(centre.x * cl[0] + centre.y * cl[1] + centre.z * cl[2], -1.0f, 1.0f));
-        float nearest = fmax(angle - cl[3] - reach, 0.0f); // nearest angle to any member
-        float bound = D_GGX(cos(0.5f * nearest), alpha) * cl[4] * invLobeIntegral; // D falls with theta_h
+        float cosAngle = centre.x * cl[0] + centre.y * cl[1] + centre.z * cl[2];
+        // D at the nearest member (D falls with theta_h, half the angle to it) times the cluster's energy.
+        float bound = D_GGX(cosHalfNearestAngle(cosAngle, cl[7], cosHalfReach, sinHalfReach), alpha) * cl[4] *
+                      invLobeIntegral;
         if (bound < skipBelow) continue;
+        if (footprint && omegaT < 0.0f) omegaT = cubePatchSolidAngle(u0, v0, outSize);
         uint first = (uint)cl[5], count = (uint)cl[6];
         for (uint i = first; i < first + count; ++i) {
             const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;

@@ -4,6 +4,7 @@
 #include <ld.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace ibl {
 
@@ -63,9 +64,10 @@ void buildClusters(BrightTexels& bright, int faceSize) {
             float c = std::clamp(glm::dot(centroid, glm::vec3(e[0], e[1], e[2])), -1.0f, 1.0f);
             radius = std::max(radius, std::acos(c));
         }
+        const float clusterRadius = radius + texelAngle;
         bright.clusters.insert(bright.clusters.end(),
-                               {centroid.x, centroid.y, centroid.z, radius + texelAngle, energy, float(first),
-                                float(end - first), 0.0f});
+                               {centroid.x, centroid.y, centroid.z, clusterRadius, energy, float(first),
+                                float(end - first), std::cos(0.5f * clusterRadius)});
         first = end;
     }
 }

@@ -20,20 +20,31 @@ static_assert(sizeof(LdParams) == sizeof(CubePyramidLayout) + 24 &&
               "LdParams must match ld.h");
 
 struct LevelTable {
-    std::vector<float> samples; // IBL_LD_SAMPLE_FLOATS each, all above the horizon
+    std::vector<float> samples; // the samples above the horizon in ld.h's blocks (ldTableIndex)
     float invWeightSum = 0.0f;
     std::uint32_t count() const { return std::uint32_t(samples.size() / IBL_LD_SAMPLE_FLOATS); }
 };
 
 LevelTable levelTable(std::uint32_t n, float alpha, int sourceFaceSize, float lodBias, float maxLod) {
     const float omegaP = 4.0f * IBL_PI / (6.0f * float(sourceFaceSize) * float(sourceFaceSize));
-    LevelTable t;
+    std::vector<LdSample> above;
     double weightSum = 0.0;
     for (std::uint32_t i = 0; i < n; ++i) {
         LdSample s = ldSampleEntry(i, n, alpha, omegaP, lodBias, maxLod);
         if (s.weight <= 0.0f) continue; // below the horizon: contributes nothing (Listing 19's NdotL > 0)
-        t.samples.insert(t.samples.end(), {s.x, s.y, s.z, s.weight, s.lod}); // IBL_LD_SAMPLE_FLOATS
+        above.push_back(s);
         weightSum += s.weight;
+    }
+    // Padding: straight along the normal with weight 0 (a finite read that adds 0).
+    while (above.size() % IBL_LD_BLOCK != 0)
+        above.push_back(LdSample{0.0f, 0.0f, 1.0f, 0.0f, 0.0f});
+    LevelTable t;
+    t.samples.resize(above.size() * IBL_LD_SAMPLE_FLOATS);
+    for (std::uint32_t i = 0; i < above.size(); ++i) {
+        const LdSample& s = above[i];
+        const float components[IBL_LD_SAMPLE_FLOATS] = {s.x, s.y, s.z, s.weight, s.lod};
+        for (std::uint32_t c = 0; c < IBL_LD_SAMPLE_FLOATS; ++c)
+            t.samples[ldTableIndex(i, c)] = components[c];
     }
     t.invWeightSum = weightSum > 0.0 ? float(1.0 / weightSum) : 0.0f;
     return t;

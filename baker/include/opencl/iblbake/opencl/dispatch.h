@@ -7,9 +7,11 @@
 //
 // Kernel contract: the entry point's arguments are (output, parameter struct, inputs...), it gets its
 // WorkItem from the global id and calls the item function with them, nothing else:
-//   __kernel void ldLevel(__global float* out, LdParams p, __global const float* pyramid, ...) {
-//       ldLevelItem(cubeWorkItem(p.faceSize), out, p, pyramid, ...);
+//   __kernel void ldBright(__global float* out, LdParams p, __global const float* clusters, ...) {
+//       ldBrightItem(cubeWorkItem(p.faceSize), out, p, clusters, ...);
 //   }
+// The one exception is an item whose loop OpenCL runs in float8 lanes (kernels/lanes.h): the entry point
+// calls the lane form, the same arithmetic lane by lane (ld.cl's ldLevel runs ldLevelLanesItem).
 // An item writes only the 4 output floats it owns (WorkItem::offset), and reads its own output only as
 // left by an earlier dispatch: reading it in the sample loop of the same kernel stops PoCL from
 // vectorizing (kernels/portable.h), so accumulation goes through a second output and an add kernel.

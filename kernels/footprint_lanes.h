@@ -1,0 +1,85 @@
+// OpenCL only, included by ld.h: footprintPatchesWeight (ld.h's scalar loop for the CPU) with IBL_LANES
+// patches of the output texel in the lanes of float8 vectors (lanes.h): brightTexelWeight around each
+// patch centre, its point value or its sub-grid of lobeWeightOfPatch (each lane's own size; the lanes run
+// the largest and mask the rest). This was most of the bright pass of a 32 px level (49 patches per bright
+// texel within three texels, up to 4 x 4 sub-patches each). When a lane could take brightTexelWeight's
+// closed form (lobes under a quarter source texel: tiny faces only) the scalar loop runs instead.
+#ifndef IBL_FOOTPRINT_LANES_H
+#define IBL_FOOTPRINT_LANES_H
+
+#include "lanes.h"
+
+// D_GGX in every lane.
+static inline float8 dGgxLanes(float8 NoH, float alpha) {
+    float a2 = alpha * alpha;
+    float8 f = (NoH * a2 - NoH) * NoH + 1.0f;
+    return a2 / (IBL_PI * f * f);
+}
+
+// lobeWeightOfPatch(n, face, u0, v0, step, alpha) in every lane.
+static inline float8 lobeWeightOfPatchLanes(float8 nx, float8 ny, float8 nz, int face, float8 u0, float8 v0,
+                                            float8 step, float alpha) {
+    float8 omega = cubePatchSolidAngleLanes(u0, v0, step);
+    float8 lx, ly, lz;
+    cubeFaceDirectionLanes(face, 0.5f * (u0 + 0.5f * step + 1.0f), 0.5f * (v0 + 0.5f * step + 1.0f), &lx, &ly,
+                           &lz);
+    float8 inv = 1.0f / sqrt(lx * lx + ly * ly + lz * lz);
+    lx *= inv, ly *= inv, lz *= inv;
+    float8 NoL = nx * lx + ny * ly + nz * lz;
+    float8 hx = nx + lx, hy = ny + ly, hz = nz + lz;
+    float8 invH = 1.0f / sqrt(hx * hx + hy * hy + hz * hz);
+    float8 NoH = nx * (hx * invH) + ny * (hy * invH) + nz * (hz * invH);
+    return select((float8)0.0f, dGgxLanes(NoH, alpha) * NoL * omega, isgreater(NoL, 0.0f));
+}
+
+static inline float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
+                                           __global const float* e, float alpha, float sourceTexelSize) {
+    if (4.0f * alpha < sourceTexelSize) { // narrowLobeClosedFormApplies may hold for some patch
+        float weight = 0.0f;
+        for (int j = 0; j < S; ++j)
+            for (int k = 0; k < S; ++k)
+                weight += footprintPatchWeight(face, u0, v0, step, j, k, e, alpha, sourceTexelSize);
+        return weight;
+    }
+    int brightFace = (int)e[7];
+    float bu0 = -1.0f + e[8] * sourceTexelSize, bv0 = -1.0f + e[9] * sourceTexelSize;
+    float8 sum = 0.0f;
+    int count = S * S;
+    for (int first = 0; first < count; first += (int)IBL_LANES) {
+        int8 patch = first + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+        float8 pu = u0 + convert_float8(patch % S) * step, pv = v0 + convert_float8(patch / S) * step;
+        float8 nx, ny, nz;
+        cubeFaceDirectionLanes(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f), &nx,
+                               &ny, &nz);
+        float8 inv = 1.0f / sqrt(nx * nx + ny * ny + nz * nz);
+        nx *= inv, ny *= inv, nz *= inv;
+        // brightTexelWeight(n, ..., e): the point value where one sub-patch suffices or e is behind n.
+        float8 cosAngle = nx * e[0] + ny * e[1] + nz * e[2];
+        float8 angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle));
+        float8 subdivisions = ceil(10.0f * sourceTexelSize / fmax(angle, alpha));
+        int8 point = islessequal(subdivisions, 1.0f) | isless(cosAngle, 0.0f);
+        float8 hx = nx + e[0], hy = ny + e[1], hz = nz + e[2];
+        float8 invH = 1.0f / sqrt(hx * hx + hy * hy + hz * hz);
+        float8 NoH = nx * (hx * invH) + ny * (hy * invH) + nz * (hz * invH);
+        float8 pointWeight =
+            select((float8)0.0f, dGgxLanes(NoH, alpha) * cosAngle * e[3], isgreater(cosAngle, 0.0f));
+        // Else the lane's own S x S sub-grid of the bright texel.
+        int8 sub = select(convert_int8(fmin(subdivisions, 32.0f)), (int8)0, point);
+        int4 pairs = max(sub.lo, sub.hi);
+        int subMax = max(max(pairs.s0, pairs.s1), max(pairs.s2, pairs.s3));
+        float8 subStep = sourceTexelSize / convert_float8(max(sub, 1));
+        float8 subWeight = 0.0f;
+        for (int j = 0; j < subMax; ++j)
+            for (int k = 0; k < subMax; ++k) {
+                float8 w = lobeWeightOfPatchLanes(nx, ny, nz, brightFace, bu0 + (float)k * subStep,
+                                                  bv0 + (float)j * subStep, subStep, alpha);
+                subWeight += select((float8)0.0f, w, (int8)j < sub & (int8)k < sub);
+            }
+        float8 weight =
+            cubePatchSolidAngleLanes(pu, pv, (float8)step) * select(subWeight, pointWeight, point);
+        sum += select((float8)0.0f, weight, patch < count);
+    }
+    return sumLanes(sum);
+}
+
+#endif
