@@ -19,6 +19,7 @@
 #include <functional>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -295,9 +296,10 @@ TEST(IngestResample, OnePixelSunKeepsItsEnergy) {
     RecordProperty("worst_relative_energy_error", std::to_string(worstError));
 }
 
-// The resampling computes one texel's geometry for its mirror image and quarter turns (when the grid has
-// them) and applies it to all: every texel must match the one computed on its own, within rounding. A wrong
-// orbit (face, texel, column shift or mirrored rows) is off by the content's contrast, ~1.
+// The resampling computes one texel's geometry for its mirror image, quarter turns and reflections (when the
+// grid has them) and applies it to all: every texel must match the one computed on its own, within
+// rounding. A wrong orbit (face, texel, column shift or reflection, mirrored rows) is off by the content's
+// contrast, ~1.
 TEST(IngestResample, SymmetricGeometryMatchesTexelByTexel) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> uni(0.0f, 1.0f);
@@ -308,12 +310,14 @@ TEST(IngestResample, SymmetricGeometryMatchesTexelByTexel) {
         bool alpha;
     };
     const Case cases[] = {
-        {256, 128, 32, LatLongPixels::Centre, 0.0, false},  // mirror and quarter turns
+        {256, 128, 32, LatLongPixels::Centre, 0.0, false},  // mirror, quarter turns and reflections
+        {128, 64, 24, LatLongPixels::Centre, 0.0, true},    // the same with alpha, a face size not 2^k
         {256, 128, 20, LatLongPixels::Centre, 0.7, true},   // rotated, with alpha
         {255, 128, 32, LatLongPixels::Centre, 0.0, false},  // width not a multiple of 4: mirror only
         {257, 129, 16, LatLongPixels::OpenExr, 0.0, false}, // OpenEXR placement: mirror only
         {256, 128, 15, LatLongPixels::Centre, 0.0, false},  // odd face: every texel on its own
     };
+    double worstOfAll = 0.0;
     for (const Case& c : cases) {
         ImageRGBA ll = latLongOf(c.w, c.h, [&](int, int) { return glm::vec3(uni(rng), uni(rng), uni(rng)); });
         for (glm::vec4& p : ll.pixels)
@@ -334,7 +338,11 @@ TEST(IngestResample, SymmetricGeometryMatchesTexelByTexel) {
                 }
         EXPECT_LE(worst, 1e-6) << c.w << "x" << c.h << " into " << c.n << ", "
                                << ibl::latLongPixelsName(c.placement) << ", rotation " << c.rotate;
+        worstOfAll = std::max(worstOfAll, worst);
     }
+    std::ostringstream worstText;
+    worstText << worstOfAll;
+    RecordProperty("worst_relative_difference", worstText.str());
 }
 
 // A quarter turn maps the texel grid onto itself, so the rotated cube is the unrotated one permuted.

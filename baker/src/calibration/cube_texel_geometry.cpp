@@ -23,8 +23,7 @@ struct FaceSquare {
     double a0, a1, b0, b1;
 };
 
-FaceSquare faceSquare(int i, int j, int n) {
-    const double step = 2.0 / n;
+FaceSquare faceSquare(int i, int j, double step) {
     return {-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step, -1.0 + (j + 1) * step};
 }
 
@@ -78,14 +77,15 @@ const ingest::FaceFrame kLocalFrame{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0,
 
 } // namespace
 
-CubeTexelGeometry::CubeTexelGeometry(int faceSize) : n_(faceSize), half_((faceSize + 1) / 2) {
+CubeTexelGeometry::CubeTexelGeometry(int faceSize)
+    : n_(faceSize), half_((faceSize + 1) / 2), step_(2.0 / faceSize) {
     for (int face = 0; face < 6; ++face)
         frames_[std::size_t(face)] = ingest::faceFrame(face);
     quadrant_.resize(std::size_t(half_) * std::size_t(half_));
     tbb::parallel_for(tbb::blocked_range<int>(0, half_), [&](const tbb::blocked_range<int>& rows) {
         for (int j = rows.begin(); j != rows.end(); ++j)
             for (int i = 0; i < half_; ++i) {
-                const FaceSquare s = faceSquare(i, j, n_);
+                const FaceSquare s = faceSquare(i, j, step_);
                 Entry& e = quadrant_[std::size_t(j) * std::size_t(half_) + std::size_t(i)];
                 e.solidAngle = areaElement(s.a0, s.b0) - areaElement(s.a0, s.b1) - areaElement(s.a1, s.b0) +
                                areaElement(s.a1, s.b1);
@@ -112,7 +112,7 @@ glm::dvec3 CubeTexelGeometry::vectorSolidAngle(int face, int i, int j) const {
 
 double CubeTexelGeometry::upwardCosine(int face, int i, int j) const {
     const ingest::FaceFrame& f = frames_[std::size_t(face)];
-    const FaceSquare s = faceSquare(i, j, n_);
+    const FaceSquare s = faceSquare(i, j, step_);
     // y(a, b) = o.y + a u.y + b v.y on the face plane, at its extremes over the square.
     const double centreY = f.o.y + 0.5 * (s.a0 + s.a1) * f.u.y + 0.5 * (s.b0 + s.b1) * f.v.y;
     const double reachY = 0.5 * (s.a1 - s.a0) * std::fabs(f.u.y) + 0.5 * (s.b1 - s.b0) * std::fabs(f.v.y);

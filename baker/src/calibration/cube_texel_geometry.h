@@ -46,6 +46,7 @@ class CubeTexelGeometry {
         glm::dvec3 local; // direction integral in (o, u, v) components
     };
     int n_, half_; // half_: the quadrant's side, ceil(n / 2)
+    double step_;  // a texel's side on the face plane, 2 / n
     std::vector<Entry> quadrant_;
     std::array<ingest::FaceFrame, 6> frames_;
     const Entry& entry(int i, int j) const {

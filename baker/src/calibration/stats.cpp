@@ -9,6 +9,7 @@
 
 #include "cube_texel_geometry.h"
 #include "iblbake/core/error.h"
+#include "texel_loop.h"
 
 #include <cube.h>
 
@@ -273,21 +274,21 @@ Sums sumTexels(const SphereTexels& texels, const glm::dvec3& weights, LuminanceS
     return tbb::parallel_deterministic_reduce(
         Range(0, texels.size(), 4096), Sums{},
         [&](const Range& range, Sums a) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const double y = glm::dot(weights, glm::dvec3(texels.rgb(i)));
-                const double omega = texels.solidAngle(i);
+            forEachTexel(texels, range.begin(), range.end(), [&](std::size_t i, const auto& texel) {
+                const double y = glm::dot(weights, glm::dvec3(texel.rgb()));
+                const double omega = texel.solidAngle();
                 a.omega += omega;
                 a.energy += y * omega;
-                a.upward += y * texels.upwardCosine(i);
+                a.upward += y * texel.upwardCosine();
                 a.minY = std::min(a.minY, y);
                 a.maxY = std::max(a.maxY, y);
-                if (!samples) continue;
+                if (!samples) return;
                 samples[i] = {y > 0.0 ? float(y) : -1.0f, float(omega)};
                 if (y > 0.0) {
                     a.logOmega += omega;
                     a.logSum += omega * std::log(y);
                 }
-            }
+            });
             return a;
         },
         [](Sums a, const Sums& b) {
@@ -380,11 +381,11 @@ double zenithLuminance(const SphereTexels& texels, double capDegrees, const glm:
     const double nearest = tbb::parallel_reduce(
         Range(first, last, 4096), -1.0,
         [&](const Range& range, double m) {
-            for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                const glm::dvec3 v = texels.vectorSolidAngle(i);
+            forEachTexel(texels, range.begin(), range.end(), [&](std::size_t i, const auto& texel) {
+                const glm::dvec3 v = texel.vectorSolidAngle();
                 cosines[i - first] = v.y / glm::length(v);
                 m = std::max(m, cosines[i - first]);
-            }
+            });
             return m;
         },
         [](double a, double b) { return std::max(a, b); });

@@ -2,6 +2,8 @@
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
 
+#include "texel_loop.h"
+
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -253,10 +255,10 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
     std::vector<std::uint8_t> upper(n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
-                          for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                              lum[i] = float(glm::dot(wt, glm::dvec3(texels.rgb(i))));
-                              upper[i] = texels.vectorSolidAngle(i).y > 0.0;
-                          }
+                          forEachTexel(texels, r.begin(), r.end(), [&](std::size_t i, const auto& texel) {
+                              lum[i] = float(glm::dot(wt, glm::dvec3(texel.rgb())));
+                              upper[i] = texel.vectorSolidAngle().y > 0.0;
+                          });
                       });
     const std::size_t peak = std::size_t(std::max_element(lum.begin(), lum.end()) - lum.begin());
     det.peakLuminance = lum[peak];
@@ -270,8 +272,9 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
     {
         std::vector<std::pair<float, double>> samples;
         samples.reserve(n / 2 + 1);
-        for (std::size_t i = 0; i < n; ++i)
-            if (upper[i]) samples.emplace_back(lum[i], texels.solidAngle(i));
+        forEachTexel(texels, 0, n, [&](std::size_t i, const auto& texel) {
+            if (upper[i]) samples.emplace_back(lum[i], texel.solidAngle());
+        });
         det.skyLuminance = weightedMedian(samples);
     }
 

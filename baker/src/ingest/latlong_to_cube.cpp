@@ -18,11 +18,14 @@
 // The geometry (cuts, meridian clips, rows crossed) is the costly part, and most texels share it with
 // others: the cube and the lat-long grid are both unchanged by the mirror y -> -y (row edges are symmetric
 // about the equator in either placement) and, when the columns are (Centre placement, width a multiple of
-// 4), by a quarter turn about +Y, which shifts u by 1/4 (width/4 columns). A texel's mirror image integrates
-// the same rows mirrored (H-1-r), a quarter turn the columns shifted, with the same weights. So for an even
-// face size the geometry is computed for one texel of each such set (its orbit: 8 texels, or 2 without the
-// turns) and its weights applied to all of them: an eighth of the cube (a side face's upper half and a
-// quadrant of +Y) instead of all of it.
+// 4), by a quarter turn about +Y, which shifts u by 1/4 (width/4 columns), and then, without a rotation, by
+// the reflections in vertical planes that the turns generate from x -> -x, which reverse u (column c to
+// a fixed column minus c). A texel's mirror image integrates the same rows mirrored (H-1-r), a quarter turn
+// the columns shifted, a reflection the columns reversed, with the same weights. So for an even face size
+// the geometry is computed for one texel of each such set (its orbit: 16 texels, 8 without the reflections,
+// 2 without the turns) and its weights applied to all of them: a sixteenth of the cube (a quadrant of a
+// side face's upper half and half a quadrant of +Y) instead of all of it. The arithmetic is symmetric too:
+// on the sample and the tests' images every texel has the bits it has when computed on its own.
 #include "ingest_internal.h"
 
 #include "iblbake/core/error.h"
@@ -37,7 +40,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <type_traits>
 
 namespace ibl {
 
@@ -168,19 +170,21 @@ class LatLongGrid {
         double topLength, bottomLength; // topLength is the whole arc's when top == bottom
     };
     RowSpan rowSpan(double zLo, double zHi) const {
-        const int top = row(zHi), bottom = row(zLo);
+        // An arc crosses a row or two (a texel is about as tall as a row at the resolution the ingest
+        // picks): zLo's row is found from zHi's, without the second arccosine of row().
+        const int top = row(zHi), bottom = rowBelow(zLo, top);
         if (top == bottom) return {top, bottom, zHi - zLo, 0.0};
         return {top, bottom, zHi - zEdge(top + 1), zEdge(bottom) - zLo};
     }
 
-    // Integral of column c over the rows of `span` (rows H-1-r when `mirrored`), per channel: RGB (Value =
-    // dvec3) or RGBA (dvec4).
-    template <class Value>
-    Value integrate(int c, const RowSpan& span, bool mirrored) const {
+    // Integral of column c over the rows of `span` (rows H-1-r when `mirrored`), per channel. RGBA even
+    // when alpha is not resampled: four doubles are two SIMD registers, where three are done one by one,
+    // and the RGB sums are the same.
+    glm::dvec4 integrate(int c, const RowSpan& span, bool mirrored) const {
         const int flip = mirrored ? image_.height - 1 : 0, sign = mirrored ? -1 : 1;
-        auto at = [&](int r) { return value<Value>(c, flip + sign * r); };
+        auto at = [&](int r) { return glm::dvec4(image_.at(c, flip + sign * r)); };
         if (span.top == span.bottom) return at(span.top) * span.topLength;
-        Value sum = at(span.top) * span.topLength;
+        glm::dvec4 sum = at(span.top) * span.topLength;
         for (int r = span.top + 1; r < span.bottom; ++r)
             sum += at(r) * rowHeight_[std::size_t(r)];
         return sum + at(span.bottom) * span.bottomLength;
@@ -190,13 +194,6 @@ class LatLongGrid {
 
   private:
     double zEdge(int r) const { return zEdge_[std::size_t(r)]; }
-    template <class Value>
-    Value value(int c, int r) const {
-        if constexpr (std::is_same_v<Value, glm::dvec4>)
-            return glm::dvec4(image_.at(c, r));
-        else
-            return glm::dvec3(glm::vec3(image_.at(c, r)));
-    }
     // Row r spans z in [zEdge(r + 1), zEdge(r)]. The first guess only has to be near: the loops make it
     // exact.
     int row(double z) const {
@@ -210,22 +207,38 @@ class LatLongGrid {
         return r;
     }
 
+    // The row holding z, at or below row `top` (z <= zEdge(top)); on a row edge, the row above it.
+    int rowBelow(double z, int top) const {
+        const int h = image_.height;
+        int r = top;
+        while (r < h - 1 && z < zEdge(r + 1))
+            ++r;
+        return r;
+    }
+
     const ImageRGBA& image_;
     LatLongPixels placement_;
     std::vector<double> uEdge_, zEdge_;
     std::vector<double> rowHeight_; // zEdge(r) - zEdge(r + 1)
 };
 
-// A texel that shares the geometry of the one computed: it integrates column (c + columnShift) mod W for
-// the computed texel's column c, and row H-1-r for row r when mirrored.
+// A texel that shares the geometry of the one computed: it integrates column (c + columnOffset) mod W, or
+// (columnOffset - c) mod W when reflected, for the computed texel's column c, and row H-1-r for row r when
+// mirrored.
 struct TexelImage {
     int face, i, j;
-    int columnShift;
+    int columnOffset; // in [0, W)
+    bool reflected;
     bool mirrored;
+
+    int column(int c, int width) const {
+        if (reflected) return c <= columnOffset ? columnOffset - c : columnOffset - c + width;
+        return c + columnOffset < width ? c + columnOffset : c + columnOffset - width;
+    }
 };
 
-// Up to 4 quarter turns, each with its mirror image.
-constexpr int kMaxImages = 8;
+// Up to 4 quarter turns of a texel and of its reflection, each with its mirror image.
+constexpr int kMaxImages = 16;
 
 struct Orbit {
     std::array<TexelImage, kMaxImages> images;
@@ -236,15 +249,19 @@ struct Orbit {
 struct Symmetry {
     bool mirror = false;       // y -> -y: an even face size
     bool quarterTurns = false; // also a quarter turn about +Y: Centre placement, width a multiple of 4
+    bool reflections = false;  // also a reflection in a vertical plane: quarter turns and no rotation
 
-    Symmetry(int faceSize, int width, LatLongPixels placement, bool use)
+    Symmetry(int faceSize, int width, LatLongPixels placement, double rotateRadians, bool use)
         : mirror(use && faceSize % 2 == 0),
-          quarterTurns(mirror && placement == LatLongPixels::Centre && width % 4 == 0) {}
+          quarterTurns(mirror && placement == LatLongPixels::Centre && width % 4 == 0),
+          reflections(quarterTurns && rotateRadians == 0.0) {}
 
-    // Whether texel (face, i, j) is the one of its orbit whose geometry is computed: with quarter turns, +Z's
-    // upper half and +Y's quadrant i, j < n/2; with the mirror only, the side faces' upper halves and +Y.
+    // Whether texel (face, i, j) is the one of its orbit whose geometry is computed: with reflections, +Z's
+    // upper left quadrant and the half i <= j of +Y's quadrant i, j < n/2; with quarter turns, +Z's upper
+    // half and +Y's quadrant; with the mirror only, the side faces' upper halves and +Y.
     bool computes(int face, int i, int j, int n) const {
         const int half = n / 2;
+        if (reflections) return (face == 4 && i < half && j < half) || (face == 2 && i <= j && j < half);
         if (quarterTurns) return (face == 4 && j < half) || (face == 2 && i < half && j < half);
         if (mirror) return face == 2 || (face != 3 && j < half);
         return true;
@@ -253,28 +270,41 @@ struct Symmetry {
     // The texels that take texel (face, i, j)'s geometry, itself first. A quarter turn about +Y (+Z toward
     // +X) takes +Z's texel (i, j) to +X's, -Z's, -X's (i, j) in turn (kernels/cube.h face directions),
     // +Y's (i, j) to (j, n-1-i), and adds pi/2 to the longitude: u falls by 1/4, W/4 columns. The mirror
-    // takes a side face's (i, j) to (i, n-1-j) and +Y's (i, j) to -Y's (i, n-1-j).
+    // takes a side face's (i, j) to (i, n-1-j) and +Y's (i, j) to -Y's (i, n-1-j). Without rotation the
+    // seam u = 0 is at longitude pi, and u = 1/2 - phi / (2 pi): the reflection x -> -x takes +Z's (i, j) to
+    // (n-1-i, j) and phi to -phi, u to 1 - u, column c to W-1-c; the reflection x <-> z takes +Y's (i, j) to
+    // (j, i) and phi to pi/2 - phi, u to 3/4 - u, column c to 3W/4-1-c. A texel on +Y's diagonal is its own
+    // reflection.
     Orbit orbit(int face, int i, int j, int n, int width) const {
         Orbit o;
         const int turns = quarterTurns ? 4 : 1;
         constexpr int kSideTurns[4] = {4, 0, 5, 1};
-        TexelImage t{face, i, j, 0, false};
-        for (int k = 0; k < turns; ++k) {
-            o.images[std::size_t(o.count++)] = t;
-            if (mirror)
-                o.images[std::size_t(o.count++)] = {t.face == 2 ? 3 : t.face, t.i, n - 1 - t.j, t.columnShift,
-                                                    true};
-            t.face = t.face == 2 ? 2 : kSideTurns[(k + 1) % 4];
-            t.columnShift = (width - (k + 1) * (width / 4)) % width;
-            if (face == 2) t = {2, t.j, n - 1 - t.i, t.columnShift, false};
-        }
+        auto addTurns = [&](TexelImage t) {
+            const int firstOffset = t.columnOffset;
+            for (int k = 0; k < turns; ++k) {
+                o.images[std::size_t(o.count++)] = t;
+                if (mirror) {
+                    TexelImage m = t;
+                    m.face = t.face == 2 ? 3 : t.face;
+                    m.j = n - 1 - t.j;
+                    m.mirrored = true;
+                    o.images[std::size_t(o.count++)] = m;
+                }
+                t.face = t.face == 2 ? 2 : kSideTurns[(k + 1) % 4];
+                t.columnOffset = (firstOffset + width - (k + 1) * (width / 4)) % width;
+                if (face == 2) t = {2, t.j, n - 1 - t.i, t.columnOffset, t.reflected, false};
+            }
+        };
+        addTurns({face, i, j, 0, false, false});
+        if (reflections && !(face == 2 && i == j))
+            addTurns(face == 2 ? TexelImage{2, j, i, 3 * width / 4 - 1, true, false}
+                               : TexelImage{face, n - 1 - i, j, width - 1, true, false});
         return o;
     }
 };
 
-template <class Value>
 struct TexelIntegral {
-    std::array<Value, kMaxImages> energy{}; // per image of the orbit
+    std::array<glm::dvec4, kMaxImages> energy{}; // per image of the orbit
     double area = 0.0;
 };
 
@@ -349,11 +379,10 @@ void texelNodes(const LatLongGrid& grid, const FaceFrame& frame, const Square& s
     }
 }
 
-template <class Value>
-TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
-                                    const std::vector<MeridianNode>& nodes, const Orbit& orbit) {
-    TexelIntegral<Value> sum;
-    sum.energy.fill(Value(0.0));
+TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
+                             const std::vector<MeridianNode>& nodes, const Orbit& orbit) {
+    TexelIntegral sum;
+    sum.energy.fill(glm::dvec4(0.0));
     for (const MeridianNode& node : nodes) {
         double zLo, zHi;
         if (!clipMeridian(frame, sq, node.meridian, zLo, zHi)) continue;
@@ -362,9 +391,8 @@ TexelIntegral<Value> integrateTexel(const LatLongGrid& grid, const FaceFrame& fr
         const LatLongGrid::RowSpan span = grid.rowSpan(zLo, zHi);
         for (int m = 0; m < orbit.count; ++m) {
             const TexelImage& image = orbit.images[std::size_t(m)];
-            const int c = node.column + image.columnShift;
             sum.energy[std::size_t(m)] +=
-                w * grid.integrate<Value>(c < grid.width() ? c : c - grid.width(), span, image.mirrored);
+                w * grid.integrate(image.column(node.column, grid.width()), span, image.mirrored);
         }
     }
     return sum;
@@ -384,7 +412,7 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
     if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
     if (placement == LatLongPixels::Auto) throw Error("lat-long resampling: internal: unresolved placement");
     const LatLongGrid grid(latlong, placement);
-    const Symmetry symmetry(faceSize, latlong.width, placement, useSymmetry);
+    const Symmetry symmetry(faceSize, latlong.width, placement, rotateRadians, useSymmetry);
     CubeMap cube(faceSize);
     const double step = 2.0 / faceSize;
     const int corners = faceSize + 1; // per face and axis
@@ -440,18 +468,10 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
             const TexelImage& t = orbit.images[std::size_t(m)];
             return cube.faces[std::size_t(t.face)].at(t.i, t.j);
         };
-        if (withAlpha) {
-            const auto t = integrateTexel<glm::dvec4>(grid, frame, sq, nodes, orbit);
-            for (int m = 0; m < orbit.count; ++m) {
-                const glm::dvec4 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
-                texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), resampledAlpha(v.w));
-            }
-        } else {
-            const auto t = integrateTexel<glm::dvec3>(grid, frame, sq, nodes, orbit);
-            for (int m = 0; m < orbit.count; ++m) {
-                const glm::dvec3 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec3(0.0);
-                texel(m) = glm::vec4(glm::vec3(v), 1.0f);
-            }
+        const TexelIntegral t = integrateTexel(grid, frame, sq, nodes, orbit);
+        for (int m = 0; m < orbit.count; ++m) {
+            const glm::dvec4 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
+            texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), withAlpha ? resampledAlpha(v.w) : 1.0f);
         }
     };
     // Side faces (+-X, +-Z) column by column: their vertical texel edges are meridians, so every texel of a

@@ -64,6 +64,11 @@ class SphereTexels {
     // pole rows of a lat-long touch the pixel half a turn away), without i and without repeats.
     void neighbours(std::size_t i, std::vector<std::size_t>& out) const;
 
+    // A cube view's cube and texel table (null for a lat-long view), for loops over many texels that walk
+    // the faces (src/calibration/texel_loop.h) instead of dividing every index as the accessors above do.
+    const CubeMap* cubeMap() const { return cube_; }
+    const CubeTexelGeometry* cubeGeometry() const { return cubeGeometry_.get(); }
+
   private:
     struct CubeTexel {
         int face, i, j;
