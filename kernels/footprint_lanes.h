@@ -47,12 +47,8 @@ static inline float footprintPatchesWeight(int face, float u0, float v0, float s
     int count = S * S;
     for (int first = 0; first < count; first += (int)IBL_LANES) {
         int8 patch = first + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
-        float8 pu = u0 + convert_float8(patch % S) * step, pv = v0 + convert_float8(patch / S) * step;
-        float8 nx, ny, nz;
-        cubeFaceDirectionLanes(face, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f), &nx,
-                               &ny, &nz);
-        float8 inv = 1.0f / sqrt(nx * nx + ny * ny + nz * nz);
-        nx *= inv, ny *= inv, nz *= inv;
+        PatchLanes p = patchLanes(face, u0, v0, step, S, patch);
+        float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
         // brightTexelWeight(n, ..., e): the point value where one sub-patch suffices or e is behind n.
         float8 cosAngle = nx * e[0] + ny * e[1] + nz * e[2];
         float8 angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle));

@@ -45,12 +45,8 @@ static inline float narrowFootprintPatchesWeight(FaceSquareCorners texel, int so
     int count = S * S;
     for (int first = 0; first < count; first += (int)IBL_LANES) {
         int8 patch = first + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
-        float8 pu = bu + convert_float8(patch % S) * step, pv = bv + convert_float8(patch / S) * step;
-        float8 dx, dy, dz;
-        cubeFaceDirectionLanes(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f), 0.5f * (pv + 0.5f * step + 1.0f),
-                               &dx, &dy, &dz);
-        float8 inv = 1.0f / sqrt(dx * dx + dy * dy + dz * dz);
-        float8 nx = dx * inv, ny = dy * inv, nz = dz * inv;
+        PatchLanes p = patchLanes(sourceFace, bu, bv, step, S, patch);
+        float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
         // frameFromNormal(n): tangent (tx, ty, tz), bitangent (bx, by, bz).
         float8 s = copysign((float8)1.0f, nz);
         float8 a = -1.0f / (s + nz);
