@@ -4,6 +4,7 @@
 // readImage (read_image.cpp) picks the channels, checks the limits and assembles the image on top.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -12,6 +13,10 @@
 #include <vector>
 
 namespace ibl::ingest {
+
+// Pixels per TBB task where ingest converts or copies pixels in parallel (the Radiance decode's floats,
+// a strip's copy into the image): large enough that a task outweighs its scheduling.
+inline constexpr std::size_t kPixelsPerTask = 16 * 1024;
 
 struct ImageHeader {
     int width = 0, height = 0;         // level 0 of the first image (the data window, for OpenEXR)

@@ -78,9 +78,6 @@ const std::array<float, 256> kExponentScale = [] {
     return scale;
 }();
 
-// Pixels converted to floats per task.
-constexpr std::size_t kPixelsPerTask = 16 * 1024;
-
 class RadianceSource final : public ImageSource {
   public:
     RadianceSource(const std::filesystem::path& file, const std::string& name) : file_(file), name_(name) {

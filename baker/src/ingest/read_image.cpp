@@ -49,8 +49,6 @@ std::array<int, 3> pickChannels(const ImageHeader& header) {
 // time, 2.3 ms the second): a strip of the whole 1k sample (6 MB, plus the Radiance reader's 2 MB of RGBE)
 // cost ~2,000 of the ~7,900 faults of `iblbake diffuse`, more time than decoding it.
 constexpr std::uint64_t kStripPixels = std::uint64_t(1) << 16;
-// Pixels of a strip copied into the image per task.
-constexpr std::size_t kPixelsPerTask = 16 * 1024;
 using Range = tbb::blocked_range<std::size_t>;
 
 // The file's alpha channel: the format's own, else one named "A"; -1 if none or it is also a colour.
