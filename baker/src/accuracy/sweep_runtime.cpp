@@ -20,6 +20,13 @@ namespace ibl {
 
 namespace {
 
+// The index of the worst roughness column of a measured setting.
+std::size_t worstColumn(const MeasuredSetting& s) {
+    return std::size_t(std::max_element(s.partErrors.begin(), s.partErrors.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; }) -
+                       s.partErrors.begin());
+}
+
 std::string roughnessName(float r) {
     char name[32];
     std::snprintf(name, sizeof name, "r=%.1f", r);
@@ -54,11 +61,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
     // production probe with it extracted, which `--sun-max-solid-angle` bakes.
     CubeMap compactResidual = source;
     std::optional<DiskLight> compactLight;
-    if (!sun) {
-        SunDetectSettings compact;
-        compact.maxSolidAngle = kCompactLightMaxSolidAngle;
-        compactLight = takeSunOut(compactResidual, SunExtraction::IfDetected, compact);
-    }
+    if (!sun) compactLight = takeCompactLightOut(compactResidual);
     const SphereColumns c = sphereColumns(plan.runtimeRoughness, plan.runtimeGrid);
     const RuntimeOptions options;
     ConvergedReferenceSettings referenceSettings;
@@ -119,10 +122,8 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}};
         measure(s,
                 evaluateCpu(shippedProbe(source, source, {}, production, dfg, executor), c.points, options));
-        const auto worst = std::max_element(s.partErrors.begin(), s.partErrors.end(),
-                                            [](const auto& a, const auto& b) { return a.second < b.second; });
-        const std::size_t k = std::size_t(worst - s.partErrors.begin());
-        stage.warnings.push_back(sunInProbeWarning(worst->second, plan.runtimeRoughness[k],
+        const std::size_t k = worstColumn(s);
+        stage.warnings.push_back(sunInProbeWarning(s.partErrors[k].second, plan.runtimeRoughness[k],
                                                    stage.settings[1].partErrors[k].second));
         stage.settings.push_back(std::move(s));
     }
@@ -142,13 +143,11 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         measure(s, evaluateCpu(shippedProbe(compactResidual, source, sunDiskFrom(*compactLight), production,
                                             dfg, executor),
                                c.points, options));
-        const std::vector<std::pair<std::string, double>>& kept = stage.settings[1].partErrors;
-        const auto worst = std::max_element(kept.begin(), kept.end(),
-                                            [](const auto& a, const auto& b) { return a.second < b.second; });
-        const std::size_t k = std::size_t(worst - kept.begin());
-        stage.warnings.push_back(
-            compactLightInProbeWarning(compactLight->angularRadius * 180.0 / std::numbers::pi, worst->second,
-                                       plan.runtimeRoughness[k], s.partErrors[k].second));
+        const MeasuredSetting& kept = stage.settings[1]; // production, the light in the probe
+        const std::size_t k = worstColumn(kept);
+        stage.warnings.push_back(compactLightInProbeWarning(
+            compactLight->angularRadius * 180.0 / std::numbers::pi, kept.partErrors[k].second,
+            plan.runtimeRoughness[k], s.partErrors[k].second));
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);

@@ -29,13 +29,17 @@ std::string compactLightInProbeWarning(double angularRadiusDegrees, double keptE
     char text[400];
     std::snprintf(text, sizeof text,
                   "compact light (disk of %.1f degrees) left in the probe: runtime error %.1f%% at roughness "
-                  "%.1f on the "
-                  "sphere grid (%.1f%% with it extracted as a disk light); extract it: iblbake --extract-sun "
-                  "--sun-max-solid-angle %g, scene keys environment.extractSun and "
+                  "%.1f on the sphere grid (%.1f%% with it extracted as a disk light); extract it: iblbake "
+                  "--extract-sun --sun-max-solid-angle %g, scene keys environment.extractSun and "
                   "environment.sunMaxSolidAngle",
                   angularRadiusDegrees, 100.0 * keptError, perceptualRoughness, 100.0 * extractedError,
                   kCompactLightMaxSolidAngle);
     return text;
+}
+
+std::optional<DiskLight> takeCompactLightOut(CubeMap& cube, SunDetectSettings detection) {
+    detection.maxSolidAngle = kCompactLightMaxSolidAngle;
+    return takeSunOut(cube, SunExtraction::IfDetected, detection);
 }
 
 SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executor, int grid,
@@ -47,9 +51,7 @@ SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executo
     CubeMap residual = source;
     std::optional<DiskLight> light = takeSunOut(residual, SunExtraction::IfDetected, detection);
     if (!light && detection.maxSolidAngle < kCompactLightMaxSolidAngle) {
-        SunDetectSettings compact = detection;
-        compact.maxSolidAngle = kCompactLightMaxSolidAngle;
-        light = takeSunOut(residual, SunExtraction::IfDetected, compact);
+        light = takeCompactLightOut(residual, detection);
         out.compactLight = light.has_value();
     }
     if (!light) return out;

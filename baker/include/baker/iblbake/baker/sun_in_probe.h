@@ -9,6 +9,7 @@
 #include "iblbake/core/cubemap.h"
 #include "iblbake/opencl/executor.h"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ inline constexpr int kSunInProbeFaceSize = 64;
 // column): worst runtime column 12.9% with the softbox in the probe, 4.0% with it extracted by a limit of
 // 0.01 or 0.02 sr; the shared sun maps extract the same disk with either limit.
 inline constexpr double kCompactLightMaxSolidAngle = 0.02;
+
+// takeSunOut (environment.h, IfDetected) with `detection` up to kCompactLightMaxSolidAngle: the compact light
+// taken out of `cube` as the disk, or nothing (cube unchanged).
+std::optional<DiskLight> takeCompactLightOut(CubeMap& cube, SunDetectSettings detection = {});
 
 // The production probe's runtime error per roughness column (0, 0.1, ..., 1) on the sphere grid (grid x
 // grid pixels per camera, sphere_columns.h) against the converged reference, with the light left in and
