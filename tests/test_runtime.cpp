@@ -60,15 +60,68 @@ TEST(Listing25, ReproducedExactly) {
     std::printf("Listing 25: %ld inputs bit-identical\n", compared);
 }
 
-TEST(Listings, DominantDirectionsAndOcclusionAsPrinted) {
+// The mean direction of the lobe f(v, l) <n.l> (F = 1, height-correlated Smith), by importance sampling
+// D(h) <n.h> with Hammersley points: weight V(v, l) <v.h> <n.l> / <n.h> per sample.
+glm::dvec3 lobeMeanDirection(float NoV, float alpha) {
+    const glm::dvec3 v(std::sqrt(std::max(0.0, 1.0 - double(NoV) * NoV)), 0.0, NoV);
+    const uint32_t count = 1u << 16;
+    glm::dvec3 sum(0.0);
+    for (uint32_t i = 0; i < count; ++i) {
+        const float2 u = hammersley(i, count);
+        const float phi = 2.0f * IBL_PI * u.y;
+        const vec3 h = sampleGGXHalfVector(u.x, std::cos(phi), std::sin(phi), alpha);
+        const double VoH = v.x * h.x + v.z * h.z;
+        const glm::dvec3 l = 2.0 * VoH * glm::dvec3(h.x, h.y, h.z) - v;
+        if (l.z <= 0.0 || VoH <= 0.0) continue;
+        sum += double(V_SmithGGXCorrelated(NoV, float(l.z), alpha)) * VoH * l.z / h.z * l;
+    }
+    return glm::normalize(sum);
+}
+
+// specularLobeMeanLerp's fit against the mean it was fitted to, on a grid off the fit's own: the
+// angle between the two in units of the lobe's width (alpha radians, at least 0.02), and t's error. Bounds:
+// the fit's measured worst with margin (printed).
+TEST(DominantDirection, FollowsTheLobesMeanDirection) {
+    const glm::vec3 N(0, 0, 1);
+    double worstWidths = 0.0, sumWidths = 0.0;
+    int count = 0;
+    for (int i = 0; i < 12; ++i)
+        for (int j = 0; j < 12; ++j) {
+            const float NoV = (float(i) + 0.25f) / 12.0f, perceptualRoughness = (float(j) + 0.75f) / 12.0f;
+            const float alpha = perceptualRoughness * perceptualRoughness;
+            const glm::vec3 V(std::sqrt(1.0f - NoV * NoV), 0.0f, NoV), R = 2.0f * NoV * N - V;
+            const glm::dvec3 mean = lobeMeanDirection(NoV, alpha);
+            const glm::dvec3 fitted =
+                glm::normalize(glm::dvec3(glm::mix(N, R, specularLobeMeanLerp(NoV, perceptualRoughness))));
+            const double angle = std::acos(std::clamp(glm::dot(mean, fitted), -1.0, 1.0));
+            const double widths = angle / std::max(double(alpha), 0.02);
+            worstWidths = std::max(worstWidths, widths);
+            sumWidths += widths;
+            ++count;
+        }
+    std::printf("fitted vs mean direction: worst %.3f, mean %.4f lobe widths\n", worstWidths,
+                sumWidths / count);
+    EXPECT_LT(worstWidths, 0.5);
+    EXPECT_LT(sumWidths / count, 0.04);
+    // Listing 22 as printed: smoothness = 1 - alpha, lerp factor smoothness (sqrt(smoothness) + alpha).
+    const float alpha = 0.36f, smoothness = 1 - alpha;
+    EXPECT_FLOAT_EQ(specularDominantLerpListing22(alpha), smoothness * (std::sqrt(smoothness) + alpha));
+    // The direction read: halfway between the two lerp factors; a mirror reads R, a fully rough lobe N; unit
+    // length; a degenerate R falls back to N.
+    const glm::vec3 R = glm::normalize(glm::vec3(1, 0, 1));
+    const float t = 0.5f * (specularDominantLerpListing22(0.25f) + specularLobeMeanLerp(R.z, 0.5f));
+    EXPECT_LT(glm::length(glm::vec3(specularDominantDirection(N, R, R.z, 0.5f)) -
+                          glm::normalize(glm::mix(N, R, t))),
+              1e-6f);
+    EXPECT_LT(glm::length(glm::vec3(specularDominantDirection(N, R, R.z, 0.0f)) - R), 1e-6f);
+    EXPECT_LT(glm::length(glm::vec3(specularDominantDirection(N, R, R.z, 1.0f)) - N), 1e-6f);
+    EXPECT_NEAR(glm::length(glm::vec3(specularDominantDirection(N, R, R.z, 0.5f))), 1.0f, 1e-6f);
+    EXPECT_EQ(glm::vec3(specularDominantDirection(N, -N, 0.0f, 1.0f)), N);
+}
+
+TEST(Listings, DiffuseDominantDirectionAndOcclusionAsPrinted) {
     glm::vec3 N(0, 0, 1), R = glm::normalize(glm::vec3(1, 0, 1));
-    // Listing 22: smoothness = 1 - alpha, lerp factor smoothness (sqrt(smoothness) + alpha).
-    float alpha = 0.36f, s = 1 - alpha, f = s * (std::sqrt(s) + alpha);
-    glm::vec3 d = getSpecularDominantDir(N, R, alpha);
-    EXPECT_FLOAT_EQ(d.x, R.x * f);
-    EXPECT_FLOAT_EQ(d.z, 1 + f * (R.z - 1));
-    EXPECT_EQ(getSpecularDominantDir(N, R, 0.0f), R); // mirror: R
-    EXPECT_EQ(getSpecularDominantDir(N, R, 1.0f), N); // fully rough: N
+    float alpha = 0.36f;
     // Listing 23.
     glm::vec3 V = glm::normalize(glm::vec3(-0.5f, 0, 1));
     float NoV = glm::dot(N, V);

@@ -81,7 +81,7 @@ std::vector<glm::vec4> splitSumWithExactLd(const ProbeSet& set, const ReferenceL
         glm::vec3 N = glm::normalize(p.normal), V = glm::normalize(p.view);
         float r = std::clamp(p.perceptualRoughness, 0.0f, 1.0f);
         glm::vec3 R = 2.0f * glm::dot(N, V) * N - V;
-        glm::vec3 d = glm::normalize(glm::vec3(getSpecularDominantDir(N, R, r * r)));
+        glm::vec3 d = specularDominantDirection(N, R, glm::clamp(glm::dot(N, V), 0.0f, 1.0f), r);
         glm::dvec3 exact = exactLd(environment, d, r);
         glm::dvec3 looked = glm::dvec3(sampleLd(ld.data.data(), chain, vec3(d), r));
         glm::dvec3 specular = glm::dvec3(full[i].specular - ibl[i].specular) +
@@ -287,9 +287,9 @@ TEST(DistanceRoughness, ReducesErrorOnGlossyFloorNearWall) {
     for (std::size_t i = 0; i < roughness.size(); ++i)
         EXPECT_LT(stripes[i].with, stripes[i].without) << "r = " << roughness[i];
     // For information: on a checkerboard the reflection's height matters too, and there the listings' other
-    // approximations (the lookup direction pulled toward R by r, Appendix F; the dominant direction, Listing
-    // 22) move it by up to a checker near the wall; a sharper (distance-based) reflection then shows that
-    // shift instead of averaging it away, and the comparison goes either way.
+    // approximations (the lookup direction pulled toward R by r, Appendix F; the dominant direction,
+    // probe.h) move it by up to a checker near the wall; a sharper (distance-based) reflection then shows
+    // that shift instead of averaging it away, and the comparison goes either way.
     glossyFloorErrors(
         "checkerboard 0.25 m (not asserted)",
         [&](glm::vec3 x, bool xWall) {

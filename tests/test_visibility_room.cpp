@@ -260,9 +260,11 @@ TEST(VisibilityRoomEndToEnd, GlossyFloorFacingTheWindowAgainstTheReference) {
             EXPECT_LT(alpha, 0.999) << "the window lets the distant probe in";
             if (config.outsideMap == outside) {
                 // The capture froze the sun where the capture point saw it, which the proxy moves: the
-                // distant probe through the window puts it back where the floor sees it.
+                // distant probe through the window puts it back where the floor sees it. 0.47: measured
+                // 46.0% at r = 0.3 (44.9% while the lookup direction was Listing 22's, nearer R, which suits
+                // a sun left in; probe.h's specularDominantDirection says why it is halfway to the mean).
                 EXPECT_LT(e, eFrozen) << config.name << ", r = " << r;
-                EXPECT_LT(e, 0.45) << config.name << ", r = " << r;
+                EXPECT_LT(e, 0.47) << config.name << ", r = " << r;
             } else {
                 // Within the existing local-probe floor's measured 13-39%; and where the capture froze the
                 // very sky the distant probe holds (smooth, so the proxy's re-projection barely moves it),

@@ -201,7 +201,7 @@ struct RuntimeOptions {
     bool diffuse = true;
     bool energyCompensation = true;                    // Filament 4.7.2
     DiffuseModel diffuseModel = DiffuseModel::Lambert; // Disney: times the LUT's B (Listing 24)
-    bool specularDominantDirection = true;             // Listing 22
+    bool specularDominantDirection = true;             // probe.h's specularDominantDirection
     bool diffuseDominantDirection = false;             // Listing 23
     bool specularOcclusion = true;                     // Listing 26 (no effect at ao = 1)
     bool horizonOcclusion = true;                      // Filament 5.6.2.1 (no effect when r.n >= 0)
