@@ -24,7 +24,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
-#include <numbers>
 
 namespace ibl::cli {
 
@@ -119,7 +118,7 @@ Action addCalibrateCommand(CLI::App& app) {
             const DiskLight& l = *calibrated.sun;
             std::printf("sun     extracted: elevation %.2f deg, azimuth %.2f deg, angular radius %.3f deg, "
                         "E_perp %.6g %s, solid angle %.4g sr -> %s\n",
-                        l.elevationDegrees(), l.azimuthDegrees(), l.angularRadius * 180.0 / std::numbers::pi,
+                        l.elevationDegrees(), l.azimuthDegrees(), l.angularRadiusDegrees(),
                         l.illuminance, calibrated.record.absolute() ? "lux" : "(relative)", l.solidAngle,
                         o->calibration.sunJson.c_str());
         }

@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 
 namespace ibl {
 
@@ -137,7 +136,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         std::snprintf(label, sizeof label,
                       "production LD chain, compact light (disk of %.1f degrees) extracted "
                       "(--sun-max-solid-angle %g)",
-                      compactLight->angularRadius * 180.0 / std::numbers::pi, kCompactLightMaxSolidAngle);
+                      compactLight->angularRadiusDegrees(), kCompactLightMaxSolidAngle);
         s.label = label;
         s.knobs = {{"specularQuality", "production"}, {"sun", "compact light extracted"}};
         measure(s, evaluateCpu(shippedProbe(compactResidual, source, sunDiskFrom(*compactLight), production,
@@ -145,9 +144,9 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                                c.points, options));
         const MeasuredSetting& kept = stage.settings[1]; // production, the light in the probe
         const std::size_t k = worstColumn(kept);
-        stage.warnings.push_back(compactLightInProbeWarning(
-            compactLight->angularRadius * 180.0 / std::numbers::pi, kept.partErrors[k].second,
-            plan.runtimeRoughness[k], s.partErrors[k].second));
+        stage.warnings.push_back(
+            compactLightInProbeWarning(compactLight->angularRadiusDegrees(), kept.partErrors[k].second,
+                                       plan.runtimeRoughness[k], s.partErrors[k].second));
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);

@@ -204,6 +204,10 @@ double DiskLight::azimuthDegrees() const {
     return std::atan2(direction.x, direction.z) / kDegree;
 }
 
+double DiskLight::angularRadiusDegrees() const {
+    return angularRadius / kDegree;
+}
+
 double DiskLight::diskSolidAngle() const {
     return 2.0 * kPi * (1.0 - std::cos(angularRadius));
 }

@@ -52,7 +52,7 @@ std::string diskLightToJson(const DiskLight& light, bool calibrated, int indent)
     j["direction"] = {light.direction.x, light.direction.y, light.direction.z};
     j["elevationDegrees"] = light.elevationDegrees();
     j["azimuthDegrees"] = light.azimuthDegrees();
-    j["angularRadiusDegrees"] = light.angularRadius / kDegree;
+    j["angularRadiusDegrees"] = light.angularRadiusDegrees();
     j["color"] = {light.color.x, light.color.y, light.color.z};
     j["illuminanceLux"] = light.illuminance;
     j["solidAngleSr"] = light.solidAngle;

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <numbers>
 
 namespace ibl {
 
@@ -57,7 +56,7 @@ SunInProbe measureSunInProbe(const CubeMap& environment, const Executor& executo
     if (!light) return out;
     const std::optional<SunDisk> sun = sunDiskFrom(*light);
     out.detected = true;
-    out.angularRadiusDegrees = light->angularRadius * 180.0 / std::numbers::pi;
+    out.angularRadiusDegrees = light->angularRadiusDegrees();
     for (int k = 0; k <= 10; ++k)
         out.roughness.push_back(float(k) / 10.0f);
     const SphereColumns c = sphereColumns(out.roughness, grid);

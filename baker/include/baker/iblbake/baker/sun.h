@@ -59,6 +59,7 @@ struct DiskLight {
     // Longitude of the DESIGN.md lat-long mapping: atan2(x, z), 0 at +Z, +90 at +X; the lat-long pixel
     // column is u = 0.5 - azimuth / 360.
     double azimuthDegrees() const;
+    double angularRadiusDegrees() const;
     double diskSolidAngle() const; // 2 pi (1 - cos angularRadius)
 };
 
