@@ -118,8 +118,8 @@ Action addCalibrateCommand(CLI::App& app) {
             const DiskLight& l = *calibrated.sun;
             std::printf("sun     extracted: elevation %.2f deg, azimuth %.2f deg, angular radius %.3f deg, "
                         "E_perp %.6g %s, solid angle %.4g sr -> %s\n",
-                        l.elevationDegrees(), l.azimuthDegrees(), l.angularRadiusDegrees(),
-                        l.illuminance, calibrated.record.absolute() ? "lux" : "(relative)", l.solidAngle,
+                        l.elevationDegrees(), l.azimuthDegrees(), l.angularRadiusDegrees(), l.illuminance,
+                        calibrated.record.absolute() ? "lux" : "(relative)", l.solidAngle,
                         o->calibration.sunJson.c_str());
         }
         std::printf("wrote   %s: %dx%d float, %s\n", o->output.c_str(), image.width, image.height,

@@ -225,9 +225,8 @@ IBL_FN vec3 irradianceSH(ShIrradiance sh, vec3 n) {
 // its peak. Under smooth lighting the LD is best read at the lobe's mean (first moment); under a compact
 // light, nearer R, where the lobe's peak is. Listing 22 fits one lerp factor by roughness alone; this reads
 // halfway between it and the mean, measured on the seven shared HDRIs (256 px, sphere grid against the
-// converged reference, the split sum with the exact LD, worst column): Listing 22 5.12% (potsdamer_platz,
-// r = 0.7), the mean 4.80% (studio_small_03: a compact light), halfway 4.30%; venice_sunset 4.32 / 4.31 /
-// 4.03%.
+// converged reference, the split sum with the exact LD, worst column over the seven): Listing 22 5.12%
+// (potsdamer_platz, r = 0.7), the mean 4.80% (studio_small_03: a compact light), halfway 4.30%.
 // The mean's lerp factor t (normalize(mix(N, R, t)); F = 1, height-correlated Smith) is fitted on a 32 x 32
 // grid of (NoV, alpha) with weights 1 / alpha (an error in t matters in lobe widths):
 // t = (1 - alpha) (1 + r q(sqrt(NoV), r)), r the perceptual roughness, q bicubic; |t - t_mean| <= 0.017,
