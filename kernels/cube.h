@@ -59,6 +59,14 @@ IBL_FN float cubeAreaElement(float x, float y) {
     return atan2(x * y, sqrt(x * x + y * y + 1.0f));
 }
 
+#ifdef __cplusplus
+// cubeAreaElement in fp64, for the host's exact-area tables and references: in float, the four-term
+// difference that gives a sub-texel's solid angle loses most of it on large faces (eps / step^2).
+inline double cubeAreaElementF64(double x, double y) {
+    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
+}
+#endif
+
 // Exact solid angle of texel (i, j) of an N-texel face.
 IBL_FN float cubeTexelSolidAngle(int i, int j, int n) {
     float inv = 2.0f / IBL_FLOAT(n);

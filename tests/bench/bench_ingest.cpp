@@ -2,6 +2,7 @@
 // repair, colour, exact-area lat-long -> cube resampling) at n-texel faces, alone and with the measurements
 // made on the cube before a bake (statistics, sun detection, zenith luminance), and each step on its own.
 // Process CPU time is reported beside wall time: on a shared 2-core machine it is the steadier figure.
+#include "bench_sample.h"
 #include "cube_texel_geometry.h"
 #include "ingest_internal.h"
 
@@ -22,14 +23,6 @@ const ibl::ingest::RawImage& sampleImage() {
         return raw;
     }();
     return image;
-}
-
-const ibl::CubeMap& sampleCube(int faceSize) {
-    static ibl::CubeMap cube;
-    if (cube.faceSize != faceSize)
-        cube = ibl::ingest::resampleLatLongToCubeRotated(sampleImage().pixels, faceSize,
-                                                         ibl::LatLongPixels::Centre, 0.0);
-    return cube;
 }
 
 void ingestSample(benchmark::State& state) {
@@ -82,27 +75,27 @@ void cubeTexelGeometry(benchmark::State& state) {
 }
 
 void cubeStatistics(benchmark::State& state) {
-    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    const ibl::CubeMap& cube = ibl::bench::sampleCube(int(state.range(0)));
     for (auto _ : state)
         benchmark::DoNotOptimize(ibl::computeEnvironmentStats(cube, ibl::kRec709Luminance));
 }
 
 // The part of the statistics a calibration reads (computeCalibration).
 void cubeTotals(benchmark::State& state) {
-    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    const ibl::CubeMap& cube = ibl::bench::sampleCube(int(state.range(0)));
     for (auto _ : state)
         benchmark::DoNotOptimize(
             ibl::computeEnvironmentTotals(ibl::SphereTexels(cube), ibl::kRec709Luminance));
 }
 
 void cubeSunDetection(benchmark::State& state) {
-    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    const ibl::CubeMap& cube = ibl::bench::sampleCube(int(state.range(0)));
     for (auto _ : state)
         benchmark::DoNotOptimize(ibl::detectSun(cube, ibl::SunDetectSettings{}));
 }
 
 void cubeZenithLuminance(benchmark::State& state) {
-    const ibl::CubeMap& cube = sampleCube(int(state.range(0)));
+    const ibl::CubeMap& cube = ibl::bench::sampleCube(int(state.range(0)));
     for (auto _ : state)
         benchmark::DoNotOptimize(
             ibl::zenithLuminance(ibl::SphereTexels(cube), ibl::kZenithCapDegrees, ibl::kRec709Luminance));
@@ -124,21 +117,17 @@ void ingestAndMeasure(benchmark::State& state) {
     }
 }
 
-void timed(benchmark::internal::Benchmark* b) {
-    b->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
-}
-
-BENCHMARK(ingestSample)->Arg(64)->Arg(256)->Arg(1024)->Apply(timed);
-BENCHMARK(ingestAndMeasure)->Arg(256)->Apply(timed);
-BENCHMARK(ingestRead)->Apply(timed);
-BENCHMARK(ingestSanitize)->Apply(timed);
-BENCHMARK(ingestColour)->Apply(timed);
-BENCHMARK(ingestMaxLuminance)->Apply(timed);
-BENCHMARK(ingestResample)->Arg(256)->Apply(timed);
-BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(timed);
-BENCHMARK(cubeStatistics)->Arg(256)->Apply(timed);
-BENCHMARK(cubeTotals)->Arg(256)->Apply(timed);
-BENCHMARK(cubeSunDetection)->Arg(256)->Apply(timed);
-BENCHMARK(cubeZenithLuminance)->Arg(256)->Apply(timed);
+BENCHMARK(ingestSample)->Arg(64)->Arg(256)->Arg(1024)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestAndMeasure)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestRead)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestSanitize)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestColour)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestMaxLuminance)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestResample)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(cubeStatistics)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(cubeTotals)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(cubeSunDetection)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(cubeZenithLuminance)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
 
 } // namespace

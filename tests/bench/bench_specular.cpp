@@ -1,5 +1,6 @@
 // Specular LD chain bake time per backend and preset (Google Benchmark; never a pass/fail timer).
-#include <iblbake/baker/ingest.h>
+#include "bench_sample.h"
+
 #include <iblbake/baker/specular.h>
 
 #include <benchmark/benchmark.h>
@@ -8,16 +9,9 @@
 
 namespace {
 
-// The README's sample HDRI (rooitou_park_1k.hdr, a 65,000-nit sun) at n-texel faces.
-ibl::CubeMap sampleCube(int n) {
-    ibl::IngestSettings settings;
-    settings.sourceFaceSize = n;
-    return ibl::ingestEnvironment({IBLBAKE_SAMPLE_HDRI}, settings).cube;
-}
-
 void bakeChain(benchmark::State& state, ibl::Backend backend) {
     ibl::Executor executor = ibl::Executor::create(backend, "", std::cerr);
-    ibl::CubeMap source = sampleCube(int(state.range(0)));
+    const ibl::CubeMap& source = ibl::bench::sampleCube(int(state.range(0)));
     ibl::SpecularSettings settings;
     settings.samples = std::uint32_t(state.range(1));
     ibl::bakeSpecular(source, settings, executor); // program build outside the timed loop

@@ -13,6 +13,8 @@
 #include "iblbake/runtime/runtime_reference.h"
 #include "reference_math.h"
 
+#include <cube.h>
+
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -25,12 +27,6 @@ namespace ibl {
 namespace {
 
 using namespace reference;
-
-// Solid angle of the face region [0, x] x [0, y] (kernels/cube.h cubeAreaElement) in fp64: sub-texel
-// cells are too small for float differences.
-double areaElement(double x, double y) {
-    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
-}
 
 // The centre of texel (x, y) of an n-texel face, in fp64.
 glm::dvec3 footprintCentre(int face, int x, int y, int n) {
@@ -123,8 +119,9 @@ SplitEnvironment splitEnvironment(const CubeMap& environment, const ConvergedRef
     for (std::size_t index : reached) {
         const int f = int(index / (std::size_t(n) * n)), y = int(index / n % n), x = int(index % n);
         const double u0 = -1.0 + 2.0 * x / n, v0 = -1.0 + 2.0 * y / n, step = 2.0 / n;
-        const double omega = std::abs(areaElement(u0, v0) - areaElement(u0, v0 + step) -
-                                      areaElement(u0 + step, v0) + areaElement(u0 + step, v0 + step));
+        const double omega =
+            std::abs(cubeAreaElementF64(u0, v0) - cubeAreaElementF64(u0, v0 + step) -
+                     cubeAreaElementF64(u0 + step, v0) + cubeAreaElementF64(u0 + step, v0 + step));
         e.cells.push_back({f, x, y,
                            glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n))),
                            omega, std::sqrt(omega)});
@@ -220,8 +217,9 @@ Integral gridded(const PointMaterial& m, const SplitEnvironment& e, double steps
         for (int j = 0; j < S; ++j)
             for (int i = 0; i < S; ++i) {
                 const double u0 = -1.0 + (cell.x * S + i) * step, v0 = -1.0 + (cell.y * S + j) * step;
-                const double omega = std::abs(areaElement(u0, v0) - areaElement(u0, v0 + step) -
-                                              areaElement(u0 + step, v0) + areaElement(u0 + step, v0 + step));
+                const double omega =
+                    std::abs(cubeAreaElementF64(u0, v0) - cubeAreaElementF64(u0, v0 + step) -
+                             cubeAreaElementF64(u0 + step, v0) + cubeAreaElementF64(u0 + step, v0 + step));
                 const glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(
                     cell.face, float((u0 + 0.5 * step + 1.0) / 2.0), float((v0 + 0.5 * step + 1.0) / 2.0))));
                 addSample(out, m, e.brightRadiance(l), l, omega, specular, true);

@@ -1,6 +1,7 @@
 // Batch manifests (batch.h, README "Batch"): validated like scene files, every error one line naming the
 // manifest and the key path; unknown keys are errors.
 #include "iblbake/batch/batch.h"
+#include "iblbake/core/numeric.h"
 
 #include "iblbake/core/error.h"
 #include "iblbake/core/input_file.h"
@@ -57,10 +58,6 @@ bool validId(const std::string& id) {
         if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_' && ch != '-' && ch != '.')
             return false;
     return true;
-}
-
-bool isPowerOfTwo(int n) {
-    return n > 0 && (n & (n - 1)) == 0;
 }
 
 BatchItem parseItem(const json& v, std::size_t index, const std::string& name, const fs::path& base) {

@@ -15,10 +15,6 @@ namespace ibl {
 
 namespace {
 
-double areaElement(double x, double y) {
-    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
-}
-
 struct FaceSquare {
     double a0, a1, b0, b1;
 };
@@ -87,8 +83,8 @@ CubeTexelGeometry::CubeTexelGeometry(int faceSize)
             for (int i = 0; i < half_; ++i) {
                 const FaceSquare s = faceSquare(i, j, step_);
                 Entry& e = quadrant_[std::size_t(j) * std::size_t(half_) + std::size_t(i)];
-                e.solidAngle = areaElement(s.a0, s.b0) - areaElement(s.a0, s.b1) - areaElement(s.a1, s.b0) +
-                               areaElement(s.a1, s.b1);
+                e.solidAngle = cubeAreaElementF64(s.a0, s.b0) - cubeAreaElementF64(s.a0, s.b1) -
+                               cubeAreaElementF64(s.a1, s.b0) + cubeAreaElementF64(s.a1, s.b1);
                 e.local = polygonVectorSolidAngle(kLocalFrame, squarePolygon(s));
             }
     });

@@ -6,6 +6,7 @@
 // integral needed separates: solid angle dphi dz, upward cosine dphi (z1^2 - z0^2) / 2, direction
 // integral from the antiderivative of sqrt(1 - z^2).
 #include "iblbake/baker/environment_stats.h"
+#include "iblbake/core/numeric.h"
 
 #include "cube_texel_geometry.h"
 #include "iblbake/core/error.h"
@@ -29,8 +30,6 @@
 namespace ibl {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // ---- lat-long geometry (the placement's pixel grid, latlong_pixels.h) ----
 

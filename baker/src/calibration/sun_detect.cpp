@@ -1,6 +1,7 @@
 // Sun detection and measurement (the algorithm is described in iblbake/baker/sun.h).
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 
 #include "texel_loop.h"
 
@@ -22,9 +23,6 @@
 namespace ibl {
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDegree = kPi / 180.0;
 
 // Angle between unit vectors, accurate for small angles too.
 double angleBetween(const glm::dvec3& a, const glm::dvec3& b) {

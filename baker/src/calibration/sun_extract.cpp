@@ -1,6 +1,7 @@
 // Sun extraction (iblbake/baker/sun.h) and the disk light's JSON form.
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,11 +14,7 @@
 
 namespace ibl {
 
-namespace {
-
-constexpr double kDegree = std::numbers::pi / 180.0;
-
-} // namespace
+namespace {} // namespace
 
 DiskLight extractSun(SphereTexels& texels, const SunDetection& detection, const glm::dvec3& weights) {
     if (!detection.found)

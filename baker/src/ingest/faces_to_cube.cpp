@@ -46,11 +46,6 @@ SourceFace regionFace(const ImageRGBA& image, int x0, int y0, int size, bool tur
     return f;
 }
 
-// Solid angle of the face-plane rectangle [x0, x1] x [y0, y1] (the double version of cubeTexelSolidAngle).
-double areaElement(double x, double y) {
-    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
-}
-
 // Breakpoints of [lo, hi] against a sorted edge list, and the source index of each piece.
 void overlaps(const std::vector<double>& edges, double lo, double hi, std::vector<double>& cuts,
               std::vector<int>& index) {
@@ -200,7 +195,7 @@ CubeMap resampleFacesToCube(const SourceFaces& faces, int faceSize) {
                 e.resize(nx * ys.size());
                 for (std::size_t y = 0; y < ys.size(); ++y)
                     for (std::size_t x = 0; x < nx; ++x)
-                        e[y * nx + x] = areaElement(xs[x], ys[y]);
+                        e[y * nx + x] = cubeAreaElementF64(xs[x], ys[y]);
                 glm::dvec3 energy(0.0);
                 double area = 0.0, alphaEnergy = 0.0;
                 for (std::size_t y = 0; y + 1 < ys.size(); ++y)

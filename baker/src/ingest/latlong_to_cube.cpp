@@ -26,6 +26,7 @@
 // 2 without the turns) and its weights applied to all of them: a sixteenth of the cube (a quadrant of a
 // side face's upper half and half a quadrant of +Y) instead of all of it. The arithmetic is symmetric too:
 // on the sample and the tests' images every texel has the bits it has when computed on its own.
+#include "iblbake/core/numeric.h"
 #include "ingest_internal.h"
 
 #include "iblbake/core/error.h"
@@ -47,7 +48,6 @@ namespace ingest {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 // 2-point Gauss-Legendre rule on [-1, 1] (exact for cubics; Abramowitz & Stegun, table 25.4).

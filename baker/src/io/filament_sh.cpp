@@ -1,12 +1,12 @@
 // Filament's sh.txt (iblbake/baker/filament_sh.h).
 #include "iblbake/baker/filament_sh.h"
+#include "iblbake/core/numeric.h"
 
 #include <cstdio>
 
 namespace ibl {
 
 std::string filamentShText(const ShRgb& prescaledIrradiance) {
-    constexpr double kPi = 3.14159265358979323846;
     constexpr const char* kNames[9] = {"L00", "L1-1", "L10", "L11", "L2-2", "L2-1", "L20", "L21", "L22"};
     std::string text;
     for (std::size_t i = 0; i < 9; ++i) {

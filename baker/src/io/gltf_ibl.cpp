@@ -3,8 +3,10 @@
 #include "iblbake/baker/rgbd.h"
 #include "iblbake/core/error.h"
 #include "iblbake/core/gltf_names.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/output_set.h"
+#include "iblbake/scene/json_vec3.h"
 
 #include <nlohmann/json.hpp>
 
@@ -17,7 +19,6 @@ namespace ibl {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 
 // k_i of Y_i = k_i p_i (kernels/sh.h), in fp64.
 double basisConstant(int i) {
@@ -77,10 +78,6 @@ double polynomial(int i, const glm::dvec3& n) {
     }
 }
 
-nlohmann::json rgb(const glm::dvec3& v) {
-    return nlohmann::json::array({v.x, v.y, v.z});
-}
-
 void checkChain(const fs::path& path, const CubeMapChain& chain) {
     if (chain.levels.empty()) throw Error(path.string() + ": no specular levels to export");
     const int base = chain.levels.front().faceSize;
@@ -101,12 +98,12 @@ nlohmann::json sunLight(const DiskLight& sun, bool inLux) {
                     ")");
     return {{"type", "directional"},
             {"name", "sun"},
-            {"color", rgb(sun.color / largest)},
+            {"color", vec3Json(sun.color / largest)},
             {"intensity", sun.illuminance * largest},
             {"extras",
              {{"iblbake.illuminanceUnits", inLux ? "lux" : "relative"},
               {"iblbake.illuminancePerpendicular", sun.illuminance},
-              {"iblbake.colorLuminance1", rgb(sun.color)},
+              {"iblbake.colorLuminance1", vec3Json(sun.color)},
               {"iblbake.angularRadiusDegrees", sun.angularRadius * 180.0 / kPi}}}};
 }
 
@@ -171,7 +168,7 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
 
     nlohmann::json coefficients = nlohmann::json::array();
     for (const glm::dvec3& c : gltfIrradianceCoefficients(scene.prescaledIrradiance))
-        coefficients.push_back(rgb(c / intensity));
+        coefficients.push_back(vec3Json(c / intensity));
     nlohmann::json extras = nlohmann::json::object();
     for (const auto& [key, value] : scene.extras)
         extras[key] = value;

@@ -1,6 +1,7 @@
 #include "iblbake/baker/preview.h"
 #include "encoded_image.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 
 #include <cube.h>
 
@@ -10,10 +11,6 @@
 
 namespace ibl {
 namespace {
-
-float luminance(const glm::vec4& p) {
-    return 0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z;
-}
 
 float medianLuminance(const CubeMap& cube) {
     struct Sample {
@@ -25,7 +22,7 @@ float medianLuminance(const CubeMap& cube) {
         for (int y = 0; y < cube.faceSize; ++y)
             for (int x = 0; x < cube.faceSize; ++x) {
                 float omega = cubeTexelSolidAngle(x, y, cube.faceSize);
-                samples.push_back({luminance(cube.faces[f].at(x, y)), omega});
+                samples.push_back({rec709Luminance(cube.faces[f].at(x, y)), omega});
                 total += omega;
             }
     std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) { return a.lum < b.lum; });

@@ -2,6 +2,7 @@
 // kernels/light_card.h, each texel by kernels/light_card_bake.h on OpenCL or TBB, and the file.
 #include "iblbake/baker/light_card.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/opencl/dispatch.h"
 
 #include <light_card_bake.h>
@@ -17,10 +18,6 @@ namespace {
 
 static_assert(sizeof(LightCardBakeParams) == 32, "LightCardBakeParams must match light_card_bake.h");
 static_assert(sizeof(LightCardLayout) == 32, "LightCardLayout must match light_card.h");
-
-bool isPowerOfTwo(int v) {
-    return v > 0 && (v & (v - 1)) == 0;
-}
 
 // A 2x2 box reduction (sizes powers of two; an axis of 1 stays 1).
 ImageRGBA halve(const ImageRGBA& in) {

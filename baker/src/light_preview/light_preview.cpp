@@ -1,6 +1,7 @@
 // The light preview (iblbake/baker/light_preview.h): the balls lit by each area-light shape and by a
 // textured rectangle, the runtime against the fp64 brute force, drawn as the material preview's grid.
 #include "iblbake/baker/light_preview.h"
+#include "iblbake/core/numeric.h"
 
 #include "../preview/preview_grid.h"
 #include "iblbake/baker/exr_output.h"
@@ -16,10 +17,6 @@ namespace {
 
 constexpr int kColumns = 10; // perceptual roughness 0.1 ... 1: the mirror needs a brute force per texel
 constexpr float kLumens = 1000.0f;
-
-float luminance(const glm::vec3& c) {
-    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
-}
 
 // The light's centre in ball space: above, left and in front of the ball, facing it, at `distance`.
 glm::vec3 lightCenter(float distance) {
@@ -81,7 +78,7 @@ ImageRGBA previewCardEmission() {
             const glm::vec3 pane = glm::mix(glm::vec3(1.0f, 0.75f, 0.45f), glm::vec3(0.45f, 0.65f, 1.0f), t);
             const glm::vec3 c = frame ? glm::vec3(0.03f) : pane;
             image.at(x, y) = glm::vec4(c, 1.0f);
-            sum += luminance(c);
+            sum += rec709Luminance(c);
         }
     const float scale = float(double(size * size) / sum);
     for (glm::vec4& p : image.pixels)
@@ -130,7 +127,7 @@ LightPreview renderLightPreview(const LightCardData& card, const ImageRGBA& emis
 
     double sumLuminance = 0.0;
     for (const glm::vec3& c : shaded)
-        sumLuminance += luminance(c);
+        sumLuminance += rec709Luminance(c);
     const float scale =
         float(0.18 * double(points.size()) / std::max(sumLuminance, 1e-12)) * std::exp2(settings.exposureEV);
     ImageRGBA image(3 * width, height);
@@ -142,15 +139,15 @@ LightPreview renderLightPreview(const LightCardData& card, const ImageRGBA& emis
             const int k = owner[std::size_t(y) * width + x];
             if (k < 0) continue;
             const glm::vec3 c = shaded[std::size_t(k)], r = reference[std::size_t(k)];
-            const float difference = std::abs(luminance(c) - luminance(r));
-            errorColor[std::size_t(k)] = previewErrorColor(difference / std::max(luminance(r), 1e-12f));
+            const float difference = std::abs(rec709Luminance(c) - rec709Luminance(r));
+            errorColor[std::size_t(k)] = previewErrorColor(difference / std::max(rec709Luminance(r), 1e-12f));
             image.at(x, y) = glm::vec4(c, 1.0f);
             image.at(width + x, y) = glm::vec4(r, 1.0f);
             image.at(2 * width + x, y) = glm::vec4(errorColor[std::size_t(k)] / scale, 1.0f);
             const std::size_t g = std::size_t(y / size), column = std::size_t(x / size);
             error[g][column] += difference;
-            sum[g][column] += luminance(r);
-            own[g][column] += luminance(check[std::size_t(k)]);
+            sum[g][column] += rec709Luminance(r);
+            own[g][column] += rec709Luminance(check[std::size_t(k)]);
         }
 
     LightPreview out;

@@ -1,6 +1,7 @@
 // The material preview's render (iblbake/baker/material_preview.h): the balls' shading points, the runtime
 // and brute-force renders, the per-column error, and the linear panels as OpenEXR.
 #include "iblbake/baker/material_preview.h"
+#include "iblbake/core/numeric.h"
 
 #include "iblbake/baker/exr_output.h"
 #include "iblbake/runtime/runtime_reference.h"
@@ -14,10 +15,6 @@ namespace ibl {
 namespace {
 
 constexpr int kRows = 2; // dielectric, metal
-
-float luminance(const glm::vec3& c) {
-    return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
-}
 
 std::vector<double> ratios(const std::vector<double>& error, const std::vector<double>& reference) {
     std::vector<double> out(error.size());
@@ -74,7 +71,7 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
     ImageRGBA image(panels * width, height);
     double sumLuminance = 0.0;
     for (const glm::vec4& c : shaded)
-        sumLuminance += luminance(glm::vec3(c));
+        sumLuminance += rec709Luminance(glm::vec3(c));
     const float scale =
         float(0.18 * points.size() / std::max(sumLuminance, 1e-12)) * std::exp2(settings.exposureEV);
     std::vector<double> error[kRows], referenceSum[kRows], referenceError[kRows];
@@ -91,13 +88,14 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
             if (reference.empty()) continue;
             glm::vec3 r = reference[std::size_t(k)];
             image.at(width + x, y) = glm::vec4(r, 1.0f);
-            float relative = std::abs(luminance(c) - luminance(r)) / std::max(luminance(r), 1e-12f);
+            float relative =
+                std::abs(rec709Luminance(c) - rec709Luminance(r)) / std::max(rec709Luminance(r), 1e-12f);
             errorColor[std::size_t(k)] = previewErrorColor(relative);
             // The heat map is display-referred: divide by the tone scale so it shows as drawn.
             image.at(2 * width + x, y) = glm::vec4(errorColor[std::size_t(k)] / scale, 1.0f);
-            error[y / size][std::size_t(x / size)] += std::abs(luminance(c) - luminance(r));
-            referenceSum[y / size][std::size_t(x / size)] += luminance(r);
-            referenceError[y / size][std::size_t(x / size)] += luminance(check[std::size_t(k)]);
+            error[y / size][std::size_t(x / size)] += std::abs(rec709Luminance(c) - rec709Luminance(r));
+            referenceSum[y / size][std::size_t(x / size)] += rec709Luminance(r);
+            referenceError[y / size][std::size_t(x / size)] += rec709Luminance(check[std::size_t(k)]);
         }
 
     for (int c = 0; c < kPreviewColumns; ++c)

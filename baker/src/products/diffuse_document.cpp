@@ -1,5 +1,6 @@
 // The iblbake.diffuse document (iblbake/baker/products.h).
 #include "iblbake/baker/products.h"
+#include "iblbake/scene/json_vec3.h"
 
 namespace ibl {
 
@@ -7,14 +8,10 @@ namespace {
 
 using nlohmann::json;
 
-json rgb(const glm::dvec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
-
 json coefficients(const ShRgb& sh) {
     json a = json::array();
     for (const glm::dvec3& c : sh)
-        a.push_back(rgb(c));
+        a.push_back(vec3Json(c));
     return a;
 }
 
@@ -95,9 +92,9 @@ json diffuseDocument(const DiffuseSH& sh, const std::string& requestedWindow, co
                 {"bandFactors", {w.factors[0], w.factors[1], w.factors[2]}},
                 {"appliedTo", "radiance, irradiance and irradianceOverPi (not radianceUnwindowed)"}}},
               {"minIrradiance",
-               {{"before", rgb(w.minBefore)},
-                {"after", rgb(w.minAfter)},
-                {"mean", rgb(w.meanIrradiance)},
+               {{"before", vec3Json(w.minBefore)},
+                {"after", vec3Json(w.minAfter)},
+                {"mean", vec3Json(w.meanIrradiance)},
                 {"meaning", "minimum over the whole sphere of E(n) reconstructed from the SH, per channel, "
                             "without and with the window; mean = average of E over the sphere"}}},
               {"radianceUnwindowed", coefficients(sh.radianceRaw)},

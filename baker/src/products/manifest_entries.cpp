@@ -1,16 +1,13 @@
 // The manifest's product entries (iblbake/baker/products.h).
 #include "iblbake/baker/products.h"
 #include "iblbake/core/error.h"
+#include "iblbake/scene/json_vec3.h"
 
 namespace ibl {
 
 namespace {
 
 using nlohmann::json;
-
-json vec3Json(const glm::dvec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
 
 } // namespace
 

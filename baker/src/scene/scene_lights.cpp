@@ -1,5 +1,6 @@
 // products.lights of the manifest (iblbake/scene/scene_lights.h).
 #include "iblbake/scene/scene_lights.h"
+#include "iblbake/scene/json_vec3.h"
 
 #include <area_lights.h>
 
@@ -8,10 +9,6 @@ namespace ibl {
 namespace {
 
 using nlohmann::json;
-
-json jsonVec3(const glm::dvec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
 
 uint32_t areaShape(const std::string& shape) {
     return shape == "sphere" ? IBL_AREA_SPHERE : shape == "disk" ? IBL_AREA_DISK : IBL_AREA_RECTANGLE;
@@ -31,13 +28,13 @@ json sceneLightsJson(const Scene& scene) {
         const double lumens = l.lumens ? *l.lumens : *l.luminance / perLumen;
         json light = {{"name", l.name},
                       {"shape", l.shape},
-                      {"position", jsonVec3(l.position)},
-                      {"color", jsonVec3(l.color)},
+                      {"position", vec3Json(l.position)},
+                      {"color", vec3Json(l.color)},
                       {"lumens", lumens},
                       {"luminance", l.luminance ? *l.luminance : lumens * perLumen}};
-        if (shape != IBL_AREA_SPHERE) light["normal"] = jsonVec3(l.normal);
+        if (shape != IBL_AREA_SPHERE) light["normal"] = vec3Json(l.normal);
         if (rectangle) {
-            light["tangent"] = jsonVec3(l.tangent);
+            light["tangent"] = vec3Json(l.tangent);
             light["width"] = l.width;
             light["height"] = l.height;
         } else {

@@ -1,4 +1,5 @@
 #include "scene_manifest.h"
+#include "iblbake/scene/json_vec3.h"
 
 #include "iblbake/bake_state/code_identity.h"
 #include "iblbake/baker/irradiance.h"
@@ -22,10 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-json vec3Json(const glm::dvec3& v) {
-    return json::array({v.x, v.y, v.z});
-}
 
 // Columns of R = Rz(z) Ry(y) Rx(x) (x applied first), the volume's axes in world space.
 std::array<glm::dvec3, 3> axes(const glm::dvec3& degrees) {

@@ -1,6 +1,7 @@
 // Scene file parsing and validation (README "Scenes"). Every accessor knows its key path, so each error
 // names it; keys are consumed as read and whatever is left in an object is an unknown key (a typo must not
 // be silently ignored).
+#include "iblbake/core/numeric.h"
 #include "iblbake/scene/scene.h"
 
 #include "iblbake/core/error.h"
@@ -330,10 +331,6 @@ SceneMaterials materials(const json& v, const Fail& fail) {
     m.clearCoat = r.boolean("clearCoat", false);
     r.finish();
     return m;
-}
-
-bool isPowerOfTwo(int n) {
-    return n > 0 && (n & (n - 1)) == 0;
 }
 
 // An output file's name: a plain file name in outputs.directory with the given extension.

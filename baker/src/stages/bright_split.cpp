@@ -1,4 +1,5 @@
 #include "bright_split.h"
+#include "iblbake/core/numeric.h"
 
 #include <cube.h>
 #include <ld.h>
@@ -8,11 +9,7 @@
 
 namespace ibl {
 
-namespace {
-float luminance(const glm::vec4& p) {
-    return 0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z;
-}
-} // namespace
+namespace {} // namespace
 
 std::uint32_t BrightTexels::count() const {
     return std::uint32_t(entries.size() / IBL_BRIGHT_ENTRY_FLOATS);
@@ -86,7 +83,7 @@ BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uin
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
                 double omega = cubeTexelSolidAngle(x, y, n);
-                weighted += luminance(source.faces[f].at(x, y)) * omega;
+                weighted += rec709Luminance(source.faces[f].at(x, y)) * omega;
                 totalSolidAngle += omega;
             }
     const float meanLuminance = float(weighted / totalSolidAngle);
@@ -94,7 +91,7 @@ BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uin
     for (int f = 0; f < 6; ++f)
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x)
-                if (float l = luminance(source.faces[f].at(x, y)); l > limit && limit > 0.0f)
+                if (float l = rec709Luminance(source.faces[f].at(x, y)); l > limit && limit > 0.0f)
                     candidates.push_back({l, f, x, y});
     if (candidates.size() > maxTexels) {
         std::nth_element(candidates.begin(), candidates.begin() + maxTexels, candidates.end(),

@@ -3,6 +3,7 @@
 #include "iblbake/baker/irradiance.h"
 #include "iblbake/core/cube_pyramid.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/opencl/dispatch.h"
 
 #include "bright_split.h"
@@ -36,10 +37,6 @@ std::vector<float> sampleTable(std::uint32_t n, int sourceFaceSize, float lodBia
 vec3 texelDirection(int face, int x, int y, int n) {
     return glm::normalize(
         cubeFaceDirection(face, (float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)));
-}
-
-bool isPowerOfTwo(int v) {
-    return v > 0 && (v & (v - 1)) == 0;
 }
 
 } // namespace

@@ -2,6 +2,7 @@
 // (iblbake/baker/sh.h). The basis itself is kernels/sh.h; the fp64 polynomials below are the same p_i.
 #include "iblbake/baker/sh.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 
 #include <cube.h>
 #include <sh.h>
@@ -17,7 +18,6 @@
 namespace ibl {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kGridSize = 64;               // directions per face edge of the non-negativity check
 constexpr double kNonNegativeMargin = 1e-6; // times the channel's mean E
 
@@ -263,16 +263,11 @@ double windowChange(const ShRgb& radiance, const std::array<double, 3>& w) {
 
 } // namespace
 
-namespace {
-double areaElement(double u, double v) {
-    return std::atan2(u * v, std::sqrt(u * u + v * v + 1.0));
-}
-} // namespace
-
 double texelSolidAngle(int x, int y, int n) {
     const double inv = 2.0 / n;
     const double x0 = x * inv - 1.0, x1 = x0 + inv, y0 = y * inv - 1.0, y1 = y0 + inv;
-    return areaElement(x0, y0) - areaElement(x0, y1) - areaElement(x1, y0) + areaElement(x1, y1);
+    return cubeAreaElementF64(x0, y0) - cubeAreaElementF64(x0, y1) - cubeAreaElementF64(x1, y0) +
+           cubeAreaElementF64(x1, y1);
 }
 
 namespace {
@@ -310,7 +305,7 @@ ShRgb projectRadianceSH(const CubeMap& source) {
         std::vector<double> top(width + 1), bottom(width + 1);
         auto cornerRow = [&](std::vector<double>& corners, double v) {
             for (std::size_t x = 0; x <= width; ++x)
-                corners[x] = areaElement(double(x) * inv - 1.0, v);
+                corners[x] = cubeAreaElementF64(double(x) * inv - 1.0, v);
         };
         double y0 = range.begin() * inv - 1.0;
         cornerRow(top, y0);

@@ -1,5 +1,6 @@
 #include "iblbake/baker/specular.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/core/visibility.h"
 #include "iblbake/opencl/dispatch.h"
 
@@ -73,10 +74,6 @@ std::uint32_t samplesForLobe(std::uint32_t maxSamples, float alpha, int sourceFa
     double wanted = std::ceil(16.0 * texelsSpanned);
     return std::uint32_t(
         std::clamp(wanted, double(std::min<std::uint32_t>(8, maxSamples)), double(maxSamples)));
-}
-
-bool isPowerOfTwo(int v) {
-    return v > 0 && (v & (v - 1)) == 0;
 }
 
 } // namespace

@@ -1,10 +1,12 @@
 // Brute-force reference of one LD level: every source texel, solid-angle weighted, fp64 accumulation.
 // Used by tests and the accuracy report, never by a production path.
 #include "iblbake/baker/specular.h"
+#include "iblbake/core/numeric.h"
 
 #include "bright_split.h"
 #include "iblbake/runtime/runtime_reference.h" // brightTexels
 
+#include <cube.h>
 #include <ld.h>
 #include <sampling.h>
 
@@ -18,16 +20,8 @@ namespace ibl {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 glm::dvec3 texelCentre(int face, int x, int y, int w) {
     return glm::normalize(glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / w, (y + 0.5f) / w)));
-}
-
-// kernels/cube.h's cubeAreaElement in fp64: in float, the four-term difference that gives a sub-texel's
-// solid angle would lose all of it on large faces (eps / step^2).
-double areaElement(double x, double y) {
-    return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
 }
 
 // The LD weight of one source texel of constant radiance for the lobe around `nrm` (N = V = R): the
@@ -52,8 +46,8 @@ double texelWeight(const glm::dvec3& nrm, int f, int x, int y, int w, double alp
     for (int j = 0; j < S; ++j)
         for (int i = 0; i < S; ++i) {
             double u0 = -1.0 + (x * S + i) * step, v0 = -1.0 + (y * S + j) * step;
-            double omega = areaElement(u0, v0) - areaElement(u0, v0 + step) - areaElement(u0 + step, v0) +
-                           areaElement(u0 + step, v0 + step);
+            double omega = cubeAreaElementF64(u0, v0) - cubeAreaElementF64(u0, v0 + step) -
+                           cubeAreaElementF64(u0 + step, v0) + cubeAreaElementF64(u0 + step, v0 + step);
             if (S == 1) omega = cubeTexelSolidAngle(x, y, w);
             float s = float((x * S + i + 0.5) / (double(w) * S)),
                   t = float((y * S + j + 0.5) / (double(w) * S));
@@ -122,8 +116,8 @@ TexelsPart texelsPart(int w, std::span<const SourceTexel> texels, int face, int 
     const double sourceStep = 2.0 / w;
     const int S = std::clamp(int(std::ceil((coarse ? 2.0 : 4.0) * sourceStep / alpha)), 1, coarse ? 32 : 64);
     auto patch = [](double u, double v, double size) {
-        return std::abs(areaElement(u, v) - areaElement(u, v + size) - areaElement(u + size, v) +
-                        areaElement(u + size, v + size));
+        return std::abs(cubeAreaElementF64(u, v) - cubeAreaElementF64(u, v + size) -
+                        cubeAreaElementF64(u + size, v) + cubeAreaElementF64(u + size, v + size));
     };
     const double texelOmega = patch(-1.0 + 2.0 * x / n, -1.0 + 2.0 * y / n, 2.0 / n);
     TexelsPart sum;

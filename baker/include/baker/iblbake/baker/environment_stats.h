@@ -9,6 +9,7 @@
 #include "iblbake/baker/latlong_pixels.h"
 #include "iblbake/core/cubemap.h"
 #include "iblbake/core/image.h"
+#include "iblbake/core/numeric.h"
 
 #include <cstddef>
 #include <memory>
@@ -17,8 +18,6 @@
 #include <glm/vec3.hpp>
 
 namespace ibl {
-
-inline constexpr glm::dvec3 kRec709Luminance{0.2126, 0.7152, 0.0722};
 
 // An environment as a set of texels on the unit sphere with exact geometry in double: a lat-long's computed
 // on demand (nothing per texel is stored, so a 16k lat-long costs no extra memory), a cube's read from a

@@ -1,0 +1,14 @@
+// A 3-vector (a direction, a position, a linear RGB colour) as the JSON array [x, y, z] every document
+// iblbake writes uses for one.
+#pragma once
+
+#include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
+
+namespace ibl {
+
+inline nlohmann::json vec3Json(const glm::dvec3& v) {
+    return nlohmann::json::array({v.x, v.y, v.z});
+}
+
+} // namespace ibl
