@@ -153,31 +153,41 @@ TEST(Sun, LatLongSunNextToThePole) {
         ASSERT_NEAR(lum(glm::dvec3(t.rgb(i))), 1.0, 1e-5) << i;
 }
 
-// The sky level is the upper hemisphere's solid-angle-weighted median, found by selection: it must be the
-// value a full sort and running sum finds, on a sky of many distinct values (a selection that lost a part
-// of the range, or the weight before it, would land elsewhere).
+// The sky level is the upper hemisphere's solid-angle-weighted median, found from per-bin weights and the
+// one bin where half is crossed: it must be the value a full sort and running sum finds, on skies of many
+// distinct values at an odd and an even face size (a bin search that lost a part of the range, or the
+// weight before it, would land elsewhere) and on a real HDRI (many equal values, a sun).
+void expectSortedWeightedMedian(const CubeMap& cube, const std::string& label) {
+    const SphereTexels texels(cube);
+    std::vector<std::pair<float, double>> upper;
+    for (std::size_t i = 0; i < texels.size(); ++i)
+        if (texels.vectorSolidAngle(i).y > 0.0)
+            upper.emplace_back(float(lum(glm::dvec3(texels.rgb(i)))), texels.solidAngle(i));
+    std::sort(upper.begin(), upper.end());
+    double total = 0.0, acc = 0.0;
+    for (const auto& sample : upper)
+        total += sample.second;
+    double median = upper.back().first;
+    for (const auto& [value, weight] : upper)
+        if ((acc += weight) >= 0.5 * total) {
+            median = value;
+            break;
+        }
+    EXPECT_EQ(detectSun(cube, SunDetectSettings{}).skyLuminance, median) << label;
+}
+
 TEST(Sun, SkyLevelIsTheSortedWeightedMedian) {
-    for (int n : {31, 64}) {
-        const CubeMap cube = cubeOf(n, [](const glm::dvec3& d) {
-            return glm::vec3(float(1.0 + std::sin(7.0 * d.x) * std::cos(5.0 * d.z) + 2.0 * d.y * d.y));
-        });
-        const SphereTexels texels(cube);
-        std::vector<std::pair<float, double>> upper;
-        for (std::size_t i = 0; i < texels.size(); ++i)
-            if (texels.vectorSolidAngle(i).y > 0.0)
-                upper.emplace_back(float(lum(glm::dvec3(texels.rgb(i)))), texels.solidAngle(i));
-        std::sort(upper.begin(), upper.end());
-        double total = 0.0, acc = 0.0;
-        for (const auto& sample : upper)
-            total += sample.second;
-        double median = upper.back().first;
-        for (const auto& [value, weight] : upper)
-            if ((acc += weight) >= 0.5 * total) {
-                median = value;
-                break;
-            }
-        EXPECT_EQ(detectSun(cube, SunDetectSettings{}).skyLuminance, median) << "face size " << n;
-    }
+    for (int n : {31, 64})
+        expectSortedWeightedMedian(
+            cubeOf(n,
+                   [](const glm::dvec3& d) {
+                       return glm::vec3(
+                           float(1.0 + std::sin(7.0 * d.x) * std::cos(5.0 * d.z) + 2.0 * d.y * d.y));
+                   }),
+            "face size " + std::to_string(n));
+    expectSortedWeightedMedian(
+        ingestEnvironment({fs::path(IBLBAKE_SOURCE_DIR) / "data" / "rooitou_park_1k.hdr"}, {}).cube,
+        "the sample HDRI");
 }
 
 TEST(Sun, NoSunWhereThereIsNone) {

@@ -36,6 +36,16 @@ class CubeTexelGeometry {
     double solidAngle(int i, int j) const { return entry(i, j).solidAngle; }
     // Integral of the unit direction over texel (i, j) of `face` (kernels/cube.h orientation).
     glm::dvec3 vectorSolidAngle(int face, int i, int j) const;
+    // Its y component alone, the same value to the bit (the same products summed in the same order; one
+    // product per statement, since a compiler that fuses a * b + c within an expression would round
+    // differently from vectorSolidAngle's vector operations). Inline: sun detection calls it per texel.
+    double vectorSolidAngleY(int face, int i, int j) const {
+        const glm::dvec3& l = entry(i, j).local;
+        const ingest::FaceFrame& f = frames_[std::size_t(face)];
+        const double u = i < half_ ? l.y : -l.y, v = j < half_ ? l.z : -l.z;
+        const double fromO = f.o.y * l.x, fromU = f.u.y * u, fromV = f.v.y * v;
+        return fromO + fromU + fromV;
+    }
     // Integral of max(0, d.y) over the texel: its vectorSolidAngle().y above the horizon, 0 below, the
     // clipped polygon's for a texel across it (the middle row of an odd face size).
     double upwardCosine(int face, int i, int j) const;

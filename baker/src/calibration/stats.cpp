@@ -10,6 +10,7 @@
 
 #include "cube_texel_geometry.h"
 #include "iblbake/core/error.h"
+#include "luminance_bins.h"
 #include "texel_loop.h"
 
 #include <cube.h>
@@ -221,27 +222,19 @@ namespace {
 // A positive texel as (luminance, solid angle).
 using LuminanceSample = std::pair<float, float>;
 
-// Bins of non-negative floats by their top bits (sign, exponent and 3 mantissa bits), in the floats' order.
-constexpr int kBinShift = 20;
-constexpr std::size_t kBins = std::size_t(1) << (32 - kBinShift - 1);
-
-std::size_t binOf(float value) {
-    return std::size_t(std::bit_cast<std::uint32_t>(value) >> kBinShift);
-}
-
 // The luminance below which `target` of the positive-luminance solid angle lies (texels as (luminance,
 // solid angle) pairs, consumed; `binCounts` counts them per binOf). Only the darkest texels are ordered: the
 // answer lies among them unless the solid angles are very uneven, when the whole list is sorted; either
 // way the result is the full sort's. The darkest are first moved to the front (the texels in the lowest
 // bins that hold at least as many), so the selection runs over a few thousand texels instead of all.
-float lowPercentile(std::vector<LuminanceSample>& positive, const std::array<std::uint32_t, kBins>& binCounts,
-                    double target) {
+float lowPercentile(std::vector<LuminanceSample>& positive,
+                    const std::array<std::uint32_t, kLuminanceBins>& binCounts, double target) {
     std::size_t prefix = std::min(positive.size(), std::max<std::size_t>(1024, positive.size() / 64));
     std::size_t lastBin = 0, dark = binCounts[0];
     while (dark < prefix)
         dark += binCounts[++lastBin];
     std::partition(positive.begin(), positive.end(),
-                   [&](const LuminanceSample& s) { return binOf(s.first) <= lastBin; });
+                   [&](const LuminanceSample& s) { return luminanceBin(s.first) <= lastBin; });
     for (;;) {
         // The prefix smallest pairs lie in the front part while it holds that many: all of its pairs are
         // smaller than all of the others.
@@ -335,12 +328,12 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
     // 0.1th percentile of the positive luminances by solid angle. The positive samples are moved to the
     // front of `samples` in their order, not copied: a second array as large (3 MB at 256-px faces) is
     // memory first touched, a page fault per 4 KB (ingest/read_image.cpp).
-    std::array<std::uint32_t, kBins> binCounts{};
+    std::array<std::uint32_t, kLuminanceBins> binCounts{};
     std::size_t positiveCount = 0;
     for (const LuminanceSample& sample : samples)
         if (sample.first >= 0.0f) {
             samples[positiveCount++] = sample;
-            ++binCounts[binOf(sample.first)];
+            ++binCounts[luminanceBin(sample.first)];
         }
     std::vector<LuminanceSample> positive = std::move(samples);
     positive.resize(positiveCount);

@@ -3,19 +3,25 @@
 #include "iblbake/core/error.h"
 #include "iblbake/core/numeric.h"
 
+#include "luminance_bins.h"
 #include "texel_loop.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h> // parallel_deterministic_reduce
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <deque>
+#include <functional>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 #include <unordered_set>
@@ -192,6 +198,94 @@ std::vector<glm::vec3> harmonicFill(const SphereTexels& texels, const std::vecto
     return out;
 }
 
+using TexelRange = tbb::blocked_range<std::size_t>;
+constexpr std::size_t kTexelsPerTask = 4096;
+
+// What one pass over the texels gathers: the brightest texel (the first of equals) and the solid angle
+// of the upper hemisphere's texels per luminance bin.
+struct LuminanceScan {
+    float peak = -std::numeric_limits<float>::infinity();
+    std::size_t peakIndex = 0;
+    std::array<double, kLuminanceBins> skyWeight{};
+};
+
+// Fills lum (luminance per texel) and upper (the texel's direction integral points above the horizon).
+// Deterministic: the same split into ranges on any number of threads, so the same sums to the last bit.
+LuminanceScan scanLuminance(const SphereTexels& texels, const glm::dvec3& weights, std::vector<float>& lum,
+                            std::vector<std::uint8_t>& upper) {
+    return tbb::parallel_deterministic_reduce(
+        TexelRange(0, texels.size(), kTexelsPerTask), LuminanceScan{},
+        [&](const TexelRange& range, LuminanceScan scan) {
+            forEachTexel(texels, range.begin(), range.end(), [&](std::size_t i, const auto& texel) {
+                const float y = float(glm::dot(weights, glm::dvec3(texel.rgb())));
+                lum[i] = y;
+                if (y > scan.peak) {
+                    scan.peak = y;
+                    scan.peakIndex = i;
+                }
+                upper[i] = texel.vectorSolidAngleY() > 0.0;
+                if (upper[i]) scan.skyWeight[luminanceBin(y)] += texel.solidAngle();
+            });
+            return scan;
+        },
+        [](LuminanceScan a, const LuminanceScan& b) {
+            if (b.peak > a.peak) {
+                a.peak = b.peak;
+                a.peakIndex = b.peakIndex;
+            }
+            for (std::size_t k = 0; k < kLuminanceBins; ++k)
+                a.skyWeight[k] += b.skyWeight[k];
+            return a;
+        });
+}
+
+// Solid-angle-weighted median of the upper hemisphere's luminances (weightedMedian's definition): the bin
+// where the running weight reaches half comes from the scan; only that bin's texels are gathered and
+// sorted.
+double skyMedian(const SphereTexels& texels, const LuminanceScan& scan, const std::vector<float>& lum,
+                 const std::vector<std::uint8_t>& upper) {
+    double total = 0.0;
+    for (double w : scan.skyWeight)
+        total += w;
+    if (!(total > 0.0)) return 0.0;
+    const double half = 0.5 * total;
+    double before = 0.0; // weight of the bins below `bin`
+    std::size_t bin = 0;
+    while (bin + 1 < kLuminanceBins && before + scan.skyWeight[bin] < half)
+        before += scan.skyWeight[bin++];
+    // Gathered in parallel in any order: the sort orders them.
+    tbb::enumerable_thread_specific<std::vector<std::pair<float, double>>> gathered;
+    tbb::parallel_for(TexelRange(0, texels.size(), kTexelsPerTask), [&](const TexelRange& range) {
+        std::vector<std::pair<float, double>>& mine = gathered.local();
+        forEachTexel(texels, range.begin(), range.end(), [&](std::size_t i, const auto& texel) {
+            if (upper[i] && luminanceBin(lum[i]) == bin) mine.emplace_back(lum[i], texel.solidAngle());
+        });
+    });
+    std::vector<std::pair<float, double>> samples;
+    for (const auto& part : gathered)
+        samples.insert(samples.end(), part.begin(), part.end());
+    std::sort(samples.begin(), samples.end());
+    for (const auto& [value, weight] : samples) {
+        before += weight;
+        if (before >= half) return value;
+    }
+    return samples.empty() ? 0.0 : samples.back().first;
+}
+
+// The solid-angle-weighted excess over the threshold of the texels above it: sum of (lum - threshold)
+// omega where lum > t, t the threshold in float (deterministic, as scanLuminance).
+double excessAbove(const SphereTexels& texels, const std::vector<float>& lum, float t, double threshold) {
+    return tbb::parallel_deterministic_reduce(
+        TexelRange(0, texels.size(), kTexelsPerTask), 0.0,
+        [&](const TexelRange& range, double sum) {
+            forEachTexel(texels, range.begin(), range.end(), [&](std::size_t i, const auto& texel) {
+                if (lum[i] > t) sum += (double(lum[i]) - threshold) * texel.solidAngle();
+            });
+            return sum;
+        },
+        std::plus<double>());
+}
+
 } // namespace
 
 double DiskLight::elevationDegrees() const {
@@ -252,17 +346,11 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
     det.texelCount = n;
     const glm::dvec3& wt = settings.luminanceWeights;
 
-    // Luminance and the upper-hemisphere flag per texel.
+    // One pass: luminance per texel, the peak, and the sky's weight per luminance bin.
     std::vector<float> lum(n);
     std::vector<std::uint8_t> upper(n);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 4096),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                          forEachTexel(texels, r.begin(), r.end(), [&](std::size_t i, const auto& texel) {
-                              lum[i] = float(glm::dot(wt, glm::dvec3(texel.rgb())));
-                              upper[i] = texel.vectorSolidAngle().y > 0.0;
-                          });
-                      });
-    const std::size_t peak = std::size_t(std::max_element(lum.begin(), lum.end()) - lum.begin());
+    const LuminanceScan scan = scanLuminance(texels, wt, lum, upper);
+    const std::size_t peak = scan.peakIndex;
     det.peakLuminance = lum[peak];
     det.peakDirection = texels.direction(peak);
     if (!(det.peakLuminance > 0.0)) {
@@ -271,14 +359,7 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
     }
 
     // 1. Sky level: upper-hemisphere median.
-    {
-        std::vector<std::pair<float, double>> samples;
-        samples.reserve(n / 2 + 1);
-        forEachTexel(texels, 0, n, [&](std::size_t i, const auto& texel) {
-            if (upper[i]) samples.emplace_back(lum[i], texel.solidAngle());
-        });
-        det.skyLuminance = weightedMedian(samples);
-    }
+    det.skyLuminance = skyMedian(texels, scan, lum, upper);
 
     // 2. Surroundings: median over the ring around the peak.
     {
@@ -315,11 +396,10 @@ SunDetection detectSun(const SphereTexels& texels, const SunDetectSettings& sett
         det.region.clear();
         return det;
     }
-    double regionExcess = 0.0, allExcess = 0.0;
+    double regionExcess = 0.0;
     for (std::size_t k : det.region)
         if (lum[k] > t) regionExcess += (double(lum[k]) - det.threshold) * texels.solidAngle(k);
-    for (std::size_t i = 0; i < n; ++i)
-        if (lum[i] > t) allExcess += (double(lum[i]) - det.threshold) * texels.solidAngle(i);
+    const double allExcess = excessAbove(texels, lum, t, det.threshold);
     det.energyShare = allExcess > 0.0 ? regionExcess / allExcess : 1.0;
     if (det.energyShare <= settings.minEnergyShare) {
         det.reason =

@@ -40,6 +40,7 @@ struct WalkedCubeTexel {
     }
     double solidAngle() const { return geometry.solidAngle(at.i, at.j); }
     glm::dvec3 vectorSolidAngle() const { return geometry.vectorSolidAngle(at.face, at.i, at.j); }
+    double vectorSolidAngleY() const { return geometry.vectorSolidAngleY(at.face, at.i, at.j); }
     double upwardCosine() const { return geometry.upwardCosine(at.face, at.i, at.j); }
 };
 
@@ -50,6 +51,7 @@ struct IndexedTexel {
     glm::vec3 rgb() const { return texels.rgb(index); }
     double solidAngle() const { return texels.solidAngle(index); }
     glm::dvec3 vectorSolidAngle() const { return texels.vectorSolidAngle(index); }
+    double vectorSolidAngleY() const { return texels.vectorSolidAngle(index).y; }
     double upwardCosine() const { return texels.upwardCosine(index); }
 };
 
