@@ -317,13 +317,9 @@ EnvironmentStats computeEnvironmentStats(const SphereTexels& texels, const glm::
     const EnvironmentTotals totals = totalsOf(s);
 
     EnvironmentStats st;
+    static_cast<EnvironmentTotals&>(st) = totals;
     st.texels = texels.size();
-    st.solidAngle = totals.solidAngle;
-    st.minLuminance = totals.minLuminance;
-    st.maxLuminance = totals.maxLuminance;
-    st.meanLuminance = totals.meanLuminance;
     st.logMeanLuminance = s.logOmega > 0.0 ? std::exp(s.logSum / s.logOmega) : 0.0;
-    st.upwardIlluminance = totals.upwardIlluminance;
 
     // 0.1th percentile of the positive luminances by solid angle. The positive samples are moved to the
     // front of `samples` in their order, not copied: a second array as large (3 MB at 256-px faces) is

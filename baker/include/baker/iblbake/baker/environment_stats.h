@@ -82,16 +82,22 @@ class SphereTexels {
     glm::vec4& texel(std::size_t i) const;
 };
 
-struct EnvironmentStats {
-    std::size_t texels = 0;
+// The sums over the sphere (what a calibration reads of the statistics, computeEnvironmentTotals below).
+struct EnvironmentTotals {
     double solidAngle = 0.0; // sum of the texels' solid angles (4 pi up to rounding; a self-check)
     // Luminance (cd/m2 once calibrated, else relative units) over all texels.
     double minLuminance = 0.0, maxLuminance = 0.0;
-    double meanLuminance = 0.0;    // solid-angle-weighted arithmetic mean over the sphere
-    double logMeanLuminance = 0.0; // solid-angle-weighted geometric mean over texels with Y > 0
+    double meanLuminance = 0.0; // solid-angle-weighted arithmetic mean over the sphere
     // Illuminance (lux once calibrated) on a horizontal surface facing +Y: integral over the upper
     // hemisphere of Y cos(theta) d omega, with exact per-texel cosine integrals.
     double upwardIlluminance = 0.0;
+};
+
+// The totals, and what needs each texel's luminance kept: the log average, the low percentile and the
+// exposures built on them.
+struct EnvironmentStats : EnvironmentTotals {
+    std::size_t texels = 0;
+    double logMeanLuminance = 0.0; // solid-angle-weighted geometric mean over texels with Y > 0
     // Dynamic range in stops: log2(max / P), P the 0.1th percentile of the positive luminances, the
     // percentile taken by solid angle (the luminance below which 0.1 % of the positive texels' solid
     // angle lies; SOURCES.md counts pixels instead, which weights a lat-long's poles more).
@@ -111,12 +117,6 @@ EnvironmentStats computeEnvironmentStats(const CubeMap& cube,
 // What a calibration reads of the statistics, with the same sums, so the same values as
 // computeEnvironmentStats(), without its per-texel samples, logarithms and percentile: at 256-px faces
 // 3.6 ms of CPU instead of 7.0 ms (bench: cubeTotals, cubeStatistics, idle), and no 3 MB array first touched.
-struct EnvironmentTotals {
-    double solidAngle = 0.0;
-    double minLuminance = 0.0, maxLuminance = 0.0;
-    double meanLuminance = 0.0;
-    double upwardIlluminance = 0.0;
-};
 EnvironmentTotals computeEnvironmentTotals(const SphereTexels& texels,
                                            const glm::dvec3& luminanceWeights = kRec709Luminance);
 // `latlong` is an equirect image in the DESIGN.md mapping, measured on its own pixel grid (`placement`).
