@@ -20,6 +20,16 @@ Ktx2Image readProductKtx2(const std::filesystem::path& path) {
     return image;
 }
 
+// Images first .. first + 5 of a KTX2 level (a cube's faces in order; a cube array's layers follow one
+// another) as a cube map, moved out of the level: no face is allocated or copied on the way.
+CubeMap takeCube(std::vector<ImageRGBA>& level, std::size_t first) {
+    CubeMap cube;
+    cube.faceSize = level.at(first).width;
+    for (std::size_t f = 0; f < 6; ++f)
+        cube.faces[f] = std::move(level.at(first + f));
+    return cube;
+}
+
 } // namespace
 
 LdPyramid loadLdKtx2(const std::filesystem::path& path) {
@@ -28,12 +38,8 @@ LdPyramid loadLdKtx2(const std::filesystem::path& path) {
         throw Error(path.string() + ": not a cube map (" + std::to_string(image.faceCount) + " faces)");
     if (image.pixelWidth != image.pixelHeight) throw Error(path.string() + ": cube faces are not square");
     CubeMapChain chain;
-    for (const std::vector<ImageRGBA>& level : image.levels) {
-        CubeMap cube(level.at(0).width);
-        for (int f = 0; f < 6; ++f)
-            cube.faces[f] = level.at(std::size_t(f));
-        chain.levels.push_back(std::move(cube));
-    }
+    for (std::vector<ImageRGBA>& level : image.levels)
+        chain.levels.push_back(takeCube(level, 0));
     MipMapping mapping = MipMapping::Frostbite;
     auto it = image.keyValues.find("iblbake.roughnessMapping");
     try {
@@ -73,12 +79,8 @@ std::vector<CubeMap> loadRoughLayersKtx2(const std::filesystem::path& path) {
         throw Error(name + ": " + kRoughLayerRoughnessKey + " " + quotedForMessage(grid->second) +
                     " is another grid than this runtime's (" + expected + ")");
     std::vector<CubeMap> layers;
-    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k) {
-        CubeMap cube(int(image.pixelWidth));
-        for (int f = 0; f < 6; ++f)
-            cube.faces[f] = std::move(image.levels[0].at(6 * k + std::uint32_t(f)));
-        layers.push_back(std::move(cube));
-    }
+    for (std::uint32_t k = 0; k < IBL_ROUGH_LAYER_COUNT; ++k)
+        layers.push_back(takeCube(image.levels[0], 6 * std::size_t(k)));
     return layers;
 }
 
@@ -87,10 +89,7 @@ CubeMap loadIrradianceKtx2(const std::filesystem::path& path) {
     if (image.faceCount != 6 || image.levels.empty())
         throw Error(path.string() + ": not a cube map (" + std::to_string(image.faceCount) + " faces)");
     if (image.pixelWidth != image.pixelHeight) throw Error(path.string() + ": cube faces are not square");
-    CubeMap cube(int(image.pixelWidth));
-    for (int f = 0; f < 6; ++f)
-        cube.faces[f] = image.levels[0].at(std::size_t(f));
-    return cube;
+    return takeCube(image.levels[0], 0);
 }
 
 DfgTable loadDfgKtx2(const std::filesystem::path& path) {
