@@ -65,6 +65,13 @@ IBL_FN float cubeAreaElement(float x, float y) {
 inline double cubeAreaElementF64(double x, double y) {
     return std::atan2(x * y, std::sqrt(x * x + y * y + 1.0));
 }
+
+// Solid angle of the face-plane rectangle [x0, x1] x [y0, y1] in fp64 (the four-term difference of
+// cubeAreaElementF64; negative when the rectangle's corners are given in reverse).
+inline double cubeRectangleSolidAngleF64(double x0, double y0, double x1, double y1) {
+    return cubeAreaElementF64(x0, y0) - cubeAreaElementF64(x0, y1) - cubeAreaElementF64(x1, y0) +
+           cubeAreaElementF64(x1, y1);
+}
 #endif
 
 // Exact solid angle of texel (i, j) of an N-texel face.

@@ -119,9 +119,7 @@ SplitEnvironment splitEnvironment(const CubeMap& environment, const ConvergedRef
     for (std::size_t index : reached) {
         const int f = int(index / (std::size_t(n) * n)), y = int(index / n % n), x = int(index % n);
         const double u0 = -1.0 + 2.0 * x / n, v0 = -1.0 + 2.0 * y / n, step = 2.0 / n;
-        const double omega =
-            std::abs(cubeAreaElementF64(u0, v0) - cubeAreaElementF64(u0, v0 + step) -
-                     cubeAreaElementF64(u0 + step, v0) + cubeAreaElementF64(u0 + step, v0 + step));
+        const double omega = std::abs(cubeRectangleSolidAngleF64(u0, v0, u0 + step, v0 + step));
         e.cells.push_back({f, x, y,
                            glm::normalize(glm::dvec3(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n))),
                            omega, std::sqrt(omega)});
@@ -217,9 +215,7 @@ Integral gridded(const PointMaterial& m, const SplitEnvironment& e, double steps
         for (int j = 0; j < S; ++j)
             for (int i = 0; i < S; ++i) {
                 const double u0 = -1.0 + (cell.x * S + i) * step, v0 = -1.0 + (cell.y * S + j) * step;
-                const double omega =
-                    std::abs(cubeAreaElementF64(u0, v0) - cubeAreaElementF64(u0, v0 + step) -
-                             cubeAreaElementF64(u0 + step, v0) + cubeAreaElementF64(u0 + step, v0 + step));
+                const double omega = std::abs(cubeRectangleSolidAngleF64(u0, v0, u0 + step, v0 + step));
                 const glm::dvec3 l = glm::normalize(glm::dvec3(cubeFaceDirection(
                     cell.face, float((u0 + 0.5 * step + 1.0) / 2.0), float((v0 + 0.5 * step + 1.0) / 2.0))));
                 addSample(out, m, e.brightRadiance(l), l, omega, specular, true);

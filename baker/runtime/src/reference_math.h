@@ -4,6 +4,7 @@
 // point (Frostbite 2014, Appendix A; Heitz 2018).
 #pragma once
 
+#include "iblbake/core/numeric.h"
 #include "iblbake/runtime/runtime_reference.h"
 
 #include <sampling.h>
@@ -15,8 +16,6 @@
 #include <glm/geometric.hpp>
 
 namespace ibl::reference {
-
-inline constexpr double kPi = 3.14159265358979323846;
 
 // The radical inverse of kernels/sampling.h in fp64.
 inline double radicalInverse(std::uint32_t bits) {

@@ -83,8 +83,7 @@ CubeTexelGeometry::CubeTexelGeometry(int faceSize)
             for (int i = 0; i < half_; ++i) {
                 const FaceSquare s = faceSquare(i, j, step_);
                 Entry& e = quadrant_[std::size_t(j) * std::size_t(half_) + std::size_t(i)];
-                e.solidAngle = cubeAreaElementF64(s.a0, s.b0) - cubeAreaElementF64(s.a0, s.b1) -
-                               cubeAreaElementF64(s.a1, s.b0) + cubeAreaElementF64(s.a1, s.b1);
+                e.solidAngle = cubeRectangleSolidAngleF64(s.a0, s.b0, s.a1, s.b1);
                 e.local = polygonVectorSolidAngle(kLocalFrame, squarePolygon(s));
             }
     });

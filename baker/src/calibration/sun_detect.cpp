@@ -22,7 +22,6 @@
 #include <deque>
 #include <functional>
 #include <limits>
-#include <numbers>
 #include <unordered_map>
 #include <unordered_set>
 

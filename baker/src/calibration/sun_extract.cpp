@@ -10,11 +10,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace ibl {
-
-namespace {} // namespace
 
 DiskLight extractSun(SphereTexels& texels, const SunDetection& detection, const glm::dvec3& weights) {
     if (!detection.found)

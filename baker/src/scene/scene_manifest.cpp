@@ -1,4 +1,5 @@
 #include "scene_manifest.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/scene/json_vec3.h"
 
 #include "iblbake/bake_state/code_identity.h"
@@ -26,7 +27,7 @@ using nlohmann::json;
 
 // Columns of R = Rz(z) Ry(y) Rx(x) (x applied first), the volume's axes in world space.
 std::array<glm::dvec3, 3> axes(const glm::dvec3& degrees) {
-    const glm::dvec3 a = degrees * (3.14159265358979323846 / 180.0);
+    const glm::dvec3 a = degrees * kDegree;
     const double cx = std::cos(a.x), sx = std::sin(a.x), cy = std::cos(a.y), sy = std::sin(a.y);
     const double cz = std::cos(a.z), sz = std::sin(a.z);
     // Row-major R: [cz cy, cz sy sx - sz cx, cz sy cx + sz sx; sz cy, sz sy sx + cz cx, sz sy cx - cz sx;

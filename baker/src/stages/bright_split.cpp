@@ -9,8 +9,6 @@
 
 namespace ibl {
 
-namespace {} // namespace
-
 std::uint32_t BrightTexels::count() const {
     return std::uint32_t(entries.size() / IBL_BRIGHT_ENTRY_FLOATS);
 }

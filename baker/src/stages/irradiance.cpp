@@ -97,8 +97,7 @@ CubeMap irradianceCubeFromSH(const ShRgb& prescaledIrradiance, int faceSize, std
     std::array<float, 27> sh;
     for (int i = 0; i < 9; ++i)
         for (int c = 0; c < 3; ++c)
-            sh[std::size_t(3 * i + c)] =
-                float(prescaledIrradiance[std::size_t(i)][c] / 3.14159265358979323846);
+            sh[std::size_t(3 * i + c)] = float(prescaledIrradiance[std::size_t(i)][c] / kPi);
     CubeMap out(faceSize);
     std::uint64_t clamped = 0;
     for (int f = 0; f < 6; ++f)
@@ -137,7 +136,7 @@ CubeMap referenceIrradianceCube(const CubeMap& source, int faceSize) {
             glm::dvec3 sum(0.0);
             for (const Texel& t : texels)
                 sum += std::max(0.0, glm::dot(nrm, t.direction)) * t.weighted;
-            out.faces[std::size_t(face)].at(x, y) = glm::vec4(glm::vec3(sum / 3.14159265358979323846), 1.0f);
+            out.faces[std::size_t(face)].at(x, y) = glm::vec4(glm::vec3(sum / kPi), 1.0f);
         }
     });
     return out;

@@ -266,8 +266,7 @@ double windowChange(const ShRgb& radiance, const std::array<double, 3>& w) {
 double texelSolidAngle(int x, int y, int n) {
     const double inv = 2.0 / n;
     const double x0 = x * inv - 1.0, x1 = x0 + inv, y0 = y * inv - 1.0, y1 = y0 + inv;
-    return cubeAreaElementF64(x0, y0) - cubeAreaElementF64(x0, y1) - cubeAreaElementF64(x1, y0) +
-           cubeAreaElementF64(x1, y1);
+    return cubeRectangleSolidAngleF64(x0, y0, x1, y1);
 }
 
 namespace {

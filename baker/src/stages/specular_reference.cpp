@@ -46,8 +46,7 @@ double texelWeight(const glm::dvec3& nrm, int f, int x, int y, int w, double alp
     for (int j = 0; j < S; ++j)
         for (int i = 0; i < S; ++i) {
             double u0 = -1.0 + (x * S + i) * step, v0 = -1.0 + (y * S + j) * step;
-            double omega = cubeAreaElementF64(u0, v0) - cubeAreaElementF64(u0, v0 + step) -
-                           cubeAreaElementF64(u0 + step, v0) + cubeAreaElementF64(u0 + step, v0 + step);
+            double omega = cubeRectangleSolidAngleF64(u0, v0, u0 + step, v0 + step);
             if (S == 1) omega = cubeTexelSolidAngle(x, y, w);
             float s = float((x * S + i + 0.5) / (double(w) * S)),
                   t = float((y * S + j + 0.5) / (double(w) * S));
@@ -116,8 +115,7 @@ TexelsPart texelsPart(int w, std::span<const SourceTexel> texels, int face, int 
     const double sourceStep = 2.0 / w;
     const int S = std::clamp(int(std::ceil((coarse ? 2.0 : 4.0) * sourceStep / alpha)), 1, coarse ? 32 : 64);
     auto patch = [](double u, double v, double size) {
-        return std::abs(cubeAreaElementF64(u, v) - cubeAreaElementF64(u, v + size) -
-                        cubeAreaElementF64(u + size, v) + cubeAreaElementF64(u + size, v + size));
+        return std::abs(cubeRectangleSolidAngleF64(u, v, u + size, v + size));
     };
     const double texelOmega = patch(-1.0 + 2.0 * x / n, -1.0 + 2.0 * y / n, 2.0 / n);
     TexelsPart sum;
