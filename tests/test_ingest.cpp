@@ -2,6 +2,7 @@
 #include "cli_runner.h"
 #include "iblbake/baker/ingest.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 #include "ingest_internal.h"
 #include "test_support.h"
 
@@ -1047,5 +1048,84 @@ TEST(ImageSources, RadianceDecodesEveryExponentAsLdexp) {
                     differing += std::memcmp(&got, &expected, sizeof(float)) != 0;
                 }
         EXPECT_EQ(differing, 0u) << name;
+        // Kept as stored, the pixels are the file's bytes, and decode to the floats above.
+        ibl::ingest::RawImage kept = ibl::ingest::readImage(dir / name, nullptr, false, true);
+        ASSERT_EQ(kept.rgbe.pixels.size(), std::size_t(kSize) * kSize);
+        EXPECT_TRUE(kept.pixels.pixels.empty());
+        for (int y = 0; y < kSize; ++y)
+            ASSERT_EQ(std::memcmp(&kept.rgbe.pixels[std::size_t(y) * kSize], rows[std::size_t(y)].data(),
+                                  4 * kSize),
+                      0)
+                << name << " row " << y;
+        ibl::ingest::decodeKeptRgbe(kept);
+        EXPECT_TRUE(kept.rgbe.pixels.empty());
+        ASSERT_EQ(kept.pixels.pixels.size(), raw.pixels.pixels.size());
+        EXPECT_EQ(std::memcmp(kept.pixels.pixels.data(), raw.pixels.pixels.data(),
+                              raw.pixels.pixels.size() * sizeof(glm::vec4)),
+                  0)
+            << name;
+    }
+}
+
+namespace {
+
+bool sameBits(const CubeMap& a, const CubeMap& b) {
+    if (a.faceSize != b.faceSize) return false;
+    for (int f = 0; f < 6; ++f)
+        if (std::memcmp(a.faces[f].pixels.data(), b.faces[f].pixels.data(),
+                        a.faces[f].pixels.size() * sizeof(glm::vec4)) != 0)
+            return false;
+    return true;
+}
+
+} // namespace
+
+// A Radiance lat-long is resampled from its RGBE bytes as stored (rgbe.h): the cube has the bits of the
+// one resampled from the decoded floats, with and without the symmetric geometry, in both pixel
+// placements, rotated, and at an odd face size.
+TEST(ImageSources, RadianceKeptAsStoredResamplesToTheDecodedBits) {
+    const ibl::ingest::RawImage kept = ibl::ingest::readImage(ibl::test::kSampleHdri, nullptr, false, true);
+    ibl::ingest::RawImage decoded = kept;
+    ibl::ingest::decodeKeptRgbe(decoded);
+    EXPECT_EQ(ibl::ingest::maxLuminance(kept.rgbe, ibl::kRec709Luminance),
+              ibl::ingest::maxLuminance(decoded.pixels, ibl::kRec709Luminance));
+    struct Case {
+        int faceSize;
+        LatLongPixels placement;
+        double rotate;
+        bool symmetry;
+    };
+    for (const Case& c :
+         {Case{32, LatLongPixels::Centre, 0.0, true}, Case{32, LatLongPixels::Centre, 0.0, false},
+          Case{32, LatLongPixels::OpenExr, 0.0, true}, Case{32, LatLongPixels::Centre, 0.7, true},
+          Case{31, LatLongPixels::Centre, 0.0, true}})
+        EXPECT_TRUE(sameBits(ibl::ingest::resampleLatLongToCubeRotated(kept.rgbe, c.faceSize, c.placement,
+                                                                       c.rotate, c.symmetry),
+                             ibl::ingest::resampleLatLongToCubeRotated(
+                                 decoded.pixels, c.faceSize, c.placement, c.rotate, false, c.symmetry)))
+            << c.faceSize << " " << int(c.placement) << " " << c.rotate << " " << c.symmetry;
+}
+
+// Ingest of a Radiance file equals that of an OpenEXR file holding its decoded floats, bit for bit, where
+// the RGBE pixels go to the resampling as stored (a lat-long in its own colour space) and where they are
+// decoded first (a strip of faces; a colour conversion).
+TEST(ImageSources, RadianceIngestsAsItsDecodedFloats) {
+    TempDir dir;
+    const ImageRGBA latLong =
+        latLongOf(64, 32, [](int x, int y) { return glm::vec3(0.5f + x / 7.0f, 2.0f + y, 0.25f + x * y); });
+    const ImageRGBA strip =
+        latLongOf(16, 96, [](int x, int y) { return glm::vec3(0.5f + x / 7.0f, 2.0f + y, 0.25f + x * y); });
+    for (const auto& [name, image] : {std::pair{"latlong", latLong}, std::pair{"strip", strip}}) {
+        const fs::path hdr = dir / (std::string(name) + ".hdr"), exr = dir / (std::string(name) + ".exr");
+        writeImage(hdr, image);
+        writeImage(exr, ibl::ingest::readImage(hdr).pixels);
+        for (const char* working : {"lin_rec709", "acescg"}) {
+            IngestSettings settings;
+            settings.workingColorSpace = working;
+            const ibl::SourceEnvironment fromHdr = ingest(hdr, settings), fromExr = ingest(exr, settings);
+            EXPECT_EQ(fromHdr.report.layout, fromExr.report.layout) << name;
+            EXPECT_EQ(fromHdr.report.maxLuminanceIn, fromExr.report.maxLuminanceIn) << name << " " << working;
+            EXPECT_TRUE(sameBits(fromHdr.cube, fromExr.cube)) << name << " " << working;
+        }
     }
 }

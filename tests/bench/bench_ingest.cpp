@@ -67,6 +67,15 @@ void ingestResample(benchmark::State& state) {
                                                                            ibl::LatLongPixels::Centre, 0.0));
 }
 
+// The same from the Radiance file's RGBE pixels as stored (what ingestEnvironment resamples from a .hdr).
+void ingestResampleRgbe(benchmark::State& state) {
+    static const ibl::ingest::ImageRGBE image =
+        ibl::ingest::readImage(IBLBAKE_SAMPLE_HDRI, nullptr, false, true).rgbe;
+    for (auto _ : state)
+        benchmark::DoNotOptimize(ibl::ingest::resampleLatLongToCubeRotated(image, int(state.range(0)),
+                                                                           ibl::LatLongPixels::Centre, 0.0));
+}
+
 // The table of one face size that statistics, sun detection and zenith luminance read (built once per
 // process and face size; their benchmarks reuse it).
 void cubeTexelGeometry(benchmark::State& state) {
@@ -124,6 +133,7 @@ BENCHMARK(ingestSanitize)->Apply(ibl::bench::wallAndCpuMilliseconds);
 BENCHMARK(ingestColour)->Apply(ibl::bench::wallAndCpuMilliseconds);
 BENCHMARK(ingestMaxLuminance)->Apply(ibl::bench::wallAndCpuMilliseconds);
 BENCHMARK(ingestResample)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
+BENCHMARK(ingestResampleRgbe)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
 BENCHMARK(cubeTexelGeometry)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
 BENCHMARK(cubeStatistics)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);
 BENCHMARK(cubeTotals)->Arg(256)->Apply(ibl::bench::wallAndCpuMilliseconds);

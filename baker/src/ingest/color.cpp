@@ -117,21 +117,36 @@ std::string resolveInputColorSpace(const RawImage& image, const std::string& req
     return fallback;
 }
 
-bool convertColor(ImageRGBA& image, const std::string& from, const std::string& to, const std::string& file) {
+namespace {
+
+// The conversion from -> to, null when it is the identity.
+OCIO::ConstCPUProcessorRcPtr colorProcessor(const std::string& from, const std::string& to,
+                                            const std::string& file) {
     OCIO::ConstConfigRcPtr cfg = config();
     const std::string src = canonical(cfg, from), dst = canonical(cfg, to);
     if (src.empty()) throw Error(file + ": colour space '" + from + "' is not in " + ocioConfigPath());
     if (dst.empty())
         throw SettingError("workingColorSpace",
                            "working colour space '" + to + "' is not in " + ocioConfigPath());
-    if (src == dst) return false;
+    if (src == dst) return nullptr;
     OCIO::ConstCPUProcessorRcPtr cpu;
     try {
         cpu = cfg->getProcessor(src.c_str(), dst.c_str())->getDefaultCPUProcessor();
     } catch (const OCIO::Exception& e) {
         throw Error(file + ": cannot convert " + src + " to " + dst + ": " + e.what());
     }
-    if (cpu->isNoOp()) return false;
+    return cpu->isNoOp() ? nullptr : cpu;
+}
+
+} // namespace
+
+bool isIdentityConversion(const std::string& from, const std::string& to, const std::string& file) {
+    return !colorProcessor(from, to, file);
+}
+
+bool convertColor(ImageRGBA& image, const std::string& from, const std::string& to, const std::string& file) {
+    const OCIO::ConstCPUProcessorRcPtr cpu = colorProcessor(from, to, file);
+    if (!cpu) return false;
     // OCIO processors are thread-safe; each task converts a band of rows in place (RGBA, alpha kept).
     tbb::parallel_for(tbb::blocked_range<int>(0, image.height, 16), [&](const tbb::blocked_range<int>& rows) {
         float* first = &image.at(0, rows.begin()).x;

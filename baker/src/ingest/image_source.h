@@ -4,10 +4,13 @@
 // readImage (read_image.cpp) picks the channels, checks the limits and assembles the image on top.
 #pragma once
 
+#include "rgbe.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,6 +43,12 @@ class ImageSource {
     // be asked for again (one channel at a time) but never before rows already read. Throws ibl::Error
     // "<file>: cannot read pixels: <cause>".
     virtual void readRows(int y0, int y1, int begin, int end, float* data) = 0;
+    // Whether the file stores Radiance RGBE pixels, which readRgbeRows gives as stored (rgbe.h).
+    virtual bool storesRgbe() const { return false; }
+    // Rows [y0, y1) of a source that storesRgbe(), after the rows already read; not mixed with readRows.
+    virtual void readRgbeRows(int /*y0*/, int /*y1*/, RgbePixel* /*data*/) {
+        throw std::logic_error("readRgbeRows: the source stores no RGBE pixels");
+    }
 
   protected:
     ImageHeader header_;

@@ -60,11 +60,14 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
                                                  std::to_string(kMaxFaceSize));
 
     std::vector<ingest::RawImage> images;
-    // A size the layout cannot take is refused from the header, before the pixels are read.
+    // A size the layout cannot take is refused from the header, before the pixels are read. A single
+    // Radiance file is kept as stored, and decoded below unless it is a lat-long that nothing changes
+    // before the resampling.
+    const bool keepRgbe = !six && settings.visibilityMask.empty();
     for (const auto& file : files)
         images.push_back(ingest::readImage(
             file, [&](const ingest::RawImage& header) { ingest::resolveLayout(header, settings.layout); },
-            settings.readAlpha));
+            settings.readAlpha, keepRgbe));
 
     if (!settings.visibilityMask.empty()) {
         if (!settings.readAlpha || settings.visibilityMask.size() != files.size())
@@ -94,6 +97,16 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace); // also checks linearity
     report.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);
     for (auto& image : images) {
+        if (!image.rgbe.pixels.empty() &&
+            (report.layout != EnvLayout::LatLong ||
+             !ingest::isIdentityConversion(report.inputColorSpace, report.workingColorSpace, image.file)))
+            ingest::decodeKeptRgbe(image);
+        if (!image.rgbe.pixels.empty()) {
+            // RGBE holds no NaN, Inf, negative value or alpha: nothing to repair.
+            report.maxLuminanceIn =
+                std::max(report.maxLuminanceIn, ingest::maxLuminance(image.rgbe, weights));
+            continue;
+        }
         add(report, ingest::sanitize(image.pixels));
         if (image.hasAlpha) add(report, ingest::sanitizeAlpha(image.pixels));
         add(report, ingest::convertColorRepaired(image.pixels, report.inputColorSpace,
@@ -115,8 +128,11 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
         report.faceSize = settings.sourceFaceSize > 0 ? settings.sourceFaceSize
                                                       : defaultLatLongFaceSize(first.pixels.width);
         report.latLongPixels = ingest::resolveLatLongPixels(first, settings.latLongPixels);
-        env.cube = ingest::resampleLatLongToCubeRotated(first.pixels, report.faceSize, *report.latLongPixels,
-                                                        rotate, report.hasAlpha);
+        env.cube = first.rgbe.pixels.empty()
+                       ? ingest::resampleLatLongToCubeRotated(first.pixels, report.faceSize,
+                                                              *report.latLongPixels, rotate, report.hasAlpha)
+                       : ingest::resampleLatLongToCubeRotated(first.rgbe, report.faceSize,
+                                                              *report.latLongPixels, rotate);
     } else {
         const ingest::SourceFaces faces =
             report.layout == EnvLayout::ExrCube

@@ -4,6 +4,7 @@
 #include "iblbake/baker/ingest.h"
 #include "iblbake/core/cubemap.h"
 #include "iblbake/core/image.h"
+#include "rgbe.h"
 
 #include <array>
 #include <cstdint>
@@ -36,6 +37,8 @@ inline FaceFrame faceFrame(int face) {
 struct RawImage {
     std::string file;
     ImageRGBA pixels;                  // R, G, B of the file's level 0 (grey replicated), A (1 if not read)
+    ImageRGBE rgbe;                    // a Radiance file's pixels as stored, when read so (`pixels` then
+                                       // holds the size only)
     bool hasAlpha = false;             // A was read from the file's alpha channel
     bool unassociatedAlpha = false;    // the file's colour is not premultiplied by its alpha (PNG, some TIFF)
     std::string colorSpace;            // the format's colour space name ("Linear" for OpenEXR), "" if none
@@ -50,9 +53,13 @@ struct RawImage {
 // given, sees the image with its size and metadata before any pixel is read (pixels.pixels still empty),
 // so that a size that cannot work (a layout that does not fit) is refused without reading the file. With
 // `readAlpha`, the file's alpha channel (the format's own, else one named "A"), if it has one, is read into
-// A as stored. OpenEXR and Radiance files are read without OpenImageIO (image_source.h).
+// A as stored. OpenEXR and Radiance files are read without OpenImageIO (image_source.h). With `keepRgbe`, a
+// Radiance file's pixels are kept as stored, in `rgbe` (a quarter of the memory; rgbe.h).
 RawImage readImage(const std::filesystem::path& file,
-                   const std::function<void(const RawImage&)>& checkHeader = nullptr, bool readAlpha = false);
+                   const std::function<void(const RawImage&)>& checkHeader = nullptr, bool readAlpha = false,
+                   bool keepRgbe = false);
+// Decodes the RGBE pixels readImage kept into `pixels` (and frees them); nothing when there are none.
+void decodeKeptRgbe(RawImage& image);
 
 // Throws ibl::Error "<name>: WxH is N pixels, more than the limit of M (IBLBAKE_MAX_IMAGE_PIXELS)" when a
 // width x height image (both >= 1) is over limits::maxImagePixels().
@@ -85,6 +92,8 @@ LatLongPixels resolveLatLongPixels(const RawImage& image, LatLongPixels requeste
 std::string resolveInputColorSpace(const RawImage& image, const std::string& requested);
 // The config's own name of a colour space given by name or alias, "" if it has none.
 std::string colorSpaceName(const std::string& nameOrAlias);
+// Whether converting from -> to changes nothing (convertColor would return false); throws as it does.
+bool isIdentityConversion(const std::string& from, const std::string& to, const std::string& file);
 // Converts in place (RGB; alpha untouched); false when the conversion is the identity and nothing was done.
 // Throws ibl::Error naming `file` on OCIO errors.
 bool convertColor(ImageRGBA& image, const std::string& from, const std::string& to, const std::string& file);
@@ -105,6 +114,7 @@ RepairCounts sanitize(ImageRGBA& image);
 RepairCounts convertColorRepaired(ImageRGBA& image, const std::string& from, const std::string& to,
                                   const std::string& file);
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
+float maxLuminance(const ImageRGBE& image, const glm::dvec3& weights);
 struct AlphaRepairCounts {
     std::uint64_t nan = 0, negative = 0, overOne = 0;
 };
@@ -144,6 +154,9 @@ int sourceFaceSizeOf(const SourceFaces& faces);
 // results differ by rounding only).
 CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
                                      double rotateRadians, bool withAlpha = false, bool useSymmetry = true);
+// The same of RGBE pixels as stored (no alpha): the same values as of the decoded image, bit for bit.
+CubeMap resampleLatLongToCubeRotated(const ImageRGBE& latlong, int faceSize, LatLongPixels placement,
+                                     double rotateRadians, bool useSymmetry = true);
 // A resampled alpha as stored: clamped to [0, 1], and within 1e-6 of 0 or 1 taken as that (the exact-area
 // average of cells that are all 1 may round to 0.99999994; it should not make a visible texel partial).
 float resampledAlpha(double alpha);

@@ -136,18 +136,19 @@ std::vector<double> latLongEdges(LatLongPixels placement, int n) {
     return e;
 }
 
+// The lat-long's pixel grid (the pixels themselves are read by integrateColumn).
 class LatLongGrid {
   public:
-    LatLongGrid(const ImageRGBA& image, LatLongPixels placement)
-        : image_(image), placement_(placement), uEdge_(latLongEdges(placement, image.width)),
-          zEdge_(latLongEdges(placement, image.height)) {
+    LatLongGrid(int width, int height, LatLongPixels placement)
+        : width_(width), height_(height), placement_(placement), uEdge_(latLongEdges(placement, width)),
+          zEdge_(latLongEdges(placement, height)) {
         // Row edges as z = sin(latitude) = cos(pi v).
         for (double& z : zEdge_)
             z = std::cos(kPi * z);
         zEdge_.front() = 1.0;
         zEdge_.back() = -1.0;
-        rowHeight_.resize(std::size_t(image.height));
-        for (int r = 0; r < image.height; ++r)
+        rowHeight_.resize(std::size_t(height));
+        for (int r = 0; r < height; ++r)
             rowHeight_[std::size_t(r)] = zEdge(r) - zEdge(r + 1);
     }
 
@@ -155,7 +156,7 @@ class LatLongGrid {
 
     // Column holding u in [0, 1). The first guess only has to be near: the loops make it exact.
     int column(double u) const {
-        const int w = image_.width;
+        const int w = width_;
         int c = latLongPixelAt(placement_, u, w);
         while (c > 0 && u < uEdge_[std::size_t(c)])
             --c;
@@ -177,27 +178,16 @@ class LatLongGrid {
         return {top, bottom, zHi - zEdge(top + 1), zEdge(bottom) - zLo};
     }
 
-    // Integral of column c over the rows of `span` (rows H-1-r when `mirrored`), per channel. RGBA even
-    // when alpha is not resampled: four doubles are two SIMD registers, where three are done one by one,
-    // and the RGB sums are the same.
-    glm::dvec4 integrate(int c, const RowSpan& span, bool mirrored) const {
-        const int flip = mirrored ? image_.height - 1 : 0, sign = mirrored ? -1 : 1;
-        auto at = [&](int r) { return glm::dvec4(image_.at(c, flip + sign * r)); };
-        if (span.top == span.bottom) return at(span.top) * span.topLength;
-        glm::dvec4 sum = at(span.top) * span.topLength;
-        for (int r = span.top + 1; r < span.bottom; ++r)
-            sum += at(r) * rowHeight_[std::size_t(r)];
-        return sum + at(span.bottom) * span.bottomLength;
-    }
-
-    int width() const { return image_.width; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    double rowHeight(int r) const { return rowHeight_[std::size_t(r)]; }
 
   private:
     double zEdge(int r) const { return zEdge_[std::size_t(r)]; }
     // Row r spans z in [zEdge(r + 1), zEdge(r)]. The first guess only has to be near: the loops make it
     // exact.
     int row(double z) const {
-        const int h = image_.height;
+        const int h = height_;
         const double v = approximateAcos(std::clamp(z, -1.0, 1.0)) / kPi;
         int r = latLongPixelAt(placement_, v, h);
         while (r > 0 && z > zEdge(r))
@@ -209,18 +199,33 @@ class LatLongGrid {
 
     // The row holding z, at or below row `top` (z <= zEdge(top)); on a row edge, the row above it.
     int rowBelow(double z, int top) const {
-        const int h = image_.height;
+        const int h = height_;
         int r = top;
         while (r < h - 1 && z < zEdge(r + 1))
             ++r;
         return r;
     }
 
-    const ImageRGBA& image_;
+    int width_, height_;
     LatLongPixels placement_;
     std::vector<double> uEdge_, zEdge_;
     std::vector<double> rowHeight_; // zEdge(r) - zEdge(r + 1)
 };
+
+// Integral of column c of `image` (ImageRGBA, or ImageRGBE decoded to the same floats) over the rows of
+// `span` (rows H-1-r when `mirrored`), per channel. RGBA even when alpha is not resampled: four doubles are
+// two SIMD registers, where three are done one by one, and the RGB sums are the same.
+template <class Image>
+glm::dvec4 integrateColumn(const Image& image, const LatLongGrid& grid, int c,
+                           const LatLongGrid::RowSpan& span, bool mirrored) {
+    const int flip = mirrored ? grid.height() - 1 : 0, sign = mirrored ? -1 : 1;
+    auto at = [&](int r) { return glm::dvec4(image.at(c, flip + sign * r)); };
+    if (span.top == span.bottom) return at(span.top) * span.topLength;
+    glm::dvec4 sum = at(span.top) * span.topLength;
+    for (int r = span.top + 1; r < span.bottom; ++r)
+        sum += at(r) * grid.rowHeight(r);
+    return sum + at(span.bottom) * span.bottomLength;
+}
 
 // A texel that shares the geometry of the one computed: it integrates column (c + columnOffset) mod W, or
 // (columnOffset - c) mod W when reflected, for the computed texel's column c, and row H-1-r for row r when
@@ -379,8 +384,9 @@ void texelNodes(const LatLongGrid& grid, const FaceFrame& frame, const Square& s
     }
 }
 
-TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, const Square& sq,
-                             const std::vector<MeridianNode>& nodes, const Orbit& orbit) {
+template <class Image>
+TexelIntegral integrateTexel(const Image& image, const LatLongGrid& grid, const FaceFrame& frame,
+                             const Square& sq, const std::vector<MeridianNode>& nodes, const Orbit& orbit) {
     TexelIntegral sum;
     sum.energy.fill(glm::dvec4(0.0));
     for (const MeridianNode& node : nodes) {
@@ -390,28 +396,22 @@ TexelIntegral integrateTexel(const LatLongGrid& grid, const FaceFrame& frame, co
         sum.area += w * (zHi - zLo);
         const LatLongGrid::RowSpan span = grid.rowSpan(zLo, zHi);
         for (int m = 0; m < orbit.count; ++m) {
-            const TexelImage& image = orbit.images[std::size_t(m)];
+            const TexelImage& texel = orbit.images[std::size_t(m)];
             sum.energy[std::size_t(m)] +=
-                w * grid.integrate(image.column(node.column, grid.width()), span, image.mirrored);
+                w *
+                integrateColumn(image, grid, texel.column(node.column, grid.width()), span, texel.mirrored);
         }
     }
     return sum;
 }
 
-} // namespace
-
-float resampledAlpha(double alpha) {
-    constexpr double kSnap = 1e-6;
-    if (!(alpha > kSnap)) return 0.0f; // NaN cannot come from repaired pixels, but is transparent too
-    return alpha >= 1.0 - kSnap ? 1.0f : float(alpha);
-}
-
-CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
-                                     double rotateRadians, bool withAlpha, bool useSymmetry) {
+template <class Image>
+CubeMap resampleLatLong(const Image& latlong, int faceSize, LatLongPixels placement, double rotateRadians,
+                        bool withAlpha, bool useSymmetry) {
     if (latlong.width <= 0 || latlong.height <= 0) throw Error("lat-long resampling: empty image");
     if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
     if (placement == LatLongPixels::Auto) throw Error("lat-long resampling: internal: unresolved placement");
-    const LatLongGrid grid(latlong, placement);
+    const LatLongGrid grid(latlong.width, latlong.height, placement);
     const Symmetry symmetry(faceSize, latlong.width, placement, rotateRadians, useSymmetry);
     CubeMap cube(faceSize);
     const double step = 2.0 / faceSize;
@@ -468,7 +468,7 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
             const TexelImage& t = orbit.images[std::size_t(m)];
             return cube.faces[std::size_t(t.face)].at(t.i, t.j);
         };
-        const TexelIntegral t = integrateTexel(grid, frame, sq, nodes, orbit);
+        const TexelIntegral t = integrateTexel(latlong, grid, frame, sq, nodes, orbit);
         for (int m = 0; m < orbit.count; ++m) {
             const glm::dvec4 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
             texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), withAlpha ? resampledAlpha(v.w) : 1.0f);
@@ -505,6 +505,24 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
         }
     });
     return cube;
+}
+
+} // namespace
+
+float resampledAlpha(double alpha) {
+    constexpr double kSnap = 1e-6;
+    if (!(alpha > kSnap)) return 0.0f; // NaN cannot come from repaired pixels, but is transparent too
+    return alpha >= 1.0 - kSnap ? 1.0f : float(alpha);
+}
+
+CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, LatLongPixels placement,
+                                     double rotateRadians, bool withAlpha, bool useSymmetry) {
+    return resampleLatLong(latlong, faceSize, placement, rotateRadians, withAlpha, useSymmetry);
+}
+
+CubeMap resampleLatLongToCubeRotated(const ImageRGBE& latlong, int faceSize, LatLongPixels placement,
+                                     double rotateRadians, bool useSymmetry) {
+    return resampleLatLong(latlong, faceSize, placement, rotateRadians, false, useSymmetry);
 }
 
 } // namespace ingest

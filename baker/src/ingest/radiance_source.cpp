@@ -8,6 +8,7 @@
 // is followed by that many literal bytes) or flat RGBE pixels, where (1, 1, 1, n) repeats the previous
 // pixel n << (8 * the number of such pixels just before it) times.
 #include "image_source.h"
+#include "rgbe.h"
 
 #include "iblbake/core/error.h"
 #include "iblbake/core/input_file.h"
@@ -66,18 +67,6 @@ class BufferedFile {
     std::size_t next_ = 0, end_ = 0;
 };
 
-// The float a channel's mantissa holds at exponent e: mantissa * kExponentScale[e] (0 for e = 0: black).
-// Exact in float, as ldexp(mantissa, e - (128 + 8)) is: a mantissa of at most 8 bits times a power of two
-// (the smallest scales are subnormal floats, and so are their products, still exact). A table lookup and a
-// multiply instead of an ldexp call per channel. No half-step is added (as rgbe.c and OpenImageIO decode;
-// Radiance's own colr_color adds 0.5), so values are those of the readers the files were checked in.
-const std::array<float, 256> kExponentScale = [] {
-    std::array<float, 256> scale{};
-    for (int e = 1; e < 256; ++e)
-        scale[std::size_t(e)] = std::ldexp(1.0f, e - (128 + 8));
-    return scale;
-}();
-
 class RadianceSource final : public ImageSource {
   public:
     RadianceSource(const std::filesystem::path& file, const std::string& name) : file_(file), name_(name) {
@@ -86,14 +75,10 @@ class RadianceSource final : public ImageSource {
 
     void readRows(int y0, int y1, int begin, int end, float* data) override {
         if (y0 != stripY0_ || y1 != stripY1_) {
-            if (y0 != nextRow_) throw Error(name_ + ": cannot read pixels: rows asked for out of order");
-            const std::size_t rowBytes = std::size_t(header_.width) * 4;
-            strip_.resize(std::size_t(y1 - y0) * rowBytes);
-            for (int y = y0; y < y1; ++y)
-                readScanline(&strip_[std::size_t(y - y0) * rowBytes], y);
+            strip_.resize(std::size_t(y1 - y0) * std::size_t(header_.width));
+            readRgbeRows(y0, y1, strip_.data());
             stripY0_ = y0;
             stripY1_ = y1;
-            nextRow_ = y1;
         }
         const std::size_t pixels = std::size_t(y1 - y0) * std::size_t(header_.width);
         const std::size_t channels = std::size_t(end - begin);
@@ -101,12 +86,21 @@ class RadianceSource final : public ImageSource {
                           [&](const tbb::blocked_range<std::size_t>& r) {
                               float* out = data + r.begin() * channels;
                               for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  const std::uint8_t* rgbe = &strip_[4 * i];
-                                  const float scale = kExponentScale[rgbe[3]];
+                                  const glm::vec4 rgb = decodeRgbe(strip_[i]);
                                   for (int c = begin; c < end; ++c)
-                                      *out++ = float(rgbe[c]) * scale;
+                                      *out++ = rgb[c];
                               }
                           });
+    }
+
+    bool storesRgbe() const override { return true; }
+
+    void readRgbeRows(int y0, int y1, RgbePixel* data) override {
+        if (y0 != nextRow_) throw Error(name_ + ": cannot read pixels: rows asked for out of order");
+        std::uint8_t* bytes = reinterpret_cast<std::uint8_t*>(data); // RgbePixel is 4 bytes, no padding
+        for (int y = y0; y < y1; ++y)
+            readScanline(bytes + std::size_t(y - y0) * std::size_t(header_.width) * 4, y);
+        nextRow_ = y1;
     }
 
   private:
@@ -211,7 +205,7 @@ class RadianceSource final : public ImageSource {
     BufferedFile file_;
     std::string name_;
     std::size_t headerBytes_ = 0;
-    std::vector<std::uint8_t> strip_;
+    std::vector<RgbePixel> strip_;
     int stripY0_ = -1, stripY1_ = -1, nextRow_ = 0;
 };
 

@@ -93,7 +93,7 @@ void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t
 }
 
 RawImage readImage(const std::filesystem::path& file, const std::function<void(const RawImage&)>& checkHeader,
-                   bool readAlpha) {
+                   bool readAlpha, bool keepRgbe) {
     const std::string name = printableForMessage(file.string());
     requireRegularFile(file); // before a format is probed: a device or FIFO would never end
     const std::unique_ptr<ImageSource> source = openImageSource(file, name);
@@ -121,6 +121,29 @@ RawImage readImage(const std::filesystem::path& file, const std::function<void(c
     // they lie far apart (a file with render layers holds many more). Rows are read strip by strip into the
     // image, whose memory is reserved but taken only as rows arrive: a truncated file that claims a huge
     // size fails at its first missing strip having used little, and no second full copy is ever made.
+    const int rowStep = header.rowsPerRead;
+    const int stripRows = rowStep * std::max(1, int(kStripPixels / (std::uint64_t(header.width) * rowStep)));
+    const auto outOfMemory = [&] {
+        return Error(name + ": not enough memory for " + std::to_string(header.width) + "x" +
+                     std::to_string(header.height) + " pixels (" + limits::kMaxImagePixelsVariable +
+                     " sets a lower limit)");
+    };
+    if (keepRgbe && source->storesRgbe()) {
+        raw.rgbe.width = header.width;
+        raw.rgbe.height = header.height;
+        try {
+            raw.rgbe.pixels.reserve(std::size_t(count));
+            for (int y0 = 0; y0 < header.height; y0 += stripRows) {
+                const int y1 = std::min(header.height, y0 + stripRows);
+                const std::size_t offset = raw.rgbe.pixels.size();
+                raw.rgbe.pixels.resize(offset + std::size_t(y1 - y0) * std::size_t(header.width));
+                source->readRgbeRows(y0, y1, &raw.rgbe.pixels[offset]);
+            }
+        } catch (const std::bad_alloc&) {
+            throw outOfMemory();
+        }
+        return raw;
+    }
     const std::array<int, 3> rgb = pickChannels(header);
     const int alpha = readAlpha ? pickAlpha(header, rgb) : -1;
     raw.hasAlpha = alpha >= 0;
@@ -130,8 +153,6 @@ RawImage readImage(const std::filesystem::path& file, const std::function<void(c
     const int first = *std::min_element(channels.begin(), channels.end());
     const int span = *std::max_element(channels.begin(), channels.end()) - first + 1;
     const bool together = span <= limits::kMaxChannelsRead;
-    const int rowStep = header.rowsPerRead;
-    const int stripRows = rowStep * std::max(1, int(kStripPixels / (std::uint64_t(header.width) * rowStep)));
     try {
         raw.pixels.pixels.reserve(std::size_t(count));
         std::vector<float> strip;
@@ -159,11 +180,20 @@ RawImage readImage(const std::filesystem::path& file, const std::function<void(c
             }
         }
     } catch (const std::bad_alloc&) {
-        throw Error(name + ": not enough memory for " + std::to_string(header.width) + "x" +
-                    std::to_string(header.height) + " pixels (" + limits::kMaxImagePixelsVariable +
-                    " sets a lower limit)");
+        throw outOfMemory();
     }
     return raw;
+}
+
+void decodeKeptRgbe(RawImage& image) {
+    const std::vector<RgbePixel>& stored = image.rgbe.pixels;
+    if (stored.empty()) return;
+    image.pixels.pixels.resize(stored.size());
+    tbb::parallel_for(Range(0, stored.size(), kPixelsPerTask), [&](const Range& r) {
+        for (std::size_t i = r.begin(); i != r.end(); ++i)
+            image.pixels.pixels[i] = decodeRgbe(stored[i]);
+    });
+    image.rgbe = {};
 }
 
 std::vector<std::pair<std::string, std::string>> readStringAttributes(const std::filesystem::path& file) {

@@ -101,17 +101,31 @@ void premultiplyAlpha(ImageRGBA& image) {
     });
 }
 
-float maxLuminance(const ImageRGBA& image, const glm::dvec3& w) {
+namespace {
+
+// Of ImageRGBA or ImageRGBE pixels: decodeRgbe gives the floats decodeKeptRgbe would store.
+template <class Pixels, class Decode>
+float maxLuminanceOf(const Pixels& pixels, const glm::dvec3& w, Decode decode) {
     return tbb::parallel_reduce(
-        Range(0, image.pixels.size(), 4096), 0.0f,
+        Range(0, pixels.size(), 4096), 0.0f,
         [&](const Range& r, float m) {
             for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                const glm::vec4& p = image.pixels[i];
+                const glm::vec4 p = decode(pixels[i]);
                 m = std::max(m, float(w.x * p.x + w.y * p.y + w.z * p.z));
             }
             return m;
         },
         [](float a, float b) { return std::max(a, b); });
+}
+
+} // namespace
+
+float maxLuminance(const ImageRGBA& image, const glm::dvec3& w) {
+    return maxLuminanceOf(image.pixels, w, [](const glm::vec4& p) { return p; });
+}
+
+float maxLuminance(const ImageRGBE& image, const glm::dvec3& w) {
+    return maxLuminanceOf(image.pixels, w, decodeRgbe);
 }
 
 } // namespace ibl::ingest
