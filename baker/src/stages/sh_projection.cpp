@@ -73,31 +73,17 @@ std::pair<double, glm::dvec3> refineMinimum(const Scalar9& c, glm::dvec3 n) {
     return {f, n};
 }
 
-// The check directions: texel centres of a kGridSize cube, with their band-1 and band-2 parts of E
-// precomputed per radiance, so that a window is checked with 2 multiply-adds per direction and channel.
-struct Grid {
-    std::vector<glm::dvec3> directions;
-    std::vector<Scalar9> p;
-    static const Grid& get() {
-        static const Grid grid = [] {
-            Grid g;
-            // Reserved: grown by doubling, the arrays took twice their 2.4 MB in memory first touched (a
-            // page fault per 4 KB, ingest/read_image.cpp) and copies.
-            g.directions.reserve(6 * std::size_t(kGridSize) * kGridSize);
-            g.p.reserve(g.directions.capacity());
-            for (int f = 0; f < 6; ++f)
-                for (int y = 0; y < kGridSize; ++y)
-                    for (int x = 0; x < kGridSize; ++x) {
-                        glm::dvec3 d = glm::normalize(glm::dvec3(cubeFaceDirection(
-                            f, (x + 0.5f) / float(kGridSize), (y + 0.5f) / float(kGridSize))));
-                        g.directions.push_back(d);
-                        g.p.push_back(polynomials(d));
-                    }
-            return g;
-        }();
-        return grid;
-    }
-};
+constexpr std::size_t kCheckDirections = 6 * std::size_t(kGridSize) * kGridSize;
+
+// Check direction j: the centre of texel j of a kGridSize cube, face after face, row after row. Computed
+// where it is needed rather than kept in a table: the table (2.4 MB with its polynomials) was memory
+// first touched in every process, a page fault per 4 KB (ingest/read_image.cpp), for 0.3 ms of arithmetic.
+glm::dvec3 checkDirection(std::size_t j) {
+    const int face = int(j / (std::size_t(kGridSize) * kGridSize));
+    const int y = int(j / kGridSize % kGridSize), x = int(j % kGridSize);
+    return glm::normalize(
+        glm::dvec3(cubeFaceDirection(face, (x + 0.5f) / float(kGridSize), (y + 0.5f) / float(kGridSize))));
+}
 
 // E at the check directions for band factors w, channel by channel: mean + w1 band1_j + w2 band2_j, each
 // channel's band parts in their own arrays, face after face, so that the scans over the directions
@@ -105,17 +91,17 @@ struct Grid {
 class NonNegativityCheck {
   public:
     explicit NonNegativityCheck(const ShRgb& radiance) : prescaled_(prescaleIrradiance(radiance)) {
-        const Grid& grid = Grid::get();
         for (int ch = 0; ch < 3; ++ch) {
-            band1_[ch].resize(grid.p.size());
-            band2_[ch].resize(grid.p.size());
+            band1_[ch].resize(kCheckDirections);
+            band2_[ch].resize(kCheckDirections);
         }
-        for (std::size_t j = 0; j < grid.p.size(); ++j) {
+        for (std::size_t j = 0; j < kCheckDirections; ++j) {
+            const Scalar9 p = polynomials(checkDirection(j));
             glm::dvec3 b1(0.0), b2(0.0);
             for (int i = 1; i < 4; ++i)
-                b1 += prescaled_[i] * grid.p[j][i];
+                b1 += prescaled_[i] * p[i];
             for (int i = 4; i < 9; ++i)
-                b2 += prescaled_[i] * grid.p[j][i];
+                b2 += prescaled_[i] * p[i];
             for (int ch = 0; ch < 3; ++ch) {
                 band1_[ch][j] = b1[ch];
                 band2_[ch][j] = b2[ch];
@@ -187,7 +173,6 @@ class NonNegativityCheck {
     // above the lowest of all cannot hold the minimum. (Windows only lower the curvature.)
     std::pair<double, glm::dvec3> channelMinimum(int ch, const std::array<double, 3>& w,
                                                  const FaceLowest& lowest) const {
-        const Grid& grid = Grid::get();
         Scalar9 c = channel(prescaled_, ch);
         for (int i = 1; i < 9; ++i)
             c[i] *= w[std::size_t(shBand(i))];
@@ -205,7 +190,7 @@ class NonNegativityCheck {
                     arg = j;
                     argValue = e;
                 }
-            auto [refined, direction] = refineMinimum(c, grid.directions[arg]);
+            auto [refined, direction] = refineMinimum(c, checkDirection(arg));
             if (refined < best) {
                 best = refined;
                 bestDirection = direction;
