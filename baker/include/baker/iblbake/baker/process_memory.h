@@ -7,8 +7,9 @@ namespace ibl {
 // each from its own mapping (glibc's M_MMAP_THRESHOLD; elsewhere a no-op). A bake allocates such blocks one
 // after another; from its own mapping, a freed block goes back to the kernel and the next one is faulted in
 // again page by page, a fault per 4 KB that costs 3-13 us on the 2-core VM the benchmarks ran on, while a
-// freed heap block is reused. `iblbake diffuse` of the 1k sample: 5,430 -> 4,400 page faults. Call it
-// first in main(), before the blocks it should apply to.
+// freed heap block is reused; freed memory at the top of the heap is kept (up to 64 MB) rather than given
+// back. `iblbake diffuse` of the 1k sample: 5,430 -> 4,400 page faults. Call it first in main() (the
+// benchmarks' too, so that they measure the same policy), before the blocks it should apply to.
 void reuseFreedBlocks();
 
 } // namespace ibl
