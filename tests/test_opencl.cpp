@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace {
 
@@ -55,6 +57,46 @@ TEST(OpenCL, ProgramsAreCachedPerProcessAndTimed) {
     cl::Program& b = cl->program("dfg.cl");
     EXPECT_EQ(&a, &b);
     EXPECT_THROW(cl->kernel("dfg.cl", "noSuchKernel"), ibl::Error);
+}
+
+// Kernels are enqueued without a wait each (Context::run): the in-order queue still runs them in turn before
+// the read, and the read's one wait records every kernel's device time, in order.
+TEST(OpenCL, KernelsRunInOrderBeforeTheReadAndAreTimed) {
+    auto cl = contextOrSkip();
+    if (!cl) GTEST_SKIP() << "no OpenCL device";
+    const std::string source = "__kernel void addOne(__global float* v) { v[get_global_id(0)] += 1.0f; }\n"
+                               "__kernel void twice(__global float* v) { v[get_global_id(0)] *= 2.0f; }\n";
+    cl::Program program = cl->buildProgram("order.cl", source, "");
+    cl::Kernel addOne(program, "addOne"), twice(program, "twice");
+    std::vector<float> values(1024);
+    for (std::size_t i = 0; i < values.size(); ++i)
+        values[i] = float(i);
+    cl::Buffer buffer = cl->createBuffer(CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                                         values.size() * sizeof(float), values.data());
+    addOne.setArg(0, buffer);
+    twice.setArg(0, buffer);
+    cl->takeTimings();
+    cl->run(addOne, cl::NDRange(values.size()));
+    cl->run(twice, cl::NDRange(values.size()));
+    cl->run(twice, cl::NDRange(values.size()));
+    std::vector<float> read(values.size());
+    cl->download(buffer, read.size() * sizeof(float), read.data());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        ASSERT_EQ(read[i], (float(i) + 1.0f) * 4.0f) << i;
+    const std::vector<ibl::ocl::DispatchTiming> timings = cl->takeTimings();
+    ASSERT_EQ(timings.size(), 3u);
+    EXPECT_EQ(timings[0].kernel, "addOne");
+    EXPECT_EQ(timings[1].kernel, "twice");
+    EXPECT_EQ(timings[2].kernel, "twice");
+    for (const ibl::ocl::DispatchTiming& t : timings)
+        EXPECT_GE(t.milliseconds, 0.0);
+    // A launch the device refuses is the kernel's own error, at once.
+    try {
+        cl->run(addOne, cl::NDRange(values.size()), cl::NDRange(values.size() + 1));
+        FAIL() << "a work-group larger than the range was enqueued";
+    } catch (const ibl::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("OpenCL kernel addOne"), std::string::npos) << e.what();
+    }
 }
 
 TEST(OpenCL, DeviceSelection) {

@@ -209,12 +209,18 @@ cl::Buffer Context::createBuffer(cl_mem_flags flags, std::size_t bytes, const vo
 }
 
 void Context::download(const cl::Buffer& buffer, std::size_t bytes, void* destination) {
+    const auto failure = [&](const cl::Error& e) {
+        return "OpenCL read of " + std::to_string(bytes) + " bytes from " + info_.deviceName + ": " +
+               clFailure(e);
+    };
+    cl::Event read;
     try {
-        queue_.enqueueReadBuffer(buffer, CL_TRUE, 0, bytes, destination);
+        queue_.enqueueReadBuffer(buffer, CL_FALSE, 0, bytes, destination, nullptr, &read);
     } catch (const cl::Error& e) {
-        throw Error("OpenCL read of " + std::to_string(bytes) + " bytes from " + info_.deviceName + ": " +
-                    clFailure(e));
+        waitForPending(nullptr, failure); // a kernel's failure first: the read may only be its consequence
+        throw Error(failure(e));
     }
+    waitForPending(&read, failure);
 }
 
 void Context::run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
@@ -222,18 +228,58 @@ void Context::run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRan
     try {
         cl::Event event;
         queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
-        event.wait();
-        double ms = double(event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
-                           event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
-                    1e-6;
+        queue_.flush(); // started now, not when the read is enqueued
         std::lock_guard lock(mutex_);
-        timings_.push_back({name, ms});
+        pending_.push_back({std::move(name), std::move(event)});
     } catch (const cl::Error& e) {
         throw Error("OpenCL kernel " + name + " on " + info_.deviceName + ": " + clFailure(e));
     }
 }
 
+void Context::waitForPending(const cl::Event* last,
+                             const std::function<std::string(const cl::Error&)>& failure) {
+    std::vector<PendingDispatch> pending;
+    {
+        std::lock_guard lock(mutex_);
+        pending = std::exchange(pending_, {});
+    }
+    std::vector<cl::Event> events;
+    for (const PendingDispatch& p : pending)
+        events.push_back(p.event);
+    if (last) events.push_back(*last);
+    if (events.empty()) return;
+    // One wait for all. When it reports a failure, each event's own status says whose it was.
+    try {
+        cl::Event::waitForEvents(events);
+    } catch (const cl::Error&) {
+    }
+    std::vector<DispatchTiming> done;
+    for (const PendingDispatch& p : pending) {
+        try {
+            if (p.event.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>() < 0)
+                throw cl::Error(p.event.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(),
+                                "clEnqueueNDRangeKernel");
+            done.push_back({p.kernel, double(p.event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                             p.event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
+                                          1e-6});
+        } catch (const cl::Error& e) {
+            throw Error("OpenCL kernel " + p.kernel + " on " + info_.deviceName + ": " + clFailure(e));
+        }
+    }
+    {
+        std::lock_guard lock(mutex_);
+        timings_.insert(timings_.end(), done.begin(), done.end());
+    }
+    if (last) try {
+            if (const cl_int status = last->getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(); status < 0)
+                throw cl::Error(status, "clEnqueueReadBuffer");
+        } catch (const cl::Error& e) {
+            throw Error(failure(e));
+        }
+}
+
 std::vector<DispatchTiming> Context::takeTimings() {
+    waitForPending(nullptr, nullptr);
     std::lock_guard lock(mutex_);
     return std::exchange(timings_, {});
 }

@@ -9,6 +9,7 @@
 #include <CL/opencl.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -80,9 +81,14 @@ class Context {
 
     // Buffers, with CL failures turned into ibl::Error.
     cl::Buffer createBuffer(cl_mem_flags flags, std::size_t bytes, const void* hostData = nullptr);
+    // Reads a buffer after the kernels run before it, in one wait with them; a kernel's failure is thrown
+    // as its own (run).
     void download(const cl::Buffer& buffer, std::size_t bytes, void* destination);
 
-    // Enqueues a kernel over an NDRange, waits, and records its device time.
+    // Enqueues a kernel over an NDRange without waiting for it: the queue is in order, so a later kernel
+    // or read sees its output. The next download (or takeTimings) waits for it, records its device time
+    // and throws ibl::Error naming it if it failed. One wait per read instead of one per kernel: a small
+    // LD level is two kernels of ~0.1 ms, where each wait cost about as much again on PoCL.
     void run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local = cl::NullRange);
 
     std::vector<DispatchTiming> takeTimings();
@@ -101,6 +107,15 @@ class Context {
     std::map<std::string, std::vector<unsigned char>> unstoredBinaries_; // by binary key
     ProgramBuilds builds_;
     std::vector<DispatchTiming> timings_;
+    struct PendingDispatch {
+        std::string kernel;
+        cl::Event event;
+    };
+    std::vector<PendingDispatch> pending_; // kernels enqueued and not yet waited for
+
+    // Waits for the pending kernels and `last` (a read after them, if any) and records the kernels'
+    // times. Throws ibl::Error naming the first kernel that failed, else `failure(last's error)`.
+    void waitForPending(const cl::Event* last, const std::function<std::string(const cl::Error&)>& failure);
 };
 
 } // namespace ibl::ocl
