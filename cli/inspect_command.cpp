@@ -39,13 +39,13 @@
 #include <iblbake/baker/sun.h>
 #include <iblbake/baker/sun_in_probe.h>
 #include <iblbake/core/limits.h>
+#include <iblbake/core/numeric.h>
 
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <numbers>
 
 namespace ibl::cli {
 
@@ -100,7 +100,6 @@ Action addInspectCommand(CLI::App& app) {
         for (const auto& [k, v] : calibration)
             if (k == "iblbake:units") units = v;
         const bool absolute = units == "cd/m2";
-        constexpr double kDeg = 180.0 / std::numbers::pi;
         // What a bake that keeps the detected sun, or a compact light the detector rejects by size, in the
         // probe costs at runtime (measured on a 64 px copy; without either, a detection only).
         const SunInProbe sunInProbe = measureSunInProbe(env.cube, Executor::cpu(), 5, sunSettings);
@@ -140,7 +139,7 @@ Action addInspectCommand(CLI::App& app) {
                 j["sun"] = {{"direction", {l.direction.x, l.direction.y, l.direction.z}},
                             {"elevationDegrees", l.elevationDegrees()},
                             {"azimuthDegrees", l.azimuthDegrees()},
-                            {"angularRadiusDegrees", l.angularRadius * kDeg},
+                            {"angularRadiusDegrees", l.angularRadius / kDegree},
                             {"illuminance", l.illuminance},
                             {"solidAngleSr", l.solidAngle},
                             {"color", {l.color.x, l.color.y, l.color.z}},
@@ -189,7 +188,7 @@ Action addInspectCommand(CLI::App& app) {
             std::printf("sun          direction (%.4f, %.4f, %.4f), elevation %.2f deg, azimuth %.2f deg, "
                         "angular radius %.3f deg\n",
                         l.direction.x, l.direction.y, l.direction.z, l.elevationDegrees(), l.azimuthDegrees(),
-                        l.angularRadius * kDeg);
+                        l.angularRadius / kDegree);
             std::printf("             E_perp %.6g %s, solid angle %.4g sr, colour (%.3f, %.3f, %.3f), "
                         "contrast %.4g\n",
                         l.illuminance, lux, l.solidAngle, l.color.x, l.color.y, l.color.z, sun.contrast);

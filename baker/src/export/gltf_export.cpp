@@ -6,6 +6,7 @@
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/ktx2/storage_scale.h"
 #include "iblbake/runtime/runtime.h"
@@ -59,7 +60,7 @@ CubeMap residualLevel0(CubeMap level0, const Ktx2Image& ktx, const std::optional
         throw Error(ktxPath.string() +
                     ": level 0 holds the extracted sun, but it is not found again: " + detection.reason);
     const DiskLight light = extractSun(level0, detection, weights);
-    if (glm::dot(light.direction, sun->direction) < std::cos(0.1 * 3.14159265358979 / 180.0) ||
+    if (glm::dot(light.direction, sun->direction) < std::cos(0.1 * kDegree) ||
         std::abs(light.illuminance / storageScale / sun->illuminance - 1.0) > 0.01)
         throw Error(ktxPath.string() + ": the sun in level 0 is not the one in sun.json");
     return level0;

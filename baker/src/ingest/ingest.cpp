@@ -7,10 +7,10 @@
 
 #include "iblbake/core/error.h"
 #include "iblbake/core/limits.h"
+#include "iblbake/core/numeric.h"
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 namespace ibl {
 
@@ -92,7 +92,7 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
         ingest::resolveLayout(image, report.layout); // six files: each must be square
     }
 
-    const double rotate = double(settings.rotateDegrees) * std::numbers::pi / 180.0;
+    const double rotate = double(settings.rotateDegrees) * kDegree;
     report.inputColorSpace = ingest::resolveInputColorSpace(first, settings.inputColorSpace);
     const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace); // also checks linearity
     report.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);

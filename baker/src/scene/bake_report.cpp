@@ -2,6 +2,7 @@
 // and what it holds, the calibration in one line, the preview's measured error and the warnings. Read back
 // from the manifest, so that a bake found up to date (cli/front_end.cpp) reports the same as one that ran.
 #include "iblbake/bake_state/bake_state.h"
+#include "iblbake/core/numeric.h"
 
 #include <nlohmann/json.hpp>
 
@@ -58,8 +59,8 @@ std::string describe(const std::string& name, const json& p, const std::string& 
         const json& d = l.at("direction");
         return format("disk light %.6g %s, radius %.2f deg, toward (%.2f, %.2f, %.2f)",
                       l.at("illuminance").get<double>(), units == "cd/m2" ? "lux" : "(relative)",
-                      l.at("angularRadius").get<double>() * 180.0 / 3.14159265358979, d[0].get<double>(),
-                      d[1].get<double>(), d[2].get<double>());
+                      l.at("angularRadius").get<double>() / kDegree, d[0].get<double>(), d[1].get<double>(),
+                      d[2].get<double>());
     }
     if (name == "gltf")
         return format("glTF 2.0 EXT_lights_image_based, %d levels x 6 RGBD PNG from %d px",
