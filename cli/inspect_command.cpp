@@ -39,7 +39,6 @@
 #include <iblbake/baker/sun.h>
 #include <iblbake/baker/sun_in_probe.h>
 #include <iblbake/core/limits.h>
-#include <iblbake/core/numeric.h>
 
 #include <nlohmann/json.hpp>
 
@@ -139,7 +138,7 @@ Action addInspectCommand(CLI::App& app) {
                 j["sun"] = {{"direction", {l.direction.x, l.direction.y, l.direction.z}},
                             {"elevationDegrees", l.elevationDegrees()},
                             {"azimuthDegrees", l.azimuthDegrees()},
-                            {"angularRadiusDegrees", l.angularRadius / kDegree},
+                            {"angularRadiusDegrees", l.angularRadiusDegrees()},
                             {"illuminance", l.illuminance},
                             {"solidAngleSr", l.solidAngle},
                             {"color", {l.color.x, l.color.y, l.color.z}},
@@ -188,7 +187,7 @@ Action addInspectCommand(CLI::App& app) {
             std::printf("sun          direction (%.4f, %.4f, %.4f), elevation %.2f deg, azimuth %.2f deg, "
                         "angular radius %.3f deg\n",
                         l.direction.x, l.direction.y, l.direction.z, l.elevationDegrees(), l.azimuthDegrees(),
-                        l.angularRadius / kDegree);
+                        l.angularRadiusDegrees());
             std::printf("             E_perp %.6g %s, solid angle %.4g sr, colour (%.3f, %.3f, %.3f), "
                         "contrast %.4g\n",
                         l.illuminance, lux, l.solidAngle, l.color.x, l.color.y, l.color.z, sun.contrast);

@@ -97,16 +97,14 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
     const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace); // also checks linearity
     report.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);
     for (auto& image : images) {
-        if (!image.rgbe.pixels.empty() &&
-            (report.layout != EnvLayout::LatLong ||
-             !ingest::isIdentityConversion(report.inputColorSpace, report.workingColorSpace, image.file)))
-            ingest::decodeKeptRgbe(image);
-        if (!image.rgbe.pixels.empty()) {
+        if (!image.rgbe.pixels.empty() && report.layout == EnvLayout::LatLong &&
+            ingest::isIdentityConversion(report.inputColorSpace, report.workingColorSpace, image.file)) {
             // RGBE holds no NaN, Inf, negative value or alpha: nothing to repair.
             report.maxLuminanceIn =
                 std::max(report.maxLuminanceIn, ingest::maxLuminance(image.rgbe, weights));
             continue;
         }
+        ingest::decodeKeptRgbe(image); // nothing when none were kept
         add(report, ingest::sanitize(image.pixels));
         if (image.hasAlpha) add(report, ingest::sanitizeAlpha(image.pixels));
         add(report, ingest::convertColorRepaired(image.pixels, report.inputColorSpace,

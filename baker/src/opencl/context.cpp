@@ -256,9 +256,8 @@ void Context::waitForPending(const cl::Event* last,
     std::vector<DispatchTiming> done;
     for (const PendingDispatch& p : pending) {
         try {
-            if (p.event.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>() < 0)
-                throw cl::Error(p.event.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(),
-                                "clEnqueueNDRangeKernel");
+            if (const cl_int status = p.event.getInfo<CL_EVENT_COMMAND_EXECUTION_STATUS>(); status < 0)
+                throw cl::Error(status, "clEnqueueNDRangeKernel");
             done.push_back({p.kernel, double(p.event.getProfilingInfo<CL_PROFILING_COMMAND_END>() -
                                              p.event.getProfilingInfo<CL_PROFILING_COMMAND_START>()) *
                                           1e-6});
