@@ -126,7 +126,7 @@ Action addSpecularCommand(CLI::App& app) {
         if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
         std::future<Executor> pendingExecutor = o->backend.startExecutor();
         // The cube with the sun is kept for level 0 (below).
-        const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
+        PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
         const Executor executor = pendingExecutor.get();
         const SourceEnvironment& env = input.env;
         const PreparedEnvironment& calibration = input;
@@ -136,8 +136,8 @@ Action addSpecularCommand(CLI::App& app) {
         std::vector<SpecularLevelTiming> timings;
         auto bakeStart = std::chrono::steady_clock::now();
         SpecularWithRoughLayers baked;
-        if (o->roughLayers.empty())
-            baked.chain = bakeSpecular(env.cube, settings, executor, &timings);
+        if (o->roughLayers.empty()) // the ingested cube becomes level 0, moved rather than copied
+            baked.chain = bakeSpecular(std::move(input.env.cube), settings, executor, &timings);
         else
             baked = bakeSpecularWithRoughLayers(env.cube, settings, executor, &timings);
         CubeMapChain& chain = baked.chain;

@@ -77,10 +77,15 @@ BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uin
         int face, x, y;
     };
     std::vector<Candidate> candidates;
+    // Every face has the same texel solid angles: one face's (four atan2 each), not six.
+    std::vector<float> solidAngle(std::size_t(n) * std::size_t(n));
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x)
+            solidAngle[std::size_t(y) * std::size_t(n) + std::size_t(x)] = cubeTexelSolidAngle(x, y, n);
     for (int f = 0; f < 6; ++f)
         for (int y = 0; y < n; ++y)
             for (int x = 0; x < n; ++x) {
-                double omega = cubeTexelSolidAngle(x, y, n);
+                double omega = solidAngle[std::size_t(y) * std::size_t(n) + std::size_t(x)];
                 weighted += rec709Luminance(source.faces[f].at(x, y)) * omega;
                 totalSolidAngle += omega;
             }

@@ -138,17 +138,21 @@ void checkSpecularSource(const CubeMap& source) {
 }
 
 // What one LD bake of a source (its bright texels taken out by `split`) shares between its levels: the
-// sampled residual's pyramid and the bright texels, on the device. Holds pointers into `split` (the CPU
-// backend reads the host arrays), so `split` outlives it.
+// sampled residual's pyramid and the bright texels, on the device (the CPU backend reads the host arrays,
+// which it keeps).
 class LdBake {
   public:
-    LdBake(const BrightSplit& split, const SpecularSettings& settings, const Executor& executor)
+    LdBake(BrightSplit split, const SpecularSettings& settings, const Executor& executor)
         : settings_(settings), dispatcher_(executor), pyramid_(buildCubePyramid(split.residual)),
-          sourceFaceSize_(split.residual.faceSize), clusterCount_(split.bright.clusterCount()),
+          sourceFaceSize_(split.residual.faceSize), bright_(std::move(split.bright)),
           pyramidData_(dispatcher_.upload("specular source pyramid", pyramid_.data)),
-          clusters_(dispatcher_.upload("bright-texel clusters", split.bright.clusters)),
-          bright_(dispatcher_.upload("bright texels", split.bright.entries)) {}
-    LdBake(const LdBake&) = delete; // the host arrays point into its own pyramid
+          clustersData_(dispatcher_.upload("bright-texel clusters", bright_.clusters)),
+          brightData_(dispatcher_.upload("bright texels", bright_.entries)) {
+        // The residual is read only into the pyramid. Released now, the levels' memory reuses its pages
+        // instead of touching new ones (a 256-px cube is 1,536 pages; ingest/read_image.cpp).
+        split.residual = CubeMap();
+    }
+    LdBake(const LdBake&) = delete; // the host arrays point into its own pyramid and bright texels
     LdBake& operator=(const LdBake&) = delete;
 
     // The LD of perceptual roughness r (N = V = R) on faces of n texels.
@@ -164,14 +168,15 @@ class LdBake {
                         std::uint32_t(n),
                         table.count(),
                         table.invWeightSum,
-                        clusterCount_,
+                        bright_.clusterCount(),
                         alpha,
                         float(1.0 / lobeIntegral(alpha))};
         DispatchOutput out = dispatcher_.output(DispatchGrid::cube(std::uint32_t(n)));
         dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItem), out, params, pyramidData_,
                         dispatcher_.upload("LD sample table", table.samples));
         if (params.brightCount > 0)
-            dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItem), out, params, clusters_, bright_);
+            dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItem), out, params, clustersData_,
+                            brightData_);
         return dispatcher_.downloadCube(out);
     }
 
@@ -180,16 +185,17 @@ class LdBake {
     const Dispatcher dispatcher_;
     const CubePyramid pyramid_;
     const int sourceFaceSize_;
-    const std::uint32_t clusterCount_;
-    const DeviceArray<float> pyramidData_, clusters_, bright_;
+    const BrightTexels bright_;
+    const DeviceArray<float> pyramidData_, clustersData_, brightData_;
 };
 
 // The chain of `source` from `bake` (its bright texels taken out; the residual is what is sampled).
-CubeMapChain bakeChain(const CubeMap& source, const LdBake& bake, const SpecularSettings& settings,
+CubeMapChain bakeChain(CubeMap source, const LdBake& bake, const SpecularSettings& settings,
                        std::vector<SpecularLevelTiming>* timings) {
-    const int levelCount = levelCountFor(source.faceSize, settings);
+    const int faceSize = source.faceSize;
+    const int levelCount = levelCountFor(faceSize, settings);
     CubeMapChain chain;
-    chain.levels.push_back(source); // level 0: the mirror, unconvolved (Frostbite footnote 43)
+    chain.levels.push_back(std::move(source)); // level 0: the mirror, unconvolved (Frostbite footnote 43)
     for (int m = 1; m < levelCount; ++m) {
         if (settings.integratedLevels > 0 && m >= settings.integratedLevels) {
             chain.levels.push_back(downsampleBox(chain.levels.back()));
@@ -197,7 +203,7 @@ CubeMapChain bakeChain(const CubeMap& source, const LdBake& bake, const Specular
         }
         auto start = std::chrono::steady_clock::now();
         const float r = perceptualRoughnessForLevel(m, levelCount, settings.mapping);
-        chain.levels.push_back(bake.level(std::max(1, source.faceSize >> m), r));
+        chain.levels.push_back(bake.level(std::max(1, faceSize >> m), r));
         if (timings)
             timings->push_back(
                 {m, r,
@@ -207,10 +213,9 @@ CubeMapChain bakeChain(const CubeMap& source, const LdBake& bake, const Specular
     return chain;
 }
 
-CubeMapChain bakeSpecularSplit(const CubeMap& source, const BrightSplit& split,
-                               const SpecularSettings& settings, const Executor& executor,
-                               std::vector<SpecularLevelTiming>* timings) {
-    return bakeChain(source, LdBake(split, settings, executor), settings, timings);
+CubeMapChain bakeSpecularSplit(CubeMap source, BrightSplit split, const SpecularSettings& settings,
+                               const Executor& executor, std::vector<SpecularLevelTiming>* timings) {
+    return bakeChain(std::move(source), LdBake(std::move(split), settings, executor), settings, timings);
 }
 
 // The rough layers of a source from `bake` (kernels/mip_mapping.h).
@@ -224,27 +229,27 @@ std::vector<CubeMap> bakeLayers(const CubeMap& source, const LdBake& bake) {
 
 } // namespace
 
-CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
+CubeMapChain bakeSpecular(CubeMap source, const SpecularSettings& settings, const Executor& executor,
                           std::vector<SpecularLevelTiming>* timings) {
     checkSpecularSource(source);
-    return bakeSpecularSplit(source,
-                             splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels),
-                             settings, executor, timings);
+    BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
+    return bakeSpecularSplit(std::move(source), std::move(split), settings, executor, timings);
 }
 
 std::vector<CubeMap> bakeRoughLayers(const CubeMap& source, const SpecularSettings& settings,
                                      const Executor& executor) {
     checkSpecularSource(source);
-    const BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
-    return bakeLayers(source, LdBake(split, settings, executor));
+    return bakeLayers(source,
+                      LdBake(splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels),
+                             settings, executor));
 }
 
 SpecularWithRoughLayers bakeSpecularWithRoughLayers(const CubeMap& source, const SpecularSettings& settings,
                                                     const Executor& executor,
                                                     std::vector<SpecularLevelTiming>* timings) {
     checkSpecularSource(source);
-    const BrightSplit split = splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels);
-    const LdBake bake(split, settings, executor);
+    const LdBake bake(splitBrightTexels(source, settings.brightThreshold, settings.maxBrightTexels), settings,
+                      executor);
     return {bakeChain(source, bake, settings, timings), bakeLayers(source, bake)};
 }
 
@@ -265,7 +270,7 @@ VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const S
         }
     // Visible everywhere: the capture is one without visibility, baked as such (the same bytes).
     if (allVisible) {
-        result.chain = bakeSpecular(source, settings, executor);
+        result.chain = bakeSpecular(std::move(source), settings, executor);
         return result;
     }
     // The visibility is split at the colour's bright texels by the colour's factors, so that the sampled and

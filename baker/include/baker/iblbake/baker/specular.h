@@ -58,8 +58,9 @@ struct SpecularLevelTiming {
     double milliseconds;
 };
 
-// Bakes the chain from a source cube whose face size is the output's (a power of two).
-CubeMapChain bakeSpecular(const CubeMap& source, const SpecularSettings& settings, const Executor& executor,
+// Bakes the chain from a source cube whose face size is the output's (a power of two). The source becomes
+// level 0: a caller done with its cube moves it in instead of copying it.
+CubeMapChain bakeSpecular(CubeMap source, const SpecularSettings& settings, const Executor& executor,
                           std::vector<SpecularLevelTiming>* timings = nullptr);
 
 // The rough layers of the chain bakeSpecular bakes from `source` (kernels/mip_mapping.h IBL_ROUGH_LAYER_*):
