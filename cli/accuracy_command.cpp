@@ -64,6 +64,7 @@ Action addAccuracyCommand(CLI::App& app) {
         const Executor executor = o->backend.makeExecutor();
         const AccuracyRun run = runAccuracySweep(plan, input, o->repeats, executor, printStage, start);
         writeAccuracyReports(o->output, run);
+        BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote   %s/report.json, report.md, report.html (%.1f s, load average %s)\n",
                     o->output.c_str(), run.totalSeconds, run.load.c_str());
         return 0;

@@ -18,7 +18,17 @@ Executor BackendOptions::makeExecutor() const {
 }
 
 Executor BackendOptions::makeExecutor(Backend chosen) const {
-    return Executor::create(chosen, device, std::cerr);
+    Executor executor = Executor::create(chosen, device, std::cerr);
+    // A program loaded from its binary skips the compiler and PoCL's own cache look-up, which runs clang's
+    // preprocessor over the source (README "Kernel binaries").
+    if (executor.usesOpenCL())
+        if (std::optional<std::filesystem::path> directory = ocl::userProgramBinaryDirectory())
+            executor.cl().useProgramBinaries(*directory);
+    return executor;
+}
+
+void BackendOptions::storeBuiltKernels(const Executor& executor) {
+    if (executor.usesOpenCL()) executor.cl().storeProgramBinaries();
 }
 
 std::future<Executor> BackendOptions::startExecutor() const {
@@ -27,9 +37,13 @@ std::future<Executor> BackendOptions::startExecutor() const {
 
 void BackendOptions::printTiming(const Executor& executor, const char* stage, double wallMs) const {
     if (!timing) return;
-    if (executor.usesOpenCL())
+    if (executor.usesOpenCL()) {
         for (const ocl::DispatchTiming& t : executor.cl().takeTimings())
             std::printf("timing: kernel %-24s %10.3f ms\n", t.kernel.c_str(), t.milliseconds);
+        const ocl::Context::ProgramBuilds builds = executor.cl().programBuilds();
+        std::printf("timing: programs %d built from source, %d loaded from binaries\n", builds.fromSource,
+                    builds.fromBinary);
+    }
     std::printf("timing: stage  %-24s %10.3f ms (%s)\n", stage, wallMs, executor.description().c_str());
 }
 

@@ -26,6 +26,10 @@ struct BackendOptions {
     // makeExecutor() on its own thread, so that the OpenCL set-up (PoCL loads LLVM: ~40 ms) overlaps the
     // ingest; get() rethrows its error.
     std::future<Executor> startExecutor() const;
+    // Writes the OpenCL programs the command built from source to the user's kernel cache
+    // (ocl::userProgramBinaryDirectory), which makeExecutor gave the executor: called once the command's
+    // outputs are complete, so a failed command adds nothing to it.
+    static void storeBuiltKernels(const Executor& executor);
     // With --timing: prints the device time of every OpenCL dispatch, and the stage's wall time.
     void printTiming(const Executor& executor, const char* stage, double wallMs) const;
 };

@@ -53,6 +53,7 @@ Action addDfgCommand(CLI::App& app) {
         exr.attributes.emplace_back("iblbake:version", IBLBAKE_VERSION);
         exr.attributes.emplace_back("Software", "iblbake " IBLBAKE_VERSION);
         writeExr(opts->output, lut, exr);
+        BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote %s (%ux%u DFG LUT, %u samples/texel, %s, %.1f ms)\n", opts->output.c_str(),
                     opts->settings.size, opts->settings.size, opts->settings.sampleCount,
                     executor.description().c_str(), ms);

@@ -215,6 +215,7 @@ Action addDiffuseCommand(CLI::App& app) {
         });
         writeSunJson(outputs, o->calibration, calibration.record, calibration.sun);
         outputs.commit();
+        BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote   %s%s%s\n", o->output.c_str(), wantCube ? " and " : "",
                     wantCube ? o->irradianceCube.c_str() : "");
         std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n", ingestMs, shMs,

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -57,16 +58,18 @@ Action addGltfCommand(CLI::App& app) {
         } catch (const SettingError& e) {
             throw Error(flaggedMessage(e));
         }
+        std::optional<Executor> executor; // only to refilter
         if (gltf.refilter) {
-            Executor executor = o->backend.makeExecutor();
+            executor = o->backend.makeExecutor();
             auto bakeStart = std::chrono::steady_clock::now();
-            refilterForGltf(gltf, executor);
+            refilterForGltf(gltf, *executor);
             std::printf("refilter %d levels %d..%d px, %s: %.1f ms\n", gltf.refilter->levels,
-                        gltf.baseFaceSize, gltf.lowestFaceSize, executor.description().c_str(),
+                        gltf.baseFaceSize, gltf.lowestFaceSize, executor->description().c_str(),
                         millisecondsSince(bakeStart));
         }
         const GltfIblScene& scene = gltf.scene;
         writeGltfIbl(output, scene);
+        if (executor) BackendOptions::storeBuiltKernels(*executor);
         std::printf("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
                     o->output.c_str(), scene.specular.levels.size(), scene.specular.levels.front().faceSize,
                     gltfIblIntensity(scene.specular, scene.storageScale),

@@ -39,6 +39,7 @@ Action addLightCardCommand(CLI::App& app) {
         auto start = std::chrono::steady_clock::now();
         const Ktx2WriteStats stats = bakeLightCardFile(opts->texture, opts->output, opts->settings, executor);
         const double ms = millisecondsSince(start);
+        BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote %s (%dx%d light card, %d diffuse layers, %s, %.1f ms)\n", opts->output.c_str(),
                     opts->settings.size, opts->settings.size, opts->settings.diffuseLayers,
                     executor.description().c_str(), ms);

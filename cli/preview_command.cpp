@@ -42,6 +42,7 @@ int previewLights(PreviewOptions& o) {
     settings.exposureEV = o.exposure;
     const fs::path exrPath = fs::path(o.output).replace_extension(".exr");
     const LightPreview preview = renderLightPreviewFile(o.card, executor, settings, o.output, exrPath);
+    BackendOptions::storeBuiltKernels(executor);
     std::printf("wrote   %s (%d x %d) and %s (%s)\n", o.output.c_str(), preview.width, preview.height,
                 exrPath.c_str(), executor.description().c_str());
     std::printf("error   relative mean per roughness column (luminance), the brute force's own in ()\n");
@@ -103,6 +104,7 @@ Action addPreviewCommand(CLI::App& app) {
         const MaterialPreview preview =
             renderMaterialPreview(bake.set, bake.options, reference ? &*reference : nullptr, executor,
                                   settings, o->output, exrPath);
+        BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote   %s (%d x %d) and %s (%s)\n", o->output.c_str(), preview.width, preview.height,
                     exrPath.c_str(), executor.description().c_str());
         std::printf("probe   LD chain of %u levels%s\n", bake.set.distantLd().layout.levelCount,

@@ -187,6 +187,7 @@ Action addSpecularCommand(CLI::App& app) {
             });
         }
         outputs.commit();
+        BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                     o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
                     (unsigned long long)stats.repairedNonFinite);

@@ -168,4 +168,53 @@ TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
     fs::remove_all(dir);
 }
 
+// The standalone commands keep program binaries for the user running them (ocl::userProgramBinaryDirectory,
+// README "Kernel binaries"): the first bake builds its programs and stores them, a second loads them and
+// builds none (the same bytes), $XDG_CACHE_HOME moves them, and an empty $IBLBAKE_KERNEL_CACHE keeps none.
+TEST(CliSpecular, KeepsKernelBinariesForTheUser) {
+    const fs::path dir = freshTempDir("specular_kernels");
+    const std::string bake =
+        "specular " + kSampleHdri + " --size 8 --quality draft --backend opencl --timing -o ";
+    auto programs = [](const CliRun& r) {
+        const std::size_t at = r.out.find("timing: programs ");
+        EXPECT_NE(at, std::string::npos) << r.out;
+        return at == std::string::npos ? std::string() : r.out.substr(at, r.out.find('\n', at) - at);
+    };
+    auto binaries = [](const fs::path& directory) {
+        std::size_t count = 0;
+        if (fs::is_directory(directory))
+            for (const fs::directory_entry& e : fs::directory_iterator(directory))
+                count += e.path().extension() == ".clbin";
+        return count;
+    };
+    // PoCL keeps its own cache under the same variables: one directory for it in every run.
+    const std::string pocl = " POCL_CACHE_DIR=" + (dir / "pocl").string() + " ";
+    const std::string home =
+        "env -u IBLBAKE_KERNEL_CACHE -u XDG_CACHE_HOME" + pocl + "HOME=" + (dir / "home").string() + " ";
+    const CliRun cold = runProgram(home + IBLBAKE_CLI, bake + (dir / "cold.ktx2").string());
+    ASSERT_EQ(cold.exitCode, 0) << cold.err;
+    EXPECT_EQ(programs(cold).find("programs 0 built"), std::string::npos) << programs(cold);
+    const fs::path kernels = dir / "home" / ".cache" / "iblbake" / "kernels";
+    EXPECT_GE(binaries(kernels), 1u);
+    const CliRun warm = runProgram(home + IBLBAKE_CLI, bake + (dir / "warm.ktx2").string());
+    ASSERT_EQ(warm.exitCode, 0) << warm.err;
+    EXPECT_NE(programs(warm).find("programs 0 built from source"), std::string::npos) << programs(warm);
+    EXPECT_EQ(readBytes(dir / "cold.ktx2"), readBytes(dir / "warm.ktx2"));
+
+    const CliRun xdg =
+        runProgram("env -u IBLBAKE_KERNEL_CACHE" + pocl + "XDG_CACHE_HOME=" + (dir / "xdg").string() +
+                       " HOME=" + (dir / "home").string() + " " IBLBAKE_CLI,
+                   bake + (dir / "xdg.ktx2").string());
+    ASSERT_EQ(xdg.exitCode, 0) << xdg.err;
+    EXPECT_GE(binaries(dir / "xdg" / "iblbake" / "kernels"), 1u);
+
+    const CliRun off = runProgram("env" + pocl + "IBLBAKE_KERNEL_CACHE= HOME=" + (dir / "nowhere").string() +
+                                      " " IBLBAKE_CLI,
+                                  bake + (dir / "off.ktx2").string());
+    ASSERT_EQ(off.exitCode, 0) << off.err;
+    EXPECT_NE(programs(off).find(", 0 loaded from binaries"), std::string::npos) << programs(off);
+    EXPECT_FALSE(fs::exists(dir / "nowhere" / ".cache" / "iblbake"));
+    fs::remove_all(dir);
+}
+
 } // namespace

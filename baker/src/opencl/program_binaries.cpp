@@ -1,9 +1,11 @@
 #include "program_binaries.h"
 #include "iblbake/core/temporary_path.h"
+#include "iblbake/opencl/opencl_context.h"
 
 #include <xxhash.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -97,6 +99,19 @@ bool writeProgramBinary(const fs::path& directory, const std::string& key, const
     if (!ec) return true;
     fs::remove(temporary, ec);
     return false;
+}
+
+std::optional<fs::path> userProgramBinaryDirectory() {
+    if (const char* chosen = std::getenv("IBLBAKE_KERNEL_CACHE"))
+        return *chosen ? std::optional<fs::path>(chosen) : std::nullopt;
+    auto absolute = [](const char* variable) -> std::optional<fs::path> {
+        const char* value = std::getenv(variable);
+        if (!value || !fs::path(value).is_absolute()) return std::nullopt;
+        return fs::path(value);
+    };
+    if (std::optional<fs::path> cache = absolute("XDG_CACHE_HOME")) return *cache / "iblbake" / "kernels";
+    if (std::optional<fs::path> home = absolute("HOME")) return *home / ".cache" / "iblbake" / "kernels";
+    return std::nullopt;
 }
 
 } // namespace ibl::ocl

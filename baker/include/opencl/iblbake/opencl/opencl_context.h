@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,13 @@ namespace ibl::ocl {
 
 // Symbolic name of an OpenCL status code ("CL_OUT_OF_RESOURCES"), or "CL_UNKNOWN_ERROR".
 const char* errorName(cl_int status);
+
+// Where a command without a cache directory of its own (`specular`, `diffuse`, `dfg`, ...) keeps program
+// binaries for the user running it (README "Kernel binaries"): $IBLBAKE_KERNEL_CACHE (set and empty: none),
+// else $XDG_CACHE_HOME/iblbake/kernels, else $HOME/.cache/iblbake/kernels (the XDG Base Directory defaults,
+// as PoCL and Mesa keep theirs); nullopt when none applies. Relative XDG/HOME values are ignored, as the XDG
+// specification asks.
+std::optional<std::filesystem::path> userProgramBinaryDirectory();
 
 struct DeviceInfo {
     std::size_t platformIndex = 0;
