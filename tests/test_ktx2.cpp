@@ -6,6 +6,7 @@
 #include "iblbake/ktx2/ktx2.h"
 
 #include <cube.h>
+#include <small_float.h>
 
 #include <gtest/gtest.h>
 
@@ -22,6 +23,34 @@
 namespace {
 
 namespace fs = std::filesystem;
+
+// The small float encoders (baker/src/io/small_float.h) at every code of the 5-bit-exponent formats: each
+// code's value encodes back to itself, the value halfway to the next code rounds to the even one of the two,
+// and the floats just either side of it to the nearer one. Negative halves carry the sign bit.
+TEST(SmallFloat, EveryCodeRoundTripsAndTiesGoToEven) {
+    for (int mantissaBits : {10, 6, 5}) {
+        const std::uint32_t largest =
+            (30u << mantissaBits) | ((1u << mantissaBits) - 1u); // exponent 30, all ones
+        for (std::uint32_t code = 0; code <= largest; ++code) {
+            const float value = ibl::smallfloat::decodeMagnitude(code, mantissaBits);
+            ASSERT_EQ(ibl::smallfloat::encodeMagnitude(value, mantissaBits), code)
+                << mantissaBits << " " << code;
+            if (code == largest) break;
+            const double next = ibl::smallfloat::decodeMagnitude(code + 1, mantissaBits);
+            const float halfway = float(0.5 * (double(value) + next)); // exact: one bit more than the code
+            ASSERT_EQ(double(halfway), 0.5 * (double(value) + next));
+            ASSERT_EQ(ibl::smallfloat::encodeMagnitude(halfway, mantissaBits),
+                      code % 2 == 0 ? code : code + 1)
+                << mantissaBits << " " << code;
+            ASSERT_EQ(ibl::smallfloat::encodeMagnitude(std::nextafter(halfway, 0.0f), mantissaBits), code);
+            ASSERT_EQ(ibl::smallfloat::encodeMagnitude(std::nextafter(halfway, INFINITY), mantissaBits),
+                      code + 1);
+        }
+    }
+    EXPECT_EQ(ibl::smallfloat::floatToHalf(-1.0f), 0xBC00u);
+    EXPECT_EQ(ibl::smallfloat::floatToHalf(-0.0f), 0x8000u);
+    EXPECT_EQ(ibl::smallfloat::floatToHalf(1e-10f), 0u); // far under the smallest subnormal half
+}
 using ibl::Ktx2Format;
 
 // A fresh directory per test, removed afterwards.
