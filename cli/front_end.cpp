@@ -20,7 +20,6 @@
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
-#include <string>
 #include <string_view>
 #include <unistd.h>
 
@@ -106,21 +105,6 @@ fs::path enginePath() {
     return (ec ? fs::path("iblbake-engine") : self.parent_path() / "iblbake-engine");
 }
 
-// The engine's heap in transparent huge pages where the kernel gives them on request (THP "madvise", Debian's
-// default): glibc's malloc then advises every heap extension (MADV_HUGEPAGE), and a block first touched
-// faults once per 2 MB instead of once per 4 KB page, about 10 us each on this VM. `iblbake specular` of the
-// 1k sample: 5,990 -> 1,230-1,630 page faults, 0.35 -> 0.28 s (medians of 7 alternating runs). A tunable is
-// read only when a process starts, so the front end sets it for the engine; the engine's other heap settings
-// are in baker/src/io/process_memory.cpp. One the caller set itself stands.
-void adviseHugePageHeap() {
-    constexpr std::string_view kTunable = "glibc.malloc.hugetlb";
-    const char* current = std::getenv("GLIBC_TUNABLES");
-    std::string tunables = current ? current : "";
-    if (tunables.find(kTunable) != std::string::npos) return;
-    tunables += (tunables.empty() ? "" : ":") + std::string(kTunable) + "=1";
-    ::setenv("GLIBC_TUNABLES", tunables.c_str(), 1);
-}
-
 } // namespace
 
 int main(int argc, char** argv) {
@@ -131,7 +115,6 @@ int main(int argc, char** argv) {
     if (argc >= 2 && std::string_view(argv[1]) == "batch")
         if (const std::optional<int> exitCode = answerUpToDateBatch(argc, argv)) return *exitCode;
     const fs::path engine = enginePath();
-    adviseHugePageHeap();
     ::execvp(engine.c_str(), argv); // a bare name (no /proc) is looked up in PATH
     std::fprintf(stderr, "iblbake: error: cannot run the engine %s: %s\n", engine.c_str(),
                  std::strerror(errno));

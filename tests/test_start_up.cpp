@@ -9,8 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 namespace fs = std::filesystem;
 
 namespace {
@@ -82,29 +80,6 @@ TEST(StartUp, OtherFormatsLoadTheOpenImageIOModule) {
     EXPECT_EQ(t.run.exitCode, 0) << t.run.err.substr(t.run.err.size() > 400 ? t.run.err.size() - 400 : 0);
     EXPECT_TRUE(t.initialisedOiio);
     EXPECT_TRUE(fs::exists(dir / "png.ktx2"));
-    fs::remove_all(dir);
-}
-
-// The front end hands the engine glibc's huge-page heap tunable (cli/front_end.cpp), after any the caller
-// set, and leaves a caller's own choice of it alone. The engine here is a script that prints what it was
-// given.
-TEST(StartUp, TheEngineStartsWithAHugePageHeap) {
-    const fs::path dir = fs::temp_directory_path() / ("iblbake_start_up_heap_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    const fs::path engine = dir / "engine.sh";
-    {
-        std::ofstream script(engine);
-        script << "#!/bin/sh\nprintf '%s' \"$GLIBC_TUNABLES\"\n";
-    }
-    fs::permissions(engine, fs::perms::owner_all);
-    const std::string frontEnd = " IBLBAKE_ENGINE=" + engine.string() + " " IBLBAKE_CLI;
-    const CliRun plain = runProgram("env -u GLIBC_TUNABLES" + frontEnd, "--version");
-    EXPECT_EQ(plain.exitCode, 0) << plain.err;
-    EXPECT_EQ(plain.out, "glibc.malloc.hugetlb=1");
-    const CliRun added = runProgram("env GLIBC_TUNABLES=glibc.malloc.perturb=0" + frontEnd, "--version");
-    EXPECT_EQ(added.out, "glibc.malloc.perturb=0:glibc.malloc.hugetlb=1");
-    const CliRun own = runProgram("env GLIBC_TUNABLES=glibc.malloc.hugetlb=0" + frontEnd, "--version");
-    EXPECT_EQ(own.out, "glibc.malloc.hugetlb=0");
     fs::remove_all(dir);
 }
 
