@@ -82,9 +82,12 @@ DeviceArray<float> DispatchOutput::asInput() const {
     return array;
 }
 
-cl::Buffer Dispatcher::uploadBytes(const std::string& name, const void* data, std::size_t bytes) const {
+cl::Buffer Dispatcher::uploadBytes(const std::string& name, const void* data, std::size_t bytes,
+                                   bool shared) const {
+    const bool inPlace = shared && cl_->device().hostUnifiedMemory;
     try {
-        return cl_->createBuffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, data);
+        return cl_->createBuffer(CL_MEM_READ_ONLY | (inPlace ? CL_MEM_USE_HOST_PTR : CL_MEM_COPY_HOST_PTR),
+                                 bytes, data);
     } catch (const Error& e) {
         throw Error(name + ": " + e.what());
     }

@@ -61,6 +61,7 @@ std::vector<Candidate> enumerate() {
             info.deviceVersion = devices[d].getInfo<CL_DEVICE_VERSION>();
             info.computeUnits = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
             info.globalMemBytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+            info.hostUnifiedMemory = devices[d].getInfo<CL_DEVICE_HOST_UNIFIED_MEMORY>() == CL_TRUE;
             out.push_back({devices[d], info});
         }
     }

@@ -115,26 +115,57 @@ BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uin
     return choice;
 }
 
-BrightSplit applyBrightSplit(const CubeMap& cube, const BrightChoice& choice) {
+namespace {
+
+// Scales the chosen texels of `cube` down to what they keep and returns their excess (applyBrightSplit).
+BrightTexels takeBrightTexels(CubeMap& cube, const BrightChoice& choice) {
     const int n = cube.faceSize;
-    BrightSplit split;
-    split.residual = cube;
-    split.thresholdLuminance = choice.thresholdLuminance;
+    BrightTexels bright;
     for (const BrightChoice::Texel& c : choice.texels) {
-        glm::vec4& texel = split.residual.faces[c.face].at(c.x, c.y);
+        glm::vec4& texel = cube.faces[c.face].at(c.x, c.y);
         glm::vec4 kept = texel * c.scale;
         glm::vec3 excess = glm::vec3(texel - kept);
         kept.w = texel.w;
         texel = kept;
         if (excess == glm::vec3(0.0f)) continue; // a companion's transparent texel: nothing to integrate
         vec3 d = glm::normalize(cubeFaceDirection(c.face, (c.x + 0.5f) / n, (c.y + 0.5f) / n));
-        split.bright.entries.insert(
-            split.bright.entries.end(),
-            {d.x, d.y, d.z, cubePatchSolidAngle(-1.0f + 2.0f * c.x / n, -1.0f + 2.0f * c.y / n, 2.0f / n),
-             excess.x, excess.y, excess.z, float(c.face), float(c.x), float(c.y)});
+        bright.entries.insert(bright.entries.end(),
+                              {d.x, d.y, d.z,
+                               cubePatchSolidAngle(-1.0f + 2.0f * c.x / n, -1.0f + 2.0f * c.y / n, 2.0f / n),
+                               excess.x, excess.y, excess.z, float(c.face), float(c.x), float(c.y)});
     }
-    buildClusters(split.bright, n);
+    buildClusters(bright, n);
+    return bright;
+}
+
+} // namespace
+
+BrightSplit applyBrightSplit(const CubeMap& cube, const BrightChoice& choice) {
+    BrightSplit split;
+    split.residual = cube;
+    split.thresholdLuminance = choice.thresholdLuminance;
+    split.bright = takeBrightTexels(split.residual, choice);
     return split;
+}
+
+BrightTexels withResidualInPlace(CubeMap& cube, const BrightChoice& choice,
+                                 const std::function<void(const CubeMap& residual)>& useResidual) {
+    std::vector<glm::vec4> original;
+    original.reserve(choice.texels.size());
+    for (const BrightChoice::Texel& c : choice.texels)
+        original.push_back(cube.faces[c.face].at(c.x, c.y));
+    struct Undo {
+        CubeMap& cube;
+        const BrightChoice& choice;
+        const std::vector<glm::vec4>& original;
+        ~Undo() {
+            for (std::size_t i = 0; i < choice.texels.size(); ++i)
+                cube.faces[choice.texels[i].face].at(choice.texels[i].x, choice.texels[i].y) = original[i];
+        }
+    } undo{cube, choice, original};
+    BrightTexels bright = takeBrightTexels(cube, choice);
+    useResidual(cube);
+    return bright;
 }
 
 BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels) {

@@ -6,6 +6,7 @@
 #include "iblbake/core/cubemap.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace ibl {
@@ -42,6 +43,12 @@ BrightChoice chooseBrightTexels(const CubeMap& source, float threshold, std::uin
 // + excess == cube exactly. A cube other than the one chosen from is split at the same texels by the same
 // factors (a capture's visibility, so that it is filtered with its colour's weights).
 BrightSplit applyBrightSplit(const CubeMap& cube, const BrightChoice& choice);
+
+// applyBrightSplit's residual made in `cube` itself for the time of useResidual(cube), then undone (the cube
+// holds its own texels again, bit for bit, also when useResidual throws): no copy of the cube. Returns the
+// excess, as applyBrightSplit lists it.
+BrightTexels withResidualInPlace(CubeMap& cube, const BrightChoice& choice,
+                                 const std::function<void(const CubeMap& residual)>& useResidual);
 
 // applyBrightSplit(source, chooseBrightTexels(source, threshold, maxTexels)).
 BrightSplit splitBrightTexels(const CubeMap& source, float threshold, std::uint32_t maxTexels);

@@ -81,7 +81,7 @@ CubeMap bakeIrradianceCube(const CubeMap& source, const IrradianceSettings& sett
     const Dispatcher dispatcher(executor);
     DispatchOutput cube = dispatcher.output(DispatchGrid::cube(params.faceSize));
     dispatcher.run(kernel("irradiance.cl", "irradianceSampled", irradianceSampledItem), cube, params,
-                   dispatcher.upload("irradiance source pyramid", pyramid.data),
+                   dispatcher.share("irradiance source pyramid", pyramid.data),
                    dispatcher.upload("irradiance sample table", table));
     if (params.brightCount > 0)
         dispatcher.run(kernel("irradiance.cl", "irradianceBright", irradianceBrightItem), cube, params,

@@ -38,6 +38,7 @@ struct DeviceInfo {
     std::string deviceVersion;
     cl_uint computeUnits = 0;
     cl_ulong globalMemBytes = 0;
+    bool hostUnifiedMemory = false; // CL_DEVICE_HOST_UNIFIED_MEMORY: a CPU device, an integrated GPU
 
     std::string id() const { return std::to_string(platformIndex) + ":" + std::to_string(deviceIndex); }
 };
