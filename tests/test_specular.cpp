@@ -4,17 +4,53 @@
 
 #include <cube.h>
 
+#include "bright_split.h"
+
 #include "test_support.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 namespace {
 
 using namespace ibl;
 using namespace ibl::test;
+
+// The residual made in the source itself (withResidualInPlace, what bakeSpecular uses) is applyBrightSplit's
+// residual bit for bit, with the same bright texels, and the source holds its own texels again afterwards,
+// also when the work on the residual throws.
+TEST(Specular, ResidualInPlaceIsTheSplitAndLeavesTheSourceAsItWas) {
+    CubeMap source(8);
+    for (int f = 0; f < 6; ++f)
+        for (std::size_t i = 0; i < source.faces[f].pixels.size(); ++i)
+            source.faces[f].pixels[i] =
+                glm::vec4(0.1f + 0.01f * float(i % 7), 0.2f, 0.3f + 0.001f * float(f), 1.0f);
+    source.faces[2].at(3, 4) = glm::vec4(5e4f, 4e4f, 3e4f, 1.0f); // a sun across two texels
+    source.faces[2].at(4, 4) = glm::vec4(2e4f, 2e4f, 1e4f, 1.0f);
+    const CubeMap original = source;
+    const BrightChoice choice = chooseBrightTexels(source, 32.0f, 4096);
+    ASSERT_EQ(choice.texels.size(), 2u);
+    const BrightSplit split = applyBrightSplit(original, choice);
+    auto sameBits = [](const CubeMap& a, const CubeMap& b) {
+        for (int f = 0; f < 6; ++f)
+            if (std::memcmp(a.faces[f].pixels.data(), b.faces[f].pixels.data(),
+                            a.faces[f].pixels.size() * sizeof(glm::vec4)) != 0)
+                return false;
+        return true;
+    };
+    bool sawResidual = false;
+    const BrightTexels bright = withResidualInPlace(
+        source, choice, [&](const CubeMap& residual) { sawResidual = sameBits(residual, split.residual); });
+    EXPECT_TRUE(sawResidual);
+    EXPECT_EQ(bright.entries, split.bright.entries);
+    EXPECT_EQ(bright.clusters, split.bright.clusters);
+    EXPECT_TRUE(sameBits(source, original));
+    EXPECT_THROW(withResidualInPlace(source, choice, [](const CubeMap&) { throw Error("stop"); }), Error);
+    EXPECT_TRUE(sameBits(source, original));
+}
 
 // A sky-like environment: bright upper hemisphere with a gradient, a warm lobe, a dark ground.
 glm::vec3 skyLike(glm::vec3 d) {
