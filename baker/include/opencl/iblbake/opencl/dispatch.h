@@ -137,7 +137,7 @@ class Dispatcher {
     // upload() of a host array the caller keeps, unchanged, until every dispatch that reads it has finished
     // (a download waits for them): a device that shares the host's memory (DeviceInfo::hostUnifiedMemory)
     // reads it where it is (CL_MEM_USE_HOST_PTR) instead of from a copy. The 1k sample's 8 MB specular
-    // pyramid on PoCL: ~2,000 pages first touched and an 8 MB copy fewer.
+    // pyramid on PoCL: no copy, and 11,402 -> 9,831 page faults for the whole `specular` process.
     template <class T>
     DeviceArray<T> share(const std::string& name, const std::vector<T>& data) const {
         DeviceArray<T> array;
