@@ -145,7 +145,7 @@ class LdBake {
     LdBake(CubePyramid residualPyramid, BrightTexels bright, const SpecularSettings& settings,
            const Executor& executor)
         : settings_(settings), dispatcher_(executor), pyramid_(std::move(residualPyramid)),
-          sourceFaceSize_(int(pyramid_.layout.baseFaceSize)), bright_(std::move(bright)),
+          bright_(std::move(bright)),
           pyramidData_(dispatcher_.share("specular source pyramid", pyramid_.data)),
           clustersData_(dispatcher_.upload("bright-texel clusters", bright_.clusters)),
           brightData_(dispatcher_.upload("bright texels", bright_.entries)) {}
@@ -159,11 +159,12 @@ class LdBake {
     // The LD of perceptual roughness r (N = V = R) on faces of n texels.
     CubeMap level(int n, float perceptualRoughness) const {
         const float alpha = alphaFromPerceptual(perceptualRoughness);
+        const int sourceFaceSize = int(pyramid_.layout.baseFaceSize);
         // Rough levels are small (a 16-texel face has 1/64 of the texels of a 128 one) and their wide
         // lobes want more samples, so faces under 32 texels get 32/n times the preset's count, up to 16x.
         const std::uint32_t levelSamples = samplesFor(settings_) * std::uint32_t(std::clamp(32 / n, 1, 16));
         LevelTable table =
-            levelTable(samplesForLobe(levelSamples, alpha, sourceFaceSize_), alpha, sourceFaceSize_,
+            levelTable(samplesForLobe(levelSamples, alpha, sourceFaceSize), alpha, sourceFaceSize,
                        settings_.lodBias, float(pyramid_.layout.levelCount - 1));
         LdParams params{pyramid_.layout,
                         std::uint32_t(n),
@@ -190,7 +191,6 @@ class LdBake {
     const SpecularSettings& settings_;
     const Dispatcher dispatcher_;
     const CubePyramid pyramid_;
-    const int sourceFaceSize_;
     const BrightTexels bright_;
     const DeviceArray<float> pyramidData_, clustersData_, brightData_;
 };

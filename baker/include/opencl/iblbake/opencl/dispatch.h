@@ -123,12 +123,7 @@ class Dispatcher {
     // `name` says which input failed in an error message.
     template <class T>
     DeviceArray<T> upload(const std::string& name, std::span<const T> data) const {
-        DeviceArray<T> array;
-        if (cl_)
-            array.buffer_ = uploadBytes(name, data.data(), data.size_bytes(), false);
-        else
-            array.host_ = data.data();
-        return array;
+        return deviceArray(name, data, false);
     }
     template <class T>
     DeviceArray<T> upload(const std::string& name, const std::vector<T>& data) const {
@@ -140,12 +135,7 @@ class Dispatcher {
     // pyramid on PoCL: no copy, and 11,402 -> 9,831 page faults for the whole `specular` process.
     template <class T>
     DeviceArray<T> share(const std::string& name, const std::vector<T>& data) const {
-        DeviceArray<T> array;
-        if (cl_)
-            array.buffer_ = uploadBytes(name, data.data(), data.size() * sizeof(T), true);
-        else
-            array.host_ = data.data();
-        return array;
+        return deviceArray(name, std::span<const T>(data), true);
     }
 
     DispatchOutput output(const DispatchGrid& grid) const;
@@ -180,6 +170,16 @@ class Dispatcher {
     ImageRGBA downloadImage(const DispatchOutput& out) const;
 
   private:
+    // upload() (shared false) or share() (true).
+    template <class T>
+    DeviceArray<T> deviceArray(const std::string& name, std::span<const T> data, bool shared) const {
+        DeviceArray<T> array;
+        if (cl_)
+            array.buffer_ = uploadBytes(name, data.data(), data.size_bytes(), shared);
+        else
+            array.host_ = data.data();
+        return array;
+    }
     cl::Buffer uploadBytes(const std::string& name, const void* data, std::size_t bytes, bool shared) const;
     template <class T>
     static void setArg(cl::Kernel& k, const char* entryPoint, cl_uint index, const T& value) {
