@@ -1,4 +1,4 @@
-// OpenCL only, included by ld.h: footprintPatchesWeight (ld.h's scalar loop for the CPU) with IBL_LANES
+// Included by ld.h: footprintPatchesWeight with IBL_LANES
 // patches of the output texel in the lanes of float8 vectors (lanes.h): brightTexelWeight around each
 // patch centre, its point value or its sub-grid of lobeWeightOfPatch (each lane's own size; the lanes run
 // the largest and mask the rest). This was most of the bright pass of a 32 px level (49 patches per bright
@@ -10,15 +10,15 @@
 #include "lanes.h"
 
 // D_GGX in every lane.
-static inline float8 dGgxLanes(float8 NoH, float alpha) {
+IBL_FN float8 dGgxLanes(float8 NoH, float alpha) {
     float a2 = alpha * alpha;
     float8 f = (NoH * a2 - NoH) * NoH + 1.0f;
     return a2 / (IBL_PI * f * f);
 }
 
 // lobeWeightOfPatch(n, face, u0, v0, step, alpha) in every lane.
-static inline float8 lobeWeightOfPatchLanes(float8 nx, float8 ny, float8 nz, int face, float8 u0, float8 v0,
-                                            float8 step, float alpha) {
+IBL_FN float8 lobeWeightOfPatchLanes(float8 nx, float8 ny, float8 nz, int face, float8 u0, float8 v0,
+                                     float8 step, float alpha) {
     float8 omega = cubePatchSolidAngleLanes(u0, v0, step);
     float8 lx, ly, lz;
     cubeFaceDirectionLanes(face, 0.5f * (u0 + 0.5f * step + 1.0f), 0.5f * (v0 + 0.5f * step + 1.0f), &lx, &ly,
@@ -32,8 +32,8 @@ static inline float8 lobeWeightOfPatchLanes(float8 nx, float8 ny, float8 nz, int
     return select((float8)0.0f, dGgxLanes(NoH, alpha) * NoL * omega, isgreater(NoL, 0.0f));
 }
 
-static inline float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
-                                           __global const float* e, float alpha, float sourceTexelSize) {
+IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
+                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
     if (4.0f * alpha < sourceTexelSize) { // narrowLobeClosedFormApplies may hold for some patch
         float weight = 0.0f;
         for (int j = 0; j < S; ++j)
@@ -46,7 +46,7 @@ static inline float footprintPatchesWeight(int face, float u0, float v0, float s
     float8 sum = 0.0f;
     int count = S * S;
     for (int first = 0; first < count; first += (int)IBL_LANES) {
-        int8 patch = first + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+        int8 patch = first + laneIndices();
         PatchLanes p = patchLanes(face, u0, v0, step, S, patch);
         float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
         // brightTexelWeight(n, ..., e): the point value where one sub-patch suffices or e is behind n.
@@ -61,15 +61,14 @@ static inline float footprintPatchesWeight(int face, float u0, float v0, float s
             select((float8)0.0f, dGgxLanes(NoH, alpha) * cosAngle * e[3], isgreater(cosAngle, 0.0f));
         // Else the lane's own S x S sub-grid of the bright texel.
         int8 sub = select(convert_int8(fmin(subdivisions, 32.0f)), (int8)0, point);
-        int4 pairs = max(sub.lo, sub.hi);
-        int subMax = max(max(pairs.s0, pairs.s1), max(pairs.s2, pairs.s3));
+        int subMax = maxLane(sub);
         float8 subStep = sourceTexelSize / convert_float8(max(sub, 1));
         float8 subWeight = 0.0f;
         for (int j = 0; j < subMax; ++j)
             for (int k = 0; k < subMax; ++k) {
                 float8 w = lobeWeightOfPatchLanes(nx, ny, nz, brightFace, bu0 + (float)k * subStep,
                                                   bv0 + (float)j * subStep, subStep, alpha);
-                subWeight += select((float8)0.0f, w, (int8)j < sub & (int8)k < sub);
+                subWeight += select((float8)0.0f, w, ((int8)j < sub) & ((int8)k < sub));
             }
         float8 weight =
             cubePatchSolidAngleLanes(pu, pv, (float8)step) * select(subWeight, pointWeight, point);

@@ -1,28 +1,70 @@
-// OpenCL only: helpers for loops that put IBL_LANES consecutive iterations in the lanes of float8 vectors
-// (ld_lanes.h, narrow_lobe_lanes.h). PoCL does not vectorize these loops across work-items (its
+// Helpers for loops that put IBL_LANES consecutive iterations in the lanes of float8 vectors (ld_lanes.h,
+// narrow_lobe_lanes.h, footprint_lanes.h). PoCL does not vectorize these loops across work-items (its
 // optimization before the work-item loops packs pairs of scalar operations into <2 x float>, which the
-// loop vectorizer then refuses), so the kernels vectorize them themselves.
+// loop vectorizer then refuses), so the kernels vectorize them themselves; the CPU backend compiles the same
+// code with OpenCL's vector types from vector8.h.
 #ifndef IBL_LANES_H
 #define IBL_LANES_H
 
 #include "cube.h"
+#ifndef __OPENCL_VERSION__
+#include "vector8.h"
+#endif
+
+IBL_BEGIN_NAMESPACE
 
 #define IBL_LANES 8u
 
-// Eight reads of a buffer at the lanes' indices.
+// Eight reads of a buffer at the lanes' indices, and the lanes' sum, pairwise.
+#ifdef __OPENCL_VERSION__
 static inline float8 readLanes(__global const float* buffer, uint8 index) {
     return (float8)(buffer[index.s0], buffer[index.s1], buffer[index.s2], buffer[index.s3], buffer[index.s4],
                     buffer[index.s5], buffer[index.s6], buffer[index.s7]);
 }
 
-// The lanes' sum, pairwise.
 static inline float sumLanes(float8 v) {
     float4 pairs = v.lo + v.hi;
     return (pairs.x + pairs.y) + (pairs.z + pairs.w);
 }
 
+// The largest lane.
+static inline int maxLane(int8 v) {
+    int4 pairs = max(v.lo, v.hi);
+    return max(max(pairs.s0, pairs.s1), max(pairs.s2, pairs.s3));
+}
+
+// The lane numbers 0 .. 7.
+static inline int8 laneIndices(void) {
+    return (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+}
+#else
+inline float8 readLanes(const float* buffer, uint8 index) {
+    return float8(FloatLanes{buffer[index.v[0]], buffer[index.v[1]], buffer[index.v[2]], buffer[index.v[3]],
+                             buffer[index.v[4]], buffer[index.v[5]], buffer[index.v[6]], buffer[index.v[7]]});
+}
+
+inline float sumLanes(float8 v) {
+    float pairs[4];
+    for (int i = 0; i < 4; ++i)
+        pairs[i] = v.v[i] + v.v[i + 4];
+    return (pairs[0] + pairs[1]) + (pairs[2] + pairs[3]);
+}
+
+inline int maxLane(int8 v) {
+    int largest = v.v[0];
+    for (int i = 1; i < 8; ++i)
+        largest = v.v[i] > largest ? v.v[i] : largest;
+    return largest;
+}
+
+inline int8 laneIndices() {
+    return int8(IntLanes{0, 1, 2, 3, 4, 5, 6, 7});
+}
+
+#endif
+
 // cubeFaceDirection(face, s, t) of one face in every lane.
-static inline void cubeFaceDirectionLanes(int face, float8 s, float8 t, float8* x, float8* y, float8* z) {
+IBL_FN void cubeFaceDirectionLanes(int face, float8 s, float8 t, float8* x, float8* y, float8* z) {
     float8 sc = 2.0f * s - 1.0f, tc = 2.0f * t - 1.0f, one = 1.0f;
     switch (face) {
     case 0:
@@ -54,7 +96,7 @@ typedef struct {
     float8 nx, ny, nz;
 } PatchLanes;
 
-static inline PatchLanes patchLanes(int face, float u0, float v0, float step, int S, int8 patch) {
+IBL_FN PatchLanes patchLanes(int face, float u0, float v0, float step, int S, int8 patch) {
     PatchLanes p;
     p.pu = u0 + convert_float8(patch % S) * step;
     p.pv = v0 + convert_float8(patch / S) * step;
@@ -67,7 +109,7 @@ static inline PatchLanes patchLanes(int face, float u0, float v0, float step, in
 }
 
 // cubePatchSolidAngle in every lane.
-static inline float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float8 step) {
+IBL_FN float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float8 step) {
     float8 u = u0 + 0.5f * step, v = v0 + 0.5f * step;
     float8 r2 = 1.0f + u * u + v * v;
     float8 midpoint = step * step / (r2 * sqrt(r2));
@@ -79,5 +121,7 @@ static inline float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float8 step)
              atan2(u1 * v0, sqrt(u1 * u1 + v0 * v0 + 1.0f)) + atan2(u1 * v1, sqrt(u1 * u1 + v1 * v1 + 1.0f)));
     return select(midpoint, area, exact);
 }
+
+IBL_END_NAMESPACE
 
 #endif

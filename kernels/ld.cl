@@ -1,10 +1,10 @@
-// Specular LD: one work-item per output texel of one level; the work-items and the math live in ld.h.
-// ldLevel runs ld_lanes.h's vector form of ldLevelItem (the CPU backend's item), a table block per step.
-#include "ld_lanes.h"
+// Specular LD: one work-item per output texel of one level; the work-items and the math live in ld.h (the
+// sample and patch loops in float8 lanes: ld_lanes.h, narrow_lobe_lanes.h, footprint_lanes.h).
+#include "ld.h"
 
 __kernel void ldLevel(__global float* out, LdParams params, __global const float* pyramid,
                       __global const float* table) {
-    ldLevelLanesItem(cubeWorkItem(params.faceSize), out, params, pyramid, table);
+    ldLevelItem(cubeWorkItem(params.faceSize), out, params, pyramid, table);
 }
 
 __kernel void ldBright(__global float* out, LdParams params, __global const float* clusters,
@@ -16,5 +16,5 @@ __kernel void ldBright(__global float* out, LdParams params, __global const floa
 __kernel void ldOnePass(__global float* out, LdParams params, __global const float* pyramid,
                         __global const float* table, __global const float* clusters,
                         __global const float* bright) {
-    ldOnePassLanesItem(cubeWorkItem(params.faceSize), out, params, pyramid, table, clusters, bright);
+    ldOnePassItem(cubeWorkItem(params.faceSize), out, params, pyramid, table, clusters, bright);
 }

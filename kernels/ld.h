@@ -5,6 +5,7 @@
 
 #include "brdf.h"
 #include "cube_sample.h"
+#include "lanes.h"
 #include "sampling.h"
 #include "work_item.h"
 
@@ -61,23 +62,9 @@ IBL_FN LdSample ldSampleEntry(uint i, uint n, float alpha, float omegaP, float l
 }
 
 // LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table of sampleCount
-// samples (a whole number of blocks), with `invWeightSum` = 1 / sum of the weights.
-IBL_FN vec3 integrateLd(vec3 n, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
-                        IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
-    Frame f = frameFromNormal(n);
-    float r = 0.0f, g = 0.0f, b = 0.0f;
-    for (uint i = 0; i < sampleCount; ++i) {
-        vec3 l = frameToWorld(
-            f, v3(table[ldTableIndex(i, 0u)], table[ldTableIndex(i, 1u)], table[ldTableIndex(i, 2u)]));
-        float weight = table[ldTableIndex(i, 3u)];
-        vec3 c =
-            cubeSampleLevel(pyramid, layout, (uint)table[ldTableIndex(i, 4u)], cubeCoordFromDirection(l));
-        r += c.x * weight;
-        g += c.y * weight;
-        b += c.z * weight;
-    }
-    return v3(r * invWeightSum, g * invWeightSum, b * invWeightSum);
-}
+// samples (a whole number of blocks), with `invWeightSum` = 1 / sum of the weights; a table block's samples
+// in the lanes of float8 vectors.
+#include "ld_lanes.h"
 
 // Bright texels are taken out of the pre-filtered source and integrated exactly: with a sun 10^5 times
 // brighter than the sky, the few samples of filtered importance sampling that land near it decide the
@@ -171,25 +158,9 @@ IBL_FN float narrowLobeTexelWeight(Frame frame, int face, float u0, float v0, fl
 }
 
 // sum over the S x S patches of the bright texel [bu, bu + S step] x [bv, bv + S step] of sourceFace of their
-// solid angle times narrowLobeCornersWeight of `texel` around their centre (brightFootprintWeight). OpenCL
-// puts the patches in vector lanes.
-#ifdef __OPENCL_VERSION__
+// solid angle times narrowLobeCornersWeight of `texel` around their centre (brightFootprintWeight), with the
+// patches in vector lanes.
 #include "narrow_lobe_lanes.h"
-#else
-IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
-                                          float step, int S, float alpha) {
-    float weight = 0.0f;
-    for (int j = 0; j < S; ++j)
-        for (int k = 0; k < S; ++k) {
-            float pu = bu + (float)k * step, pv = bv + (float)j * step;
-            vec3 l = v3normalize(cubeFaceDirection(sourceFace, 0.5f * (pu + 0.5f * step + 1.0f),
-                                                   0.5f * (pv + 0.5f * step + 1.0f)));
-            weight +=
-                cubePatchSolidAngle(pu, pv, step) * narrowLobeCornersWeight(frameFromNormal(l), texel, alpha);
-        }
-    return weight;
-}
-#endif
 
 // Whether a source texel (face-plane size texelSize) at `angle` radians from a lobe of GGX alpha takes
 // narrowLobeTexelWeight: the lobe under a quarter texel wide and the texel within three texels of it, and
@@ -236,19 +207,8 @@ IBL_FN float footprintPatchWeight(int face, float u0, float v0, float step, int 
            brightTexelWeight(n, frameFromNormal(n), e, alpha, sourceTexelSize);
 }
 
-// The sum of footprintPatchWeight over the S x S grid. OpenCL puts the patches in vector lanes.
-#ifdef __OPENCL_VERSION__
+// The sum of footprintPatchWeight over the S x S grid, with the patches in vector lanes.
 #include "footprint_lanes.h"
-#else
-IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
-                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
-    float weight = 0.0f;
-    for (int j = 0; j < S; ++j)
-        for (int k = 0; k < S; ++k)
-            weight += footprintPatchWeight(face, u0, v0, step, j, k, e, alpha, sourceTexelSize);
-    return weight;
-}
-#endif
 
 // Footprint-averaged bright texels. Where the lobe is narrower than an output texel, LD at the texel centre
 // sees a sub-texel sun or misses it: a level's energy then depends on where the sun falls (at a cube edge /
@@ -363,9 +323,10 @@ IBL_FN float brightSkipThreshold(vec3 sampled, uint clusterCount) {
     return clusterCount > 0u ? 1e-3f * value / (float)clusterCount : 0.0f;
 }
 
-// The work-items of ld.cl, one texel of one level (iblbake/opencl/dispatch.h): ldLevelItem stores the sampled
-// part, ldBrightItem then adds the exactly integrated bright texels to it. Two kernels, so that the
-// filtered-importance-sampling loop stays uniform and simple enough for PoCL to vectorize.
+// The work-items of ld.cl and of the CPU backend (ld_host_items.cpp), one texel of one level
+// (iblbake/opencl/dispatch.h): ldLevelItem stores the sampled part, ldBrightItem then adds the exactly
+// integrated bright texels to it. Two kernels, so that the filtered-importance-sampling loop stays uniform
+// and simple enough for PoCL to vectorize.
 IBL_FN void ldLevelItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* pyramid,
                         IBL_GLOBAL const float* table) {
     storeTexel(out, t,

@@ -1,22 +1,20 @@
-// OpenCL only: ld.h's integrateLd with a table block's IBL_LD_BLOCK samples in the lanes of float8
-// vectors (lanes.h). The scalar loop ran unvectorized on PoCL at ~80 cycles a sample; with the samples in
-// lanes the frame is per work-item and every per-sample step but the texel reads is a vector operation,
-// on any device. Same arithmetic as
-// frameToWorld, cubeCoordFromDirection, cubeBilinearTaps and cubeSampleLevel, lane by lane; the lanes'
-// sums are added at the end, so the result differs from the CPU's by summation order only.
+// Included by ld.h: integrateLd with a table block's IBL_LD_BLOCK samples in the lanes of float8 vectors
+// (lanes.h), on both backends. The scalar loop ran unvectorized on PoCL at ~80 cycles a sample; with the
+// samples in lanes the frame is per work-item and every per-sample step but the texel reads is a vector
+// operation, on any device. Same arithmetic as frameToWorld, cubeCoordFromDirection, cubeBilinearTaps and
+// cubeSampleLevel, lane by lane; the lanes' sums are added at the end.
 #ifndef IBL_LD_LANES_H
 #define IBL_LD_LANES_H
 
 #include "lanes.h"
-#include "ld.h"
 
 #if IBL_LD_BLOCK != IBL_LANES
 #error "a table block is read as one float8 per component"
 #endif
 
 // cubeSampleLevel(pyramid, layout, level, cubeCoordFromDirection((dx, dy, dz))) in each lane, into r, g, b.
-static inline void cubeSampleLanes(__global const float* pyramid, CubePyramidLayout layout, uint8 level,
-                                   float8 dx, float8 dy, float8 dz, float8* r, float8* g, float8* b) {
+IBL_FN void cubeSampleLanes(IBL_GLOBAL const float* pyramid, CubePyramidLayout layout, uint8 level, float8 dx,
+                            float8 dy, float8 dz, float8* r, float8* g, float8* b) {
     // cubeCoordFromDirection: comparisons give -1 (true) or 0 per lane; select(a, b, c) is c ? b : a.
     float8 ax = fabs(dx), ay = fabs(dy), az = fabs(dz);
     int8 xMajor = isgreaterequal(ax, ay) & isgreaterequal(ax, az);
@@ -52,13 +50,13 @@ static inline void cubeSampleLanes(__global const float* pyramid, CubePyramidLay
          w01 * readLanes(pyramid, i01 + 2u) + w11 * readLanes(pyramid, i11 + 2u);
 }
 
-// integrateLd, a table block at a time.
-static inline vec3 integrateLdLanes(vec3 normal, __global const float* pyramid, CubePyramidLayout layout,
-                                    __global const float* table, uint sampleCount, float invWeightSum) {
+// A table block at a time.
+IBL_FN vec3 integrateLd(vec3 normal, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
+                        IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
     Frame f = frameFromNormal(normal);
     float8 r = 0.0f, g = 0.0f, b = 0.0f;
     for (uint first = 0; first < sampleCount; first += IBL_LD_BLOCK) {
-        __global const float* block = table + ldTableIndex(first, 0u);
+        IBL_GLOBAL const float* block = table + ldTableIndex(first, 0u);
         float8 sx = vload8(0, block), sy = vload8(1, block), sz = vload8(2, block);
         float8 weight = vload8(3, block);
         uint8 level = convert_uint8(vload8(4, block));
@@ -73,26 +71,6 @@ static inline vec3 integrateLdLanes(vec3 normal, __global const float* pyramid, 
         b += cb * weight;
     }
     return v3(sumLanes(r) * invWeightSum, sumLanes(g) * invWeightSum, sumLanes(b) * invWeightSum);
-}
-
-// ldLevelItem with integrateLdLanes.
-static inline void ldLevelLanesItem(WorkItem t, __global float* out, LdParams params,
-                                    __global const float* pyramid, __global const float* table) {
-    storeTexel(out, t,
-               integrateLdLanes(cubeWorkItemDirection(t, params.faceSize), pyramid, params.source, table,
-                                params.sampleCount, params.invWeightSum));
-}
-
-// ldOnePassItem with integrateLdLanes.
-static inline void ldOnePassLanesItem(WorkItem t, __global float* out, LdParams params,
-                                      __global const float* pyramid, __global const float* table,
-                                      __global const float* clusters, __global const float* bright) {
-    storeTexel(
-        out, t,
-        ldWithBrightTexels(t,
-                           integrateLdLanes(cubeWorkItemDirection(t, params.faceSize), pyramid, params.source,
-                                            table, params.sampleCount, params.invWeightSum),
-                           params, clusters, bright));
 }
 
 #endif

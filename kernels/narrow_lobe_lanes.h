@@ -1,4 +1,4 @@
-// OpenCL only, included by ld.h: narrowFootprintPatchesWeight (ld.h's scalar loop for the CPU) with
+// Included by ld.h: narrowFootprintPatchesWeight with
 // IBL_LANES patches of the bright texel in the lanes of float8 vectors (lanes.h). The patches of a sun
 // texel next to an output texel on faces under a quarter-texel lobe (up to 16 x 16 of them, each four
 // lobeTriangleIntegral) were four fifths of the bright pass of a 128 px level on PoCL, which ran them
@@ -9,7 +9,7 @@
 
 #include "lanes.h"
 
-static inline float8 atanPolynomialLanes(float8 x) {
+IBL_FN float8 atanPolynomialLanes(float8 x) {
     float8 a = fabs(x);
     int8 big = isgreater(a, 2.414213562373095f), mid = ~big & isgreater(a, 0.4142135623730950f);
     float8 offset = select(select((float8)0.0f, (float8)(0.25f * IBL_PI), mid), (float8)(0.5f * IBL_PI), big);
@@ -23,7 +23,7 @@ static inline float8 atanPolynomialLanes(float8 x) {
 }
 
 // lobeTriangleIntegral of the triangles (0, a, b).
-static inline float8 lobeTriangleIntegralLanes(float8 ax, float8 ay, float8 bx, float8 by, float alpha) {
+IBL_FN float8 lobeTriangleIntegralLanes(float8 ax, float8 ay, float8 bx, float8 by, float alpha) {
     float8 ex = bx - ax, ey = by - ay;
     float8 len = sqrt(ex * ex + ey * ey);
     float8 cr = ax * by - ay * bx;
@@ -39,12 +39,12 @@ static inline float8 lobeTriangleIntegralLanes(float8 ax, float8 ay, float8 bx, 
 
 // sum over the S x S patches of the bright texel [bu, bu + S step] x [bv, bv + S step] of sourceFace of
 // their solid angle times narrowLobeCornersWeight of `texel` around their centre.
-static inline float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
-                                                 float step, int S, float alpha) {
+IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
+                                          float step, int S, float alpha) {
     float8 sum = 0.0f;
     int count = S * S;
     for (int first = 0; first < count; first += (int)IBL_LANES) {
-        int8 patch = first + (int8)(0, 1, 2, 3, 4, 5, 6, 7);
+        int8 patch = first + laneIndices();
         PatchLanes p = patchLanes(sourceFace, bu, bv, step, S, patch);
         float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
         // frameFromNormal(n): tangent (tx, ty, tz), bitangent (bx, by, bz).

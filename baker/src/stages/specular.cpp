@@ -5,6 +5,7 @@
 #include "iblbake/opencl/dispatch.h"
 
 #include "bright_split.h"
+#include "ld_host_items.h"
 
 #include <ld.h>
 
@@ -176,13 +177,13 @@ class LdBake {
         DispatchOutput out = dispatcher_.output(DispatchGrid::cube(std::uint32_t(n)));
         const DeviceArray<float> tableData = dispatcher_.upload("LD sample table", table.samples);
         if (std::uint32_t(n) <= IBL_LD_ONE_PASS_FACE_SIZE) {
-            dispatcher_.run(kernel("ld.cl", "ldOnePass", ldOnePassItem), out, params, pyramidData_, tableData,
-                            clustersData_, brightData_);
+            dispatcher_.run(kernel("ld.cl", "ldOnePass", ldOnePassItemHost), out, params, pyramidData_,
+                            tableData, clustersData_, brightData_);
             return dispatcher_.downloadCube(out);
         }
-        dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItem), out, params, pyramidData_, tableData);
+        dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItemHost), out, params, pyramidData_, tableData);
         if (params.brightCount > 0)
-            dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItem), out, params, clustersData_,
+            dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItemHost), out, params, clustersData_,
                             brightData_);
         return dispatcher_.downloadCube(out);
     }

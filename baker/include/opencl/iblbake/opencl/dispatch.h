@@ -10,9 +10,6 @@
 //   __kernel void ldBright(__global float* out, LdParams p, __global const float* clusters, ...) {
 //       ldBrightItem(cubeWorkItem(p.faceSize), out, p, clusters, ...);
 //   }
-// The one exception is an item whose loop OpenCL runs in float8 lanes (kernels/lanes.h): the entry point
-// calls the lane form, the same arithmetic lane by lane (ld.cl's ldLevel runs ldLevelLanesItem, ldOnePass
-// ldOnePassLanesItem).
 // An item writes only the 4 output floats it owns (WorkItem::offset), and reads its own output only as
 // left by an earlier dispatch: reading it in the sample loop of the same kernel stops PoCL from
 // vectorizing (kernels/portable.h), so accumulation goes through a second output and an add kernel.
