@@ -32,7 +32,11 @@ void BackendOptions::storeBuiltKernels(const Executor& executor) {
 }
 
 std::future<Executor> BackendOptions::startExecutor() const {
-    return std::async(std::launch::async, [options = *this] { return options.makeExecutor(); });
+    return startExecutor(parseBackend(backend));
+}
+
+std::future<Executor> BackendOptions::startExecutor(Backend chosen) const {
+    return std::async(std::launch::async, [options = *this, chosen] { return options.makeExecutor(chosen); });
 }
 
 void BackendOptions::printTiming(const Executor& executor, const char* stage, double wallMs) const {

@@ -124,7 +124,8 @@ Action addSpecularCommand(CLI::App& app) {
             checkOutputFile(std::filesystem::is_directory(o->exrDir) ? o->exrDir + "/level_0.exr"
                                                                      : o->exrDir);
         if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
-        std::future<Executor> pendingExecutor = o->backend.startExecutor();
+        std::future<Executor> pendingExecutor = o->backend.startExecutor(standaloneSpecularBackend(
+            parseBackend(o->backend.backend), !o->backend.device.empty(), settings, o->size));
         // The cube with the sun is kept for level 0 (below).
         PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
         const Executor executor = pendingExecutor.get();

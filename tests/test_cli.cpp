@@ -94,10 +94,11 @@ TEST(Cli, FailedWriteKeepsExistingFile) {
 
 TEST(Cli, NoOpenCLDeviceFallsBackToCpuWithOneWarning) {
     fs::path dir = tempDir("fallback");
-    // An empty ICD vendor directory hides every OpenCL platform from the ICD loader. (`specular`: `dfg`
-    // alone runs on the CPU backend under auto, dfg_lut.h standaloneDfgBackend.)
+    // An empty ICD vendor directory hides every OpenCL platform from the ICD loader. (A reference chain:
+    // `dfg` alone and production chains up to 256 px run on the CPU backend under auto, dfg_lut.h
+    // standaloneDfgBackend, specular.h standaloneSpecularBackend.)
     ::setenv("OCL_ICD_VENDORS", (dir / "no-icds").c_str(), 1);
-    CliRun autoRun = run("specular " + ibl::test::kSampleHdri + " --size 8 --quality draft -o " +
+    CliRun autoRun = run("specular " + ibl::test::kSampleHdri + " --size 8 --quality reference -o " +
                          (dir / "ld.ktx2").string());
     CliRun forced = run("dfg --size 8 --samples 16 --backend opencl -o " + (dir / "forced.exr").string());
     ::unsetenv("OCL_ICD_VENDORS");

@@ -6,6 +6,7 @@
 #include <iblbake/baker/dfg_lut.h>
 #include <iblbake/baker/exr_output.h>
 #include <iblbake/baker/preview.h>
+#include <iblbake/baker/specular.h>
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,33 @@ TEST(StartUp, StandaloneDfgLoadsNoOpenClDriverUnlessAsked) {
     EXPECT_NE(opencl.run.err.find("libpocl"), std::string::npos);
     EXPECT_EQ(ibl::standaloneDfgBackend(ibl::Backend::Auto, true), ibl::Backend::Auto) << "a named device";
     EXPECT_EQ(ibl::standaloneDfgBackend(ibl::Backend::OpenCL, false), ibl::Backend::OpenCL);
+    fs::remove_all(dir);
+}
+
+// `iblbake specular` of a production chain up to 256 px runs on the CPU backend under auto
+// (specular.h standaloneSpecularBackend); a larger or a reference chain, a named device or an explicit
+// backend keeps what was asked.
+TEST(StartUp, SmallStandaloneChainLoadsNoOpenClDriverUnlessAsked) {
+    const fs::path dir = fs::temp_directory_path() / ("iblbake_start_up_ld_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    const std::string chain =
+        "specular " + kSampleHdri + " --size 8 --quality draft -o " + (dir / "ld.ktx2").string();
+    const Traced automatic = traced(chain);
+    EXPECT_EQ(automatic.run.exitCode, 0) << automatic.run.err.substr(0, 400);
+    EXPECT_EQ(automatic.run.err.find("libpocl"), std::string::npos);
+    const Traced opencl = traced(chain + " --backend opencl");
+    EXPECT_EQ(opencl.run.exitCode, 0) << opencl.run.err.substr(0, 400);
+    EXPECT_NE(opencl.run.err.find("libpocl"), std::string::npos);
+    using ibl::Backend;
+    const ibl::SpecularSettings production, reference{.quality = ibl::Quality::Reference},
+        manySamples{.samples = 1024};
+    EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::Auto, false, production, 256), Backend::Cpu);
+    EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::Auto, false, production, 512), Backend::Auto);
+    EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::Auto, false, reference, 64), Backend::Auto);
+    EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::Auto, false, manySamples, 64), Backend::Auto);
+    EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::Auto, true, production, 64), Backend::Auto)
+        << "a named device";
+    EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::OpenCL, false, production, 64), Backend::OpenCL);
     fs::remove_all(dir);
 }
 

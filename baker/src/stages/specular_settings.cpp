@@ -23,4 +23,11 @@ void validateSpecularSettings(const SpecularSettings& settings, int faceSize) {
                                           " is not from 1 to " + std::to_string(limits::kMaxSamples));
 }
 
+Backend standaloneSpecularBackend(Backend requested, bool deviceNamed, const SpecularSettings& settings,
+                                  int faceSize) {
+    const bool small = faceSize <= kStandaloneCpuFaceSize &&
+                       samplesFor(settings) <= samplesFor(SpecularSettings{}); // the production preset
+    return requested == Backend::Auto && !deviceNamed && small ? Backend::Cpu : requested;
+}
+
 } // namespace ibl

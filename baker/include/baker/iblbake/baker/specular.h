@@ -52,6 +52,17 @@ int levelCountFor(int faceSize, const SpecularSettings& settings);
 // count, samples up to limits::kMaxSamples. Throws ibl::SettingError "faceSize", "levels" or "samples".
 void validateSpecularSettings(const SpecularSettings& settings, int faceSize);
 
+// The backend that `auto` means for a process whose only bake is one LD chain (`iblbake specular`): the CPU
+// backend for chains of at most kStandaloneCpuFaceSize texels a side at the production preset's samples or
+// fewer, unless a device was named. Both backends run the same lane code (kernels/lanes.h); OpenCL's set-up
+// before a first kernel costs more than such a chain takes on the CPU (the 1k sample's production chain at
+// 256 px: the platform query alone, which loads PoCL and LLVM, 111-124 ms; the whole chain on this 2-core
+// machine's CPU backend, 95 ms), so a device cannot win it back there. Larger or reference chains keep
+// `auto`; a scene bake runs on its process's backend; explicit choices are kept.
+inline constexpr int kStandaloneCpuFaceSize = 256;
+Backend standaloneSpecularBackend(Backend requested, bool deviceNamed, const SpecularSettings& settings,
+                                  int faceSize);
+
 struct SpecularLevelTiming {
     int level;
     float perceptualRoughness;
