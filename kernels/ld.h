@@ -27,7 +27,7 @@ typedef struct {
 // on the level only, so the host computes it once per level. IBL_LD_SAMPLE_FLOATS floats in the table,
 // in this order, stored in blocks of IBL_LD_BLOCK samples component by component (the block's x, then its
 // y, z, weight and lod: ldTableIndex) and padded to whole blocks with weight-0 samples, which add exact
-// zeros: the OpenCL kernel reads a block's components as vectors (ld.cl), the CPU one sample at a time.
+// zeros: integrateLd reads a block's components as vectors (ld_lanes.h).
 #define IBL_LD_SAMPLE_FLOATS 5
 #define IBL_LD_BLOCK 8u
 
