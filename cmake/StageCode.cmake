@@ -34,7 +34,7 @@ set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration; the OpenI
     baker/src/ingest baker/src/calibration baker/src/environment baker/src/io/oiio_module.h
     baker/src/io/oiio_module_loader.cpp baker/oiio_module)
 set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, bright texels, level 0
-    kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/ld_host_items.cpp
+    kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/ld_host_items.cpp baker/src/stages/host_clones.h
     baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp baker/src/stages/sun_in_level0.cpp)
 
 # The stage kinds of the planner (baker/src/scene/scene_plan.cpp); a planned kind missing here makes key
@@ -42,7 +42,8 @@ set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, 
 # and records this identity so that the up-to-date check does not keep one written by other code.
 set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract sun-in-probe specular-ld diffuse-sh irradiance-cube probe-ld
     gltf-export material-preview light-card manifest)
-set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp)
+set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp
+    baker/src/stages/host_clones.h)
 set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
 set(IBLBAKE_STAGE_CODE_sun-extract stage_runner baker/src/calibration baker/src/environment)
 # The sun-in-probe check (its facts, which the manifest's warnings read): the shipped probe's bake and the

@@ -2,6 +2,8 @@
 #include "iblbake/core/error.h"
 #include "iblbake/opencl/dispatch.h"
 
+#include "host_clones.h"
+
 #include <dfg.h>
 
 #include <algorithm>
@@ -27,12 +29,8 @@ std::vector<float> sampleTable(std::uint32_t sampleCount) {
 // chosen at load time: the sample loop vectorizes across samples (IBL_SIMD_SUM) as wide as the machine
 // allows while the program stays portable x86-64 (bench_iblbake bakeLut/cpu, 128^2 texels x 1024 samples:
 // 8-10x the scalar loop with AVX2). The sums' lanes follow the vector width, so the LUT's last bits
-// depend on the clone chosen (a few 1e-6 at most, tests/test_dfg.cpp OpenCLAgreesWithCpu). GCC only: clang
-// refuses multiversioning with flatten, and builds with clang (the sanitizer build) need no speed here.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((flatten, target_clones("avx512f", "avx2", "default")))
-#endif
-void dfgChunkItemHost(WorkItem t, float* out, DfgParams params, const float* table) {
+// depend on the clone chosen (a few 1e-6 at most, tests/test_dfg.cpp OpenCLAgreesWithCpu).
+IBL_HOST_CLONES void dfgChunkItemHost(WorkItem t, float* out, DfgParams params, const float* table) {
     dfgChunkItem(t, out, params, table);
 }
 
