@@ -8,6 +8,13 @@ __kernel void checkCubeAdd(__global float* out, DispatchCheckParams params,
                            __global const float* increments) {
     dispatchCheckAddItem(cubeWorkItem(params.width), out, params, increments);
 }
+__kernel void checkStridedCubeStore(__global float* out, DispatchCheckParams params) {
+    dispatchCheckStoreItem(cubeWorkItemStrided(params.width), out, params);
+}
+__kernel void checkStridedCubeAdd(__global float* out, DispatchCheckParams params,
+                                  __global const float* increments) {
+    dispatchCheckAddItem(cubeWorkItemStrided(params.width), out, params, increments);
+}
 __kernel void checkImageStore(__global float* out, DispatchCheckParams params) {
     dispatchCheckStoreItem(imageWorkItem(params.width, params.height), out, params);
 }

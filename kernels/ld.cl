@@ -9,7 +9,7 @@ __kernel void ldLevel(__global float* out, LdParams params, __global const float
 
 __kernel void ldBright(__global float* out, LdParams params, __global const float* clusters,
                        __global const float* bright) {
-    ldBrightItem(cubeWorkItem(params.faceSize), out, params, clusters, bright);
+    ldBrightItem(cubeWorkItemStrided(params.faceSize), out, params, clusters, bright);
 }
 
 // Both parts in one dispatch, for the smallest levels (ld.h's ldOnePassItem).

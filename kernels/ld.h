@@ -171,7 +171,8 @@ IBL_FN bool narrowLobeClosedFormApplies(float alpha, float texelSize, float angl
 }
 
 // integral_texel D(h) NoL dl of one bright-list entry for the lobe around n (unnormalized).
-IBL_FN float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, float alpha, float texelSize) {
+IBL_FN_INLINED float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, float alpha,
+                                       float texelSize) {
     // The midpoint rule over a texel of size a at angle theta from the lobe centre errs by about
     // (a / theta)^2 in GGX's theta^-4 tail, so texels nearer than 10 texels are integrated on an S x S
     // grid, S = 10 a / max(theta, alpha) (error ~1%). Near a lobe under a quarter texel wide the closed
@@ -222,20 +223,30 @@ IBL_FN bool ldFootprintApplies(float alpha, uint outputFaceSize) {
     return 2.0f * alpha < 2.0f / (float)outputFaceSize;
 }
 
-// integral_b G_t(l) dl for bright entry e and output texel t (face, corner (u0, v0), face-plane size
-// outSize, centre direction tCentre, solid angle omegaT).
-// - Near t with a lobe under a quarter of t: b in S x S patches, each its solid angle times
+// The angle from unit direction n to bright entry e's centre, as its chord (accurate where it matters:
+// small).
+IBL_FN float brightEntryAngle(vec3 n, IBL_GLOBAL const float* e) {
+    return sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(n, v3(e[0], e[1], e[2]))));
+}
+
+// Whether LD averaged over output texel t's footprint (face-plane size outSize) needs more than its value at
+// t's centre for bright entry e at `angle` from it: within three texels of t. Farther, the average is the
+// centre's value.
+IBL_FN bool brightEntryNearFootprint(float angle, float outSize) {
+    return angle < 3.0f * outSize;
+}
+
+// integral_b G_t(l) dl for bright entry e within three texels of output texel t (face, corner (u0, v0),
+// face-plane size outSize, centre direction tCentre, e's centre at `angle` from it).
+// - With a lobe under a quarter of t: b in S x S patches, each its solid angle times
 //   narrowLobeTexelWeight's closed form of G_t around its centre; G_t varies over about alpha near t's
 //   edges, so S = 4 source texel / alpha, up to 16, for the bright texels within about a texel of t (the
 //   midpoint rule converges only linearly across an edge it does not resolve: up to 8, the texels beside
 //   a sun on rooitou's 32-px level 1 read 1.2% off), and 1 beyond.
-// - Near t with a wider lobe: t in S x S patches, each its solid angle times the lobe around its centre over
-//   b (brightTexelWeight), S ~ 2 outSize / alpha (2 to 8).
-// - Farther than three texels: the point value at t's centre times Omega_t.
-IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, float outSize, float omegaT,
+// - With a wider lobe: t in S x S patches, each its solid angle times the lobe around its centre over b
+//   (brightTexelWeight), S ~ 2 outSize / alpha (2 to 8).
+IBL_FN float brightFootprintWeight(int face, float u0, float v0, float outSize, float angle,
                                    IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
-    vec3 d = v3(e[0], e[1], e[2]);
-    float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(tCentre, d)));
     if (narrowLobeClosedFormApplies(alpha, outSize, angle)) {
         // Only a bright texel touching t (or a texel away) has t's edges across it.
         int S = angle < outSize + sourceTexelSize
@@ -247,8 +258,6 @@ IBL_FN float brightFootprintWeight(vec3 tCentre, int face, float u0, float v0, f
         return narrowFootprintPatchesWeight(faceSquareCorners(face, u0, v0, outSize), sourceFace, bu, bv,
                                             step, S, alpha);
     }
-    if (angle >= 3.0f * outSize)
-        return omegaT * brightTexelWeight(tCentre, frameFromNormal(tCentre), e, alpha, sourceTexelSize);
     int S = (int)clamp(ceil(2.0f * outSize / alpha), 2.0f, 8.0f);
     return footprintPatchesWeight(face, u0, v0, outSize / (float)S, S, e, alpha, sourceTexelSize);
 }
@@ -287,7 +296,7 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
     Frame frame = frameFromNormal(centre);
     int footprint = ldFootprintApplies(alpha, n);
     float outSize = 2.0f / (float)n, u0 = -1.0f + (float)x * outSize, v0 = -1.0f + (float)y * outSize;
-    // Omega_t when a cluster first survives the skip test (most texels have none; on faces of 64 texels or
+    // Omega_t when a bright entry is first near the footprint (few texels have one; on faces of 64 texels or
     // fewer it is four atan2).
     float omegaT = -1.0f;
     // A footprint reaches half a diagonal (~0.71 outSize radians or less) from its centre.
@@ -301,14 +310,16 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
         float bound = D_GGX(cosHalfNearestAngle(cosAngle, cl[7], cosHalfReach, sinHalfReach), alpha) * cl[4] *
                       invLobeIntegral;
         if (bound < skipBelow) continue;
-        if (footprint && omegaT < 0.0f) omegaT = cubePatchSolidAngle(u0, v0, outSize);
         uint first = (uint)cl[5], count = (uint)cl[6];
         for (uint i = first; i < first + count; ++i) {
             const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
-            float weight = footprint ? brightFootprintWeight(centre, face, u0, v0, outSize, omegaT, e, alpha,
-                                                             texelSize) /
-                                           omegaT
-                                     : brightTexelWeight(centre, frame, e, alpha, texelSize);
+            float angle = footprint ? brightEntryAngle(centre, e) : 0.0f, weight;
+            if (footprint && brightEntryNearFootprint(angle, outSize)) {
+                if (omegaT < 0.0f) omegaT = cubePatchSolidAngle(u0, v0, outSize);
+                weight = brightFootprintWeight(face, u0, v0, outSize, angle, e, alpha, texelSize) / omegaT;
+            } else { // no footprint, or one whose average over t is the value at its centre
+                weight = brightTexelWeight(centre, frame, e, alpha, texelSize);
+            }
             r += weight * e[4];
             g += weight * e[5];
             b += weight * e[6];

@@ -3,12 +3,14 @@
 // stored once with its own coordinates and incremented once, and OpenCL and the CPU must agree exactly.
 #include <iblbake/core/error.h>
 #include <iblbake/opencl/dispatch.h>
+#include <iblbake/opencl/executor.h>
 #include <iblbake/opencl/opencl_context.h>
 
 #include <dispatch_check.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,7 +18,7 @@
 namespace {
 
 struct GridCase {
-    std::string shape; // "Cube", "Image" or "List": the kernels' names in dispatch_check.cl
+    std::string shape; // "Cube", "StridedCube", "Image" or "List": the kernels' names in dispatch_check.cl
     ibl::DispatchGrid grid;
     ibl::DispatchCheckParams params;
 };
@@ -24,7 +26,8 @@ struct GridCase {
 std::vector<GridCase> gridCases() {
     std::vector<GridCase> cases;
     for (std::uint32_t n : {1u, 2u, 3u, 15u, 16u, 17u, 33u})
-        cases.push_back({"Cube", ibl::DispatchGrid::cube(n), {n, 1}});
+        for (const char* shape : {"Cube", "StridedCube"}) // the same grid, rows in another order on OpenCL
+            cases.push_back({shape, ibl::DispatchGrid::cube(n), {n, 1}});
     for (auto [w, h] : {std::pair{1u, 1u}, {3u, 5u}, {31u, 2u}, {32u, 1u}, {33u, 3u}, {70u, 7u}})
         cases.push_back({"Image", ibl::DispatchGrid::image(w, h), {w, h}});
     for (std::uint32_t count : {1u, 63u, 64u, 65u, 257u, 1000u})
@@ -58,7 +61,7 @@ std::vector<glm::vec4> runCheck(const ibl::Dispatcher& dispatcher, const GridCas
 // Element i at (x, y, face) is stored as (x, y, face, 4 i); the increment output holds (x, y, face) plus
 // increments i, and it is added once (to RGB only).
 glm::vec4 expected(const GridCase& c, const std::vector<float>& added, std::size_t i) {
-    const std::uint32_t w = c.params.width, h = c.shape == "Cube" ? w : c.params.height;
+    const std::uint32_t w = c.params.width, h = c.shape.ends_with("Cube") ? w : c.params.height;
     const float x = float(i % w), y = float(i / w % h), face = float(i / (std::size_t(w) * h));
     return {2.0f * x + added[4 * i], 2.0f * y + added[4 * i + 1], 2.0f * face + added[4 * i + 2],
             float(4 * i)};
@@ -98,6 +101,47 @@ TEST(Dispatch, CubeOutputIsFaceByFace) {
         for (int y = 0; y < 3; ++y)
             for (int x = 0; x < 3; ++x)
                 EXPECT_EQ(cube.faces[f].at(x, y), glm::vec4(x, y, f, 4 * ((f * 3 + y) * 3 + x)));
+}
+
+// The CPU backend times its dispatches as OpenCL does (Executor::takeTimings: `--timing`, bench
+// bakeChainLevels): one entry per dispatch, in order, named by entry point; taking them empties the list.
+TEST(Dispatch, CpuDispatchesAreTimedInOrder) {
+    const ibl::Executor executor = ibl::Executor::cpu();
+    const GridCase c{"Cube", ibl::DispatchGrid::cube(17), {17, 1}};
+    EXPECT_EQ(runCheck(ibl::Dispatcher(executor), c), runCheck(ibl::Dispatcher(nullptr), c));
+    const std::vector<ibl::ocl::DispatchTiming> timings = executor.takeTimings();
+    const std::vector<std::string> expectedOrder{"checkCubeStore", "checkCubeStore", "checkCubeAdd",
+                                                 "checkCubeAdd"};
+    ASSERT_EQ(timings.size(), expectedOrder.size());
+    for (std::size_t i = 0; i < timings.size(); ++i) {
+        EXPECT_EQ(timings[i].kernel, expectedOrder[i]);
+        EXPECT_GE(timings[i].milliseconds, 0.0);
+    }
+    EXPECT_TRUE(executor.takeTimings().empty());
+}
+
+// cubeWorkItemStrided's order: every row of the level once, and rows that follow each other in the dispatch
+// at least a quarter of the level apart (in the cyclic order of rows), at every face size a chain has and at
+// odd ones.
+TEST(Dispatch, StridedCubeRowsArePermutationsThatSpreadNeighbours) {
+    std::vector<std::uint32_t> sizes{3, 5, 7, 15, 17, 33, 100, 1000};
+    for (std::uint32_t n = 1; n <= 8192; n *= 2)
+        sizes.push_back(n);
+    for (std::uint32_t n : sizes) {
+        const std::uint32_t rows = 6 * n;
+        std::vector<int> taken(rows, 0);
+        for (std::uint32_t g = 0; g < rows; ++g) {
+            const std::uint32_t row = ibl::cubeStridedRow(g, n);
+            ASSERT_LT(row, rows) << "n " << n << ", g " << g;
+            ++taken[row];
+            if (n >= 8 && g > 0) {
+                const std::uint32_t step = (row + rows - ibl::cubeStridedRow(g - 1, n)) % rows;
+                ASSERT_GE(std::min(step, rows - step), rows / 4) << "n " << n << ", g " << g;
+            }
+        }
+        for (std::uint32_t row = 0; row < rows; ++row)
+            ASSERT_EQ(taken[row], 1) << "n " << n << ", row " << row;
+    }
 }
 
 // An unknown entry point, and an entry point whose arguments are not the item function's (checkListStore
