@@ -41,9 +41,9 @@ std::future<Executor> BackendOptions::startExecutor(Backend chosen) const {
 
 void BackendOptions::printTiming(const Executor& executor, const char* stage, double wallMs) const {
     if (!timing) return;
+    for (const ocl::DispatchTiming& t : executor.takeTimings())
+        std::printf("timing: kernel %-24s %10.3f ms\n", t.kernel.c_str(), t.milliseconds);
     if (executor.usesOpenCL()) {
-        for (const ocl::DispatchTiming& t : executor.cl().takeTimings())
-            std::printf("timing: kernel %-24s %10.3f ms\n", t.kernel.c_str(), t.milliseconds);
         const ocl::Context::ProgramBuilds builds = executor.cl().programBuilds();
         std::printf("timing: programs %d built from source, %d loaded from binaries\n", builds.fromSource,
                     builds.fromBinary);

@@ -2,6 +2,7 @@
 #include "iblbake/core/error.h"
 
 #include <ostream>
+#include <utility>
 
 namespace ibl {
 
@@ -15,6 +16,20 @@ Executor Executor::create(Backend requested, const std::string& device, std::ost
         warnings << "iblbake: warning: " << e.what() << "; running on the CPU backend\n";
         return cpu();
     }
+}
+
+void CpuDispatchTimings::record(const char* kernel, double milliseconds) {
+    std::lock_guard lock(mutex_);
+    timings_.push_back({kernel, milliseconds});
+}
+
+std::vector<ocl::DispatchTiming> CpuDispatchTimings::take() {
+    std::lock_guard lock(mutex_);
+    return std::exchange(timings_, {});
+}
+
+std::vector<ocl::DispatchTiming> Executor::takeTimings() const {
+    return cl_ ? cl_->takeTimings() : cpuTimings_->take();
 }
 
 std::string Executor::description() const {

@@ -22,6 +22,7 @@
 
 #include <work_item.h>
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -111,8 +112,10 @@ Kernel<Params, Inputs...> kernel(const char* file, const char* entryPoint,
 
 class Dispatcher {
   public:
-    explicit Dispatcher(const Executor& executor) : cl_(executor.usesOpenCL() ? &executor.cl() : nullptr) {}
-    // nullptr: the CPU backend.
+    // The CPU backend's dispatches record their wall times in the executor (Executor::takeTimings).
+    explicit Dispatcher(const Executor& executor)
+        : cl_(executor.usesOpenCL() ? &executor.cl() : nullptr), cpuTimings_(executor.cpuTimings()) {}
+    // nullptr: the CPU backend, untimed.
     explicit Dispatcher(ocl::Context* cl) : cl_(cl) {}
 
     bool usesOpenCL() const { return cl_ != nullptr; }
@@ -145,10 +148,15 @@ class Dispatcher {
         if (!cl_) {
             float* target = out.host_.data();
             const DispatchGrid& grid = out.grid();
+            const auto start = std::chrono::steady_clock::now();
             grid.forEachRange([&](std::size_t first, std::size_t end) {
                 for (std::size_t element = first; element < end; ++element)
                     k.item(grid.itemAt(element), target, params, inputs.host()...);
             });
+            if (cpuTimings_)
+                cpuTimings_->record(k.entryPoint, std::chrono::duration<double, std::milli>(
+                                                      std::chrono::steady_clock::now() - start)
+                                                      .count());
             return;
         }
         cl::Kernel clKernel = cl_->kernel(k.file, k.entryPoint);
@@ -192,6 +200,7 @@ class Dispatcher {
     [[noreturn]] static void throwSetArgFailure(const char* entryPoint, cl_uint index, cl_int status);
 
     ocl::Context* cl_;
+    CpuDispatchTimings* cpuTimings_ = nullptr;
 };
 
 } // namespace ibl

@@ -7,9 +7,22 @@
 
 #include <iosfwd>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace ibl {
+
+// The dispatches the CPU backend ran, in order, with their wall times (ocl::Context keeps OpenCL's).
+class CpuDispatchTimings {
+  public:
+    void record(const char* kernel, double milliseconds);
+    std::vector<ocl::DispatchTiming> take();
+
+  private:
+    std::mutex mutex_;
+    std::vector<ocl::DispatchTiming> timings_;
+};
 
 class Executor {
   public:
@@ -22,10 +35,17 @@ class Executor {
     Backend backend() const { return cl_ ? Backend::OpenCL : Backend::Cpu; }
     ocl::Context& cl() const { return *cl_; }
     std::string description() const;
+    // The dispatches run since the last call, in order: each kernel's device time on OpenCL (waiting for
+    // those still running), its wall time on the CPU backend.
+    std::vector<ocl::DispatchTiming> takeTimings() const;
+    // Where the CPU backend's dispatches record their times (nullptr on OpenCL).
+    CpuDispatchTimings* cpuTimings() const { return cpuTimings_.get(); }
 
   private:
-    explicit Executor(std::shared_ptr<ocl::Context> cl) : cl_(std::move(cl)) {}
+    explicit Executor(std::shared_ptr<ocl::Context> cl)
+        : cl_(std::move(cl)), cpuTimings_(cl_ ? nullptr : std::make_shared<CpuDispatchTimings>()) {}
     std::shared_ptr<ocl::Context> cl_;
+    std::shared_ptr<CpuDispatchTimings> cpuTimings_;
 };
 
 } // namespace ibl

@@ -48,7 +48,7 @@ std::vector<DeviceInfo> listDevices();
 
 struct DispatchTiming {
     std::string kernel;
-    double milliseconds = 0.0; // device execution time from profiling events
+    double milliseconds = 0.0; // OpenCL: device execution time from profiling events; CPU backend: wall time
 };
 
 // Inserts the embedded headers a source includes (each once), with #line markers so that build logs
