@@ -9,7 +9,9 @@ namespace ibl {
 // again page by page, a fault per 4 KB that costs 3-13 us on the 2-core VM the benchmarks ran on, while a
 // freed heap block is reused; freed memory at the top of the heap is kept (up to 64 MB) rather than given
 // back. `iblbake diffuse` of the 1k sample: 5,430 -> 4,400 page faults. Call it first in main() (the
-// benchmarks' too, so that they measure the same policy), before the blocks it should apply to.
+// benchmarks' too, so that they measure the same policy), before the blocks it should apply to. The other
+// half of the policy, transparent huge pages for the heap, is glibc's start-up tunable, which the front end
+// sets for the engine (cli/front_end.cpp).
 void reuseFreedBlocks();
 
 } // namespace ibl
