@@ -110,10 +110,10 @@ fs::path enginePath() {
 // (glibc.malloc.hugetlb=1, read only at a process's start, hence set here for the engine), unless the
 // caller's GLIBC_TUNABLES already chooses: a bake first touches 20-60 MB of blocks (a lat-long, a cube, its
 // pyramid, the levels), one page fault per 4 KB page and 3-13 us each on the VM the benchmarks ran on; in
-// 2 MB pages, `specular` of the 1k sample took 5,100 -> 700-1,400 page faults and 0.19-0.22 -> 0.14-0.15 s
-// (peak memory 30.2 -> 30.8-31.8 MB). The rest of the allocator policy is the engine's
-// (iblbake/baker/process_memory.h). Where the kernel gives no huge pages (transparent_hugepage "never"),
-// nothing changes.
+// 2 MB pages, `specular` of the 1k sample took 5,100 -> 716-1,602 page faults and 0.17-0.19 -> 0.12-0.16 s
+// (peak memory 30.1-30.3 -> 30.5-32.2 MB; README "The bright pass on PoCL, and huge pages"). The rest of the
+// allocator policy is the engine's (iblbake/baker/process_memory.h). Where the kernel gives no huge pages
+// (transparent_hugepage "never"), nothing changes.
 std::string tunablesWithHugePages(const char* current) {
     const std::string tunables = current ? current : "";
     if (tunables.find("glibc.malloc.hugetlb=") != std::string::npos) return tunables;
