@@ -1,9 +1,9 @@
-// Included by ld.h: footprintPatchesWeight with IBL_LANES
-// patches of the output texel in the lanes of float8 vectors (lanes.h): brightTexelWeight around each
-// patch centre, its point value or its sub-grid of lobeWeightOfPatch (each lane's own size; the lanes run
-// the largest and mask the rest). This was most of the bright pass of a 32 px level (49 patches per bright
-// texel within three texels, up to 4 x 4 sub-patches each). When a lane could take brightTexelWeight's
-// closed form (lobes under a quarter source texel: tiny faces only) the scalar loop runs instead.
+// Included by ld.h: footprintPatchesWeight with IBL_LANES patches of the output texel in the lanes of float8
+// vectors (lanes.h): brightTexelWeight around each patch centre, its point value or its sub-grid of
+// lobeWeightOfPatch (each lane's own size; the lanes run the largest and mask the rest). This was most of the
+// bright pass of a 32 px level (49 patches per bright texel within three texels, up to 4 x 4 sub-patches
+// each). When a lane could take brightTexelWeight's closed form (lobes under a quarter source texel: tiny
+// faces only) the scalar loop runs instead.
 #ifndef IBL_FOOTPRINT_LANES_H
 #define IBL_FOOTPRINT_LANES_H
 

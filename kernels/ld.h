@@ -170,6 +170,12 @@ IBL_FN bool narrowLobeClosedFormApplies(float alpha, float texelSize, float angl
     return 4.0f * alpha < texelSize && angle < fmin(3.0f * texelSize, 0.5f);
 }
 
+// The angle between two unit directions whose cosine is cosAngle, as their chord: accurate where it matters
+// (small angles), and no acos.
+IBL_FN float chordAngle(float cosAngle) {
+    return sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle));
+}
+
 // integral_texel D(h) NoL dl of one bright-list entry for the lobe around n (unnormalized).
 IBL_FN_INLINED float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const float* e, float alpha,
                                        float texelSize) {
@@ -179,7 +185,7 @@ IBL_FN_INLINED float brightTexelWeight(vec3 n, Frame frame, IBL_GLOBAL const flo
     // form is used instead (narrowLobeClosedFormApplies).
     vec3 d = v3(e[0], e[1], e[2]);
     float cosAngle = v3dot(n, d);
-    float angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chord: the angle where it matters (small)
+    float angle = chordAngle(cosAngle);
     float subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
     int face = (int)e[7];
     float u0 = -1.0f + e[8] * texelSize, v0 = -1.0f + e[9] * texelSize;
@@ -223,10 +229,9 @@ IBL_FN bool ldFootprintApplies(float alpha, uint outputFaceSize) {
     return 2.0f * alpha < 2.0f / (float)outputFaceSize;
 }
 
-// The angle from unit direction n to bright entry e's centre, as its chord (accurate where it matters:
-// small).
+// The angle from unit direction n to bright entry e's centre (chordAngle).
 IBL_FN float brightEntryAngle(vec3 n, IBL_GLOBAL const float* e) {
-    return sqrt(fmax(0.0f, 2.0f - 2.0f * v3dot(n, v3(e[0], e[1], e[2]))));
+    return chordAngle(v3dot(n, v3(e[0], e[1], e[2])));
 }
 
 // Whether LD averaged over output texel t's footprint (face-plane size outSize) needs more than its value at
@@ -237,7 +242,7 @@ IBL_FN bool brightEntryNearFootprint(float angle, float outSize) {
 }
 
 // integral_b G_t(l) dl for bright entry e within three texels of output texel t (face, corner (u0, v0),
-// face-plane size outSize, centre direction tCentre, e's centre at `angle` from it).
+// face-plane size outSize, e's centre at `angle` from t's centre).
 // - With a lobe under a quarter of t: b in S x S patches, each its solid angle times
 //   narrowLobeTexelWeight's closed form of G_t around its centre; G_t varies over about alpha near t's
 //   edges, so S = 4 source texel / alpha, up to 16, for the bright texels within about a texel of t (the

@@ -1,9 +1,9 @@
-// Included by ld.h: narrowFootprintPatchesWeight with
-// IBL_LANES patches of the bright texel in the lanes of float8 vectors (lanes.h). The patches of a sun
-// texel next to an output texel on faces under a quarter-texel lobe (up to 16 x 16 of them, each four
-// lobeTriangleIntegral) were four fifths of the bright pass of a 128 px level on PoCL, which ran them
-// scalar. Same arithmetic as cubeFaceDirection, v3normalize, frameFromNormal, frameToLocal,
-// narrowLobeCornersWeight, lobeTriangleIntegral, atanPolynomial and cubePatchSolidAngle, lane by lane.
+// Included by ld.h: narrowFootprintPatchesWeight with IBL_LANES patches of the bright texel in the lanes of
+// float8 vectors (lanes.h). The patches of a sun texel next to an output texel on faces under a quarter-texel
+// lobe (up to 16 x 16 of them, each four lobeTriangleIntegral) were four fifths of the bright pass of a 128
+// px level on PoCL, which ran them scalar. Same arithmetic as cubeFaceDirection, v3normalize,
+// frameFromNormal, frameToLocal, narrowLobeCornersWeight, lobeTriangleIntegral, atanPolynomial and
+// cubePatchSolidAngle, lane by lane.
 #ifndef IBL_NARROW_LOBE_LANES_H
 #define IBL_NARROW_LOBE_LANES_H
 

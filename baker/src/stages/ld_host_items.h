@@ -1,5 +1,5 @@
-// The CPU backend's LD items (ld.h's ldLevelItem and ldOnePassItem), compiled once for each instruction set
-// in ld_host_items.cpp and chosen at load time.
+// The CPU backend's LD items (ld.h's ldLevelItem, ldBrightItem and ldOnePassItem), compiled once for each
+// instruction set in ld_host_items.cpp and chosen at load time.
 #ifndef IBLBAKE_STAGES_LD_HOST_ITEMS_H
 #define IBLBAKE_STAGES_LD_HOST_ITEMS_H
 
