@@ -16,6 +16,16 @@ IBL_FN float8 dGgxLanes(float8 NoH, float alpha) {
     return a2 / (IBL_PI * f * f);
 }
 
+// brightTexelWeight's point value in every lane: D(h) NoL times the solid angle of a bright texel in unit
+// direction d, for the lobe around unit direction n, with cosAngle = n.d.
+IBL_FN float8 brightPointWeightLanes(float8 nx, float8 ny, float8 nz, float8 dx, float8 dy, float8 dz,
+                                     float8 cosAngle, float8 solidAngle, float alpha) {
+    float8 hx = nx + dx, hy = ny + dy, hz = nz + dz;
+    float8 invH = 1.0f / sqrt(hx * hx + hy * hy + hz * hz);
+    float8 NoH = nx * (hx * invH) + ny * (hy * invH) + nz * (hz * invH);
+    return select((float8)0.0f, dGgxLanes(NoH, alpha) * cosAngle * solidAngle, isgreater(cosAngle, 0.0f));
+}
+
 // lobeWeightOfPatch(n, face, u0, v0, step, alpha) in every lane.
 IBL_FN float8 lobeWeightOfPatchLanes(float8 nx, float8 ny, float8 nz, int face, float8 u0, float8 v0,
                                      float8 step, float alpha) {
@@ -54,11 +64,7 @@ IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, in
         float8 angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle));
         float8 subdivisions = ceil(10.0f * sourceTexelSize / fmax(angle, alpha));
         int8 point = islessequal(subdivisions, 1.0f) | isless(cosAngle, 0.0f);
-        float8 hx = nx + e[0], hy = ny + e[1], hz = nz + e[2];
-        float8 invH = 1.0f / sqrt(hx * hx + hy * hy + hz * hz);
-        float8 NoH = nx * (hx * invH) + ny * (hy * invH) + nz * (hz * invH);
-        float8 pointWeight =
-            select((float8)0.0f, dGgxLanes(NoH, alpha) * cosAngle * e[3], isgreater(cosAngle, 0.0f));
+        float8 pointWeight = brightPointWeightLanes(nx, ny, nz, e[0], e[1], e[2], cosAngle, e[3], alpha);
         // Else the lane's own S x S sub-grid of the bright texel.
         int8 sub = select(convert_int8(fmin(subdivisions, 32.0f)), (int8)0, point);
         int subMax = maxLane(sub);

@@ -293,44 +293,61 @@ IBL_FN float cosHalfNearestAngle(float cosAngle, float cosHalfRadius, float cosH
     return cosHalf >= cosHalfBound ? 1.0f : cosHalf * cosHalfBound + sinHalf * sinHalfBound;
 }
 
+// An output texel of the bright pass: its centre direction and frame, and its square (face, corner (u0, v0),
+// face-plane size) with whether LD is averaged over it (ldFootprintApplies).
+typedef struct {
+    vec3 centre;
+    Frame frame;
+    int face;
+    float u0, v0, size;
+    int footprint;
+    float solidAngle; // Omega_t, or -1 until a bright entry near the footprint needs it
+} BrightTarget;
+
+// The weight of bright entry e for output texel t (brightTexelsLd divides it by W).
+IBL_FN float brightEntryWeight(BrightTarget* t, IBL_GLOBAL const float* e, float alpha, float texelSize) {
+    float angle = t->footprint ? brightEntryAngle(t->centre, e) : 0.0f;
+    if (t->footprint && brightEntryNearFootprint(angle, t->size)) {
+        // Omega_t when an entry is first near the footprint (few texels have one; four atan2).
+        if (t->solidAngle < 0.0f) t->solidAngle = cubePatchSolidAngle(t->u0, t->v0, t->size);
+        return brightFootprintWeight(t->face, t->u0, t->v0, t->size, angle, e, alpha, texelSize) /
+               t->solidAngle;
+    }
+    // No footprint, or one whose average over t is the value at its centre.
+    return brightTexelWeight(t->centre, t->frame, e, alpha, texelSize);
+}
+
+// sum of the entries [first, first + count) of a cluster weighted by brightEntryWeight, with the entries in
+// vector lanes where each takes its point value.
+#include "bright_lanes.h"
+
 IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const float* clusters,
                            uint clusterCount, IBL_GLOBAL const float* bright, float alpha,
                            float invLobeIntegral, uint sourceFaceSize, float skipBelow) {
     float texelSize = 2.0f / (float)sourceFaceSize;
-    vec3 centre = cubeTexelDirection(face, x, y, n);
-    Frame frame = frameFromNormal(centre);
-    int footprint = ldFootprintApplies(alpha, n);
-    float outSize = 2.0f / (float)n, u0 = -1.0f + (float)x * outSize, v0 = -1.0f + (float)y * outSize;
-    // Omega_t when a bright entry is first near the footprint (few texels have one; on faces of 64 texels or
-    // fewer it is four atan2).
-    float omegaT = -1.0f;
-    // A footprint reaches half a diagonal (~0.71 outSize radians or less) from its centre.
-    float reach = footprint ? 0.71f * outSize : 0.0f;
+    BrightTarget t;
+    t.centre = cubeTexelDirection(face, x, y, n);
+    t.frame = frameFromNormal(t.centre);
+    t.face = face;
+    t.size = 2.0f / (float)n;
+    t.u0 = -1.0f + (float)x * t.size;
+    t.v0 = -1.0f + (float)y * t.size;
+    t.footprint = ldFootprintApplies(alpha, n);
+    t.solidAngle = -1.0f;
+    // A footprint reaches half a diagonal (~0.71 size radians or less) from its centre.
+    float reach = t.footprint ? 0.71f * t.size : 0.0f;
     float cosHalfReach = cos(0.5f * reach), sinHalfReach = sin(0.5f * reach);
-    float r = 0.0f, g = 0.0f, b = 0.0f;
+    vec3 sum = v3(0.0f, 0.0f, 0.0f);
     for (uint c = 0; c < clusterCount; ++c) {
         const IBL_GLOBAL float* cl = clusters + IBL_BRIGHT_CLUSTER_FLOATS * c;
-        float cosAngle = centre.x * cl[0] + centre.y * cl[1] + centre.z * cl[2];
+        float cosAngle = t.centre.x * cl[0] + t.centre.y * cl[1] + t.centre.z * cl[2];
         // D at the nearest member (D falls with theta_h, half the angle to it) times the cluster's energy.
         float bound = D_GGX(cosHalfNearestAngle(cosAngle, cl[7], cosHalfReach, sinHalfReach), alpha) * cl[4] *
                       invLobeIntegral;
         if (bound < skipBelow) continue;
-        uint first = (uint)cl[5], count = (uint)cl[6];
-        for (uint i = first; i < first + count; ++i) {
-            const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
-            float angle = footprint ? brightEntryAngle(centre, e) : 0.0f, weight;
-            if (footprint && brightEntryNearFootprint(angle, outSize)) {
-                if (omegaT < 0.0f) omegaT = cubePatchSolidAngle(u0, v0, outSize);
-                weight = brightFootprintWeight(face, u0, v0, outSize, angle, e, alpha, texelSize) / omegaT;
-            } else { // no footprint, or one whose average over t is the value at its centre
-                weight = brightTexelWeight(centre, frame, e, alpha, texelSize);
-            }
-            r += weight * e[4];
-            g += weight * e[5];
-            b += weight * e[6];
-        }
+        sum = v3add(sum, brightClusterLd(&t, bright, (uint)cl[5], (uint)cl[6], alpha, texelSize));
     }
-    return v3(r * invLobeIntegral, g * invLobeIntegral, b * invLobeIntegral);
+    return v3scale(sum, invLobeIntegral);
 }
 
 // The skip threshold for a texel whose sampled (residual) value is `sampled`.

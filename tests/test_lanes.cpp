@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -133,6 +134,88 @@ TEST(Lanes, CubeSampleLanesReadsWhatCubeSampleLevelReads) {
             expectSameBits(expected.z, lane(b, i), "blue", i);
         }
     }
+}
+
+// brightClusterLd (bright_lanes.h) against brightEntryWeight entry by entry: clusters of 1 to 20 bright
+// texels around an output texel, on levels with and without a footprint and with lobes narrow enough for the
+// closed form, so that blocks take both the lanes and the one-by-one path. The lanes sum in another order,
+// hence a relative tolerance; a point value in a lane is the scalar one's bits.
+TEST(Lanes, BrightClusterLanesSumTheEntriesWeights) {
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    int allPoint = 0, mixed = 0;
+    for (int round = 0; round < 400; ++round) {
+        const std::uint32_t sourceFaceSize = 4u << (2 * (round % 4)); // 4 .. 256
+        const std::uint32_t n = std::max(1u, sourceFaceSize >> (1 + round % 3));
+        const float alpha = std::exp(std::log(1e-3f) * unit(rng)); // 1e-3 .. 1
+        const float texelSize = 2.0f / float(sourceFaceSize);
+        const int face = int(rng() % 6);
+        const std::uint32_t x = rng() % n, y = rng() % n;
+        // Entries on the output texel's face near it (some within three texels) or anywhere.
+        const int count = 1 + int(rng() % 20);
+        std::vector<float> bright;
+        for (int i = 0; i < count; ++i) {
+            const bool nearby = rng() % 2 == 0;
+            const int entryFace = nearby ? face : int(rng() % 6);
+            const float scale = float(sourceFaceSize) / float(n);
+            const int spread = int(4.0f * scale) + 1;
+            const int bx = nearby ? std::clamp(int(float(x) * scale) + int(rng() % (2 * spread)) - spread, 0,
+                                               int(sourceFaceSize) - 1)
+                                  : int(rng() % sourceFaceSize);
+            const int by = nearby ? std::clamp(int(float(y) * scale) + int(rng() % (2 * spread)) - spread, 0,
+                                               int(sourceFaceSize) - 1)
+                                  : int(rng() % sourceFaceSize);
+            const ibl::vec3 d =
+                ibl::cubeTexelDirection(entryFace, std::uint32_t(bx), std::uint32_t(by), sourceFaceSize);
+            const float u0 = -1.0f + float(bx) * texelSize, v0 = -1.0f + float(by) * texelSize;
+            bright.insert(bright.end(),
+                          {d.x, d.y, d.z, ibl::cubePatchSolidAngle(u0, v0, texelSize), 1.0f + unit(rng),
+                           2.0f * unit(rng), 1e3f * unit(rng), float(entryFace), float(bx), float(by)});
+        }
+        ibl::BrightTarget target;
+        target.centre = ibl::cubeTexelDirection(face, x, y, n);
+        target.frame = ibl::frameFromNormal(target.centre);
+        target.face = face;
+        target.size = 2.0f / float(n);
+        target.u0 = -1.0f + float(x) * target.size;
+        target.v0 = -1.0f + float(y) * target.size;
+        target.footprint = ibl::ldFootprintApplies(alpha, n);
+        target.solidAngle = -1.0f;
+        ibl::BrightTarget scalarTarget = target;
+        double expected[3] = {0.0, 0.0, 0.0};
+        int pointEntries = 0;
+        for (int i = 0; i < count; ++i) {
+            const float* e = &bright[std::size_t(i) * IBL_BRIGHT_ENTRY_FLOATS];
+            const float weight = ibl::brightEntryWeight(&scalarTarget, e, alpha, texelSize);
+            for (int c = 0; c < 3; ++c)
+                expected[c] += double(weight) * e[4 + c];
+            // brightTexelWeight's point value (no sub-grid, closed form or footprint): the lane form's bits.
+            const float cosAngle = ibl::v3dot(target.centre, ibl::v3(e[0], e[1], e[2]));
+            const float angle = ibl::chordAngle(cosAngle);
+            const bool point =
+                (std::ceil(10.0f * texelSize / std::max(angle, alpha)) <= 1.0f || cosAngle < 0.0f) &&
+                !ibl::narrowLobeClosedFormApplies(alpha, texelSize, angle) &&
+                !(target.footprint && ibl::brightEntryNearFootprint(angle, target.size));
+            if (point) {
+                ++pointEntries;
+                const float8 lanes =
+                    ibl::brightPointWeightLanes(target.centre.x, target.centre.y, target.centre.z, e[0], e[1],
+                                                e[2], cosAngle, e[3], alpha);
+                expectSameBits(weight, lane(lanes, 0), "brightPointWeightLanes", 0);
+            }
+        }
+        allPoint += pointEntries == count;
+        mixed += pointEntries > 0 && pointEntries < count;
+        const ibl::vec3 lanes =
+            ibl::brightClusterLd(&target, bright.data(), 0u, std::uint32_t(count), alpha, texelSize);
+        const float actual[3] = {lanes.x, lanes.y, lanes.z};
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(actual[c], expected[c], 1e-5 * std::abs(expected[c]) + 1e-30)
+                << "round " << round << " channel " << c;
+    }
+    // Both paths taken: clusters of point values only (lanes) and clusters that mix them with near entries.
+    EXPECT_GT(allPoint, 20);
+    EXPECT_GT(mixed, 20);
 }
 
 } // namespace

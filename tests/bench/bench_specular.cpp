@@ -22,13 +22,21 @@ void bakeChain(benchmark::State& state, ibl::Backend backend) {
     state.SetLabel(executor.description());
 }
 
-// The kernel time of each level of one chain from its dispatches in order: a level's first dispatch is
-// ldLevel or ldOnePass, its ldBright follows.
-std::vector<double> kernelMsPerLevel(const std::vector<ibl::ocl::DispatchTiming>& dispatches) {
-    std::vector<double> levels;
+// The kernel time of each level of one chain from its dispatches in order (a level's first dispatch is
+// ldLevel or ldOnePass, its ldBright follows), and the ldBright part of it.
+struct LevelKernelMs {
+    std::vector<double> all, bright;
+};
+LevelKernelMs kernelMsPerLevel(const std::vector<ibl::ocl::DispatchTiming>& dispatches) {
+    LevelKernelMs levels;
     for (const ibl::ocl::DispatchTiming& d : dispatches) {
-        if (d.kernel != "ldBright" || levels.empty()) levels.push_back(0.0);
-        levels.back() += d.milliseconds;
+        const bool bright = d.kernel == "ldBright" && !levels.all.empty();
+        if (!bright) {
+            levels.all.push_back(0.0);
+            levels.bright.push_back(0.0);
+        }
+        levels.all.back() += d.milliseconds;
+        if (bright) levels.bright.back() += d.milliseconds;
     }
     return levels;
 }
@@ -36,24 +44,27 @@ std::vector<double> kernelMsPerLevel(const std::vector<ibl::ocl::DispatchTiming>
 // The production chain's levels one by one (issue 18: OpenCL at least as fast as the CPU backend at every
 // level), means over the iterations in ms: L1.. each level's time as the bake measures it (table, upload,
 // kernels, read-back), K1.. its kernels' time (OpenCL: device time from profiling events; CPU: the
-// dispatches' wall time).
+// dispatches' wall time), B1.. the bright pass's part of K.
 void bakeChainLevels(benchmark::State& state, ibl::Backend backend) {
     ibl::Executor executor = ibl::Executor::create(backend, "", std::cerr);
     const ibl::CubeMap& source = ibl::bench::sampleCube(int(state.range(0)));
     const ibl::SpecularSettings settings;
     ibl::bakeSpecular(source, settings, executor); // program build outside the timed loop
     executor.takeTimings();
-    std::vector<double> levelMs, kernelMs;
+    std::vector<double> levelMs, kernelMs, brightMs;
     for (auto _ : state) {
         std::vector<ibl::SpecularLevelTiming> timings;
         benchmark::DoNotOptimize(ibl::bakeSpecular(source, settings, executor, &timings));
         levelMs.resize(timings.size());
         for (std::size_t k = 0; k < timings.size(); ++k)
             levelMs[k] += timings[k].milliseconds;
-        const std::vector<double> kernels = kernelMsPerLevel(executor.takeTimings());
-        kernelMs.resize(kernels.size());
-        for (std::size_t k = 0; k < kernels.size(); ++k)
-            kernelMs[k] += kernels[k];
+        const LevelKernelMs kernels = kernelMsPerLevel(executor.takeTimings());
+        kernelMs.resize(kernels.all.size());
+        brightMs.resize(kernels.all.size());
+        for (std::size_t k = 0; k < kernels.all.size(); ++k) {
+            kernelMs[k] += kernels.all[k];
+            brightMs[k] += kernels.bright[k];
+        }
     }
     const auto report = [&](const char* prefix, const std::vector<double>& ms) {
         for (std::size_t k = 0; k < ms.size(); ++k)
@@ -61,6 +72,7 @@ void bakeChainLevels(benchmark::State& state, ibl::Backend backend) {
     };
     report("L", levelMs);
     report("K", kernelMs);
+    report("B", brightMs);
     state.SetLabel(executor.description());
 }
 

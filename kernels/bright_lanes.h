@@ -1,0 +1,52 @@
+// Included by ld.h: brightClusterLd with IBL_LANES bright entries of a cluster in the lanes of float8 vectors
+// (lanes.h). With a sun's long GGX tail, most output texels of levels 1-3 take every entry of the sun's
+// clusters, nearly all of them at their point value (brightTexelWeight's last case); one entry at a time,
+// that loop was most of the bright pass. A block of entries runs in lanes when each of its entries takes the
+// point value, and one entry at a time (brightEntryWeight) when any needs a sub-grid, the closed form or the
+// footprint.
+#ifndef IBL_BRIGHT_LANES_H
+#define IBL_BRIGHT_LANES_H
+
+#include "lanes.h"
+
+IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, uint first, uint count,
+                            float alpha, float texelSize) {
+    float8 r = 0.0f, g = 0.0f, b = 0.0f;
+    vec3 oneByOne = v3(0.0f, 0.0f, 0.0f);
+    int end = (int)(first + count);
+    bool closedFormPossible = 4.0f * alpha < texelSize; // narrowLobeClosedFormApplies' first half
+    float closedFormAngle = fmin(3.0f * texelSize, 0.5f), nearAngle = t->footprint ? 3.0f * t->size : 0.0f;
+    for (int block = (int)first; block < end; block += (int)IBL_LANES) {
+        int8 entry = block + laneIndices();
+        int8 valid = entry < end;
+        uint8 at = as_uint8(select((int8)(end - 1), entry, valid) * IBL_BRIGHT_ENTRY_FLOATS);
+        float8 dx = readLanes(bright, at), dy = readLanes(bright, at + 1u), dz = readLanes(bright, at + 2u);
+        // brightTexelWeight's and brightEntryWeight's choices, lane by lane.
+        float8 cosAngle = t->centre.x * dx + t->centre.y * dy + t->centre.z * dz;
+        float8 angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chordAngle
+        float8 subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
+        int8 point =
+            (islessequal(subdivisions, 1.0f) | isless(cosAngle, 0.0f)) &
+            ~(closedFormPossible ? isless(angle, closedFormAngle) : (int8)0) &
+            isgreaterequal(angle, nearAngle); // brightEntryNearFootprint: all lanes false without one
+        if (any(valid & ~point)) {
+            int blockEnd = block + (int)IBL_LANES < end ? block + (int)IBL_LANES : end;
+            for (int i = block; i < blockEnd; ++i) {
+                const IBL_GLOBAL float* e = bright + IBL_BRIGHT_ENTRY_FLOATS * i;
+                float weight = brightEntryWeight(t, e, alpha, texelSize);
+                oneByOne = v3add(oneByOne, v3(weight * e[4], weight * e[5], weight * e[6]));
+            }
+            continue;
+        }
+        float8 weight = select((float8)0.0f,
+                               brightPointWeightLanes(t->centre.x, t->centre.y, t->centre.z, dx, dy, dz,
+                                                      cosAngle, readLanes(bright, at + 3u), alpha),
+                               valid);
+        r += weight * readLanes(bright, at + 4u);
+        g += weight * readLanes(bright, at + 5u);
+        b += weight * readLanes(bright, at + 6u);
+    }
+    return v3add(oneByOne, v3(sumLanes(r), sumLanes(g), sumLanes(b)));
+}
+
+#endif
