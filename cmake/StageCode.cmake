@@ -34,7 +34,8 @@ set(IBLBAKE_CODE_ingest # images to cubes, colour spaces, calibration; the OpenI
     baker/src/ingest baker/src/calibration baker/src/environment baker/src/io/oiio_module.h
     baker/src/io/oiio_module_loader.cpp baker/oiio_module)
 set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, bright texels, level 0
-    kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/ld_host_items.cpp baker/src/stages/host_clones.h
+    kernels/ld.cl baker/src/stages/specular.cpp baker/src/stages/lobe_integral.cpp baker/src/stages/ld_host_items.cpp
+    baker/src/stages/host_clones.h
     baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp baker/src/stages/sun_in_level0.cpp)
 
 # The stage kinds of the planner (baker/src/scene/scene_plan.cpp); a planned kind missing here makes key

@@ -103,6 +103,48 @@ TEST(Dispatch, CubeOutputIsFaceByFace) {
                 EXPECT_EQ(cube.faces[f].at(x, y), glm::vec4(x, y, f, 4 * ((f * 3 + y) * 3 + x)));
 }
 
+// startDownload / finishCube (a chain's levels on OpenCL: level m + 1 is enqueued before level m is read): a
+// download holds its output as it was when the download started, though the output is changed and other
+// outputs are written and read after it and the downloads finish in the other order; one dropped unfinished
+// leaves the dispatcher usable. On both backends.
+TEST(Dispatch, StartedDownloadsHoldTheirOutputsAsTheyWere) {
+    std::vector<std::shared_ptr<ibl::ocl::Context>> contexts{nullptr};
+    if (!ibl::ocl::listDevices().empty()) contexts.push_back(ibl::ocl::Context::create());
+    for (const std::shared_ptr<ibl::ocl::Context>& cl : contexts) {
+        SCOPED_TRACE(cl ? "opencl" : "cpu");
+        const ibl::Dispatcher dispatcher(cl.get());
+        const GridCase c{"Cube", ibl::DispatchGrid::cube(5), {5, 1}};
+        const auto store = ibl::kernel("dispatch_check.cl", "checkCubeStore", ibl::dispatchCheckStoreItem);
+        const auto add = ibl::kernel("dispatch_check.cl", "checkCubeAdd", ibl::dispatchCheckAddItem);
+        const std::vector<float> added = increments(c.grid.elementCount());
+        const ibl::DeviceArray<float> addedData = dispatcher.upload("increments", added);
+        ibl::DispatchOutput first = dispatcher.output(c.grid), second = dispatcher.output(c.grid);
+        dispatcher.run(store, first, c.params);
+        ibl::PendingDownload firstStored = dispatcher.startDownload(first);
+        dispatcher.run(add, first, c.params, addedData); // after the read: not in it
+        dispatcher.run(store, second, c.params);
+        dispatcher.run(add, second, c.params, addedData);
+        ibl::PendingDownload secondAdded = dispatcher.startDownload(second);
+        { ibl::PendingDownload dropped = dispatcher.startDownload(first); }
+        const ibl::CubeMap secondCube = dispatcher.finishCube(std::move(secondAdded));
+        const ibl::CubeMap firstCube = dispatcher.finishCube(std::move(firstStored));
+        for (int f = 0; f < 6; ++f)
+            for (int y = 0; y < 5; ++y)
+                for (int x = 0; x < 5; ++x) {
+                    const std::size_t i = std::size_t((f * 5 + y) * 5 + x);
+                    EXPECT_EQ(firstCube.faces[f].at(x, y), glm::vec4(x, y, f, 4 * i));
+                    EXPECT_EQ(secondCube.faces[f].at(x, y),
+                              glm::vec4(float(x) + added[4 * i], float(y) + added[4 * i + 1],
+                                        float(f) + added[4 * i + 2], 4 * i));
+                }
+        // Still usable: the first output now holds the add.
+        const ibl::CubeMap firstAfter = dispatcher.downloadCube(first);
+        EXPECT_EQ(firstAfter.faces[5].at(4, 4), glm::vec4(4.0f + added[4 * 149], 4.0f + added[4 * 149 + 1],
+                                                          5.0f + added[4 * 149 + 2], 4 * 149));
+        if (cl) EXPECT_EQ(cl->takeTimings().size(), 4u); // every kernel waited for and timed once
+    }
+}
+
 // The CPU backend times its dispatches as OpenCL does (Executor::takeTimings: `--timing`, bench
 // bakeChainLevels): one entry per dispatch, in order, named by entry point; taking them empties the list.
 TEST(Dispatch, CpuDispatchesAreTimedInOrder) {

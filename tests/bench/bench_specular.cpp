@@ -42,8 +42,9 @@ LevelKernelMs kernelMsPerLevel(const std::vector<ibl::ocl::DispatchTiming>& disp
 }
 
 // The production chain's levels one by one (issue 18: OpenCL at least as fast as the CPU backend at every
-// level), means over the iterations in ms: L1.. each level's time as the bake measures it (table, upload,
-// kernels, read-back), K1.. its kernels' time (OpenCL: device time from profiling events; CPU: the
+// level), means over the iterations in ms: L1.. each level's time as the bake measures it (from the previous
+// level's end to its own: table, upload, kernels, read-back, which OpenCL overlaps with the next level's
+// table), K1.. its kernels' time (OpenCL: device time from profiling events; CPU: the
 // dispatches' wall time), B1.. the bright pass's part of K.
 void bakeChainLevels(benchmark::State& state, ibl::Backend backend) {
     ibl::Executor executor = ibl::Executor::create(backend, "", std::cerr);

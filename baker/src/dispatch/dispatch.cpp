@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 namespace ibl {
 namespace {
@@ -104,26 +105,56 @@ DispatchOutput Dispatcher::output(const DispatchGrid& grid) const {
 }
 
 std::vector<glm::vec4> Dispatcher::download(const DispatchOutput& out) const {
-    static_assert(sizeof(glm::vec4) == IBL_OUTPUT_FLOATS * sizeof(float));
-    std::vector<glm::vec4> elements(out.grid().elementCount());
-    if (cl_) {
-        if (!elements.empty())
-            cl_->download(out.buffer_, elements.size() * sizeof(glm::vec4), elements.data());
-    } else {
-        std::memcpy(elements.data(), out.host_.data(), out.host_.size() * sizeof(float));
-    }
-    return elements;
+    return finishElements(startDownload(out));
 }
 
-CubeMap Dispatcher::downloadCube(const DispatchOutput& out) const {
-    const std::vector<glm::vec4> texels = download(out);
-    const int n = int(out.grid().width());
+std::vector<glm::vec4> Dispatcher::finishElements(PendingDownload pending) const {
+    if (pending.read_) {
+        cl_->finishRead(*pending.read_);
+        pending.read_.reset();
+    }
+    return std::move(pending.elements_);
+}
+
+PendingDownload Dispatcher::startDownload(const DispatchOutput& out) const {
+    static_assert(sizeof(glm::vec4) == IBL_OUTPUT_FLOATS * sizeof(float));
+    PendingDownload pending(cl_, out.grid());
+    pending.elements_.resize(out.grid().elementCount());
+    if (pending.elements_.empty()) return pending;
+    if (cl_)
+        pending.read_ = cl_->startRead(out.buffer_, pending.elements_.size() * sizeof(glm::vec4),
+                                       pending.elements_.data());
+    else
+        std::memcpy(pending.elements_.data(), out.host_.data(), out.host_.size() * sizeof(float));
+    return pending;
+}
+
+// The read's destination is the elements' heap block, which a move hands over as it is.
+PendingDownload::PendingDownload(PendingDownload&& other) noexcept
+    : cl_(other.cl_), grid_(other.grid_), elements_(std::move(other.elements_)),
+      read_(std::exchange(other.read_, std::nullopt)) {}
+
+PendingDownload::~PendingDownload() {
+    if (read_) cl_->waitForQueue();
+}
+
+CubeMap Dispatcher::finishCube(PendingDownload pending) const {
+    const int n = int(pending.grid_.width());
+    const std::vector<glm::vec4> texels = finishElements(std::move(pending));
     const std::size_t faceTexels = std::size_t(n) * std::size_t(n);
     CubeMap cube(n);
     for (std::size_t f = 0; f < 6; ++f)
         std::copy(texels.begin() + std::ptrdiff_t(f * faceTexels),
                   texels.begin() + std::ptrdiff_t((f + 1) * faceTexels), cube.faces[f].pixels.begin());
     return cube;
+}
+
+CubeMap Dispatcher::downloadCube(const DispatchOutput& out) const {
+    return finishCube(startDownload(out));
+}
+
+void Dispatcher::waitForDevice() const noexcept {
+    if (cl_) cl_->waitForQueue();
 }
 
 ImageRGBA Dispatcher::downloadImage(const DispatchOutput& out) const {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <iterator>
+#include <limits>
 #include <mutex>
 
 namespace ibl::ocl {
@@ -210,18 +212,45 @@ cl::Buffer Context::createBuffer(cl_mem_flags flags, std::size_t bytes, const vo
 }
 
 void Context::download(const cl::Buffer& buffer, std::size_t bytes, void* destination) {
-    const auto failure = [&](const cl::Error& e) {
-        return "OpenCL read of " + std::to_string(bytes) + " bytes from " + info_.deviceName + ": " +
-               clFailure(e);
-    };
-    cl::Event read;
-    try {
-        queue_.enqueueReadBuffer(buffer, CL_FALSE, 0, bytes, destination, nullptr, &read);
-    } catch (const cl::Error& e) {
-        waitForPending(nullptr, failure); // a kernel's failure first: the read may only be its consequence
-        throw Error(failure(e));
+    finishRead(startRead(buffer, bytes, destination));
+}
+
+namespace {
+
+std::string readFailure(std::size_t bytes, const std::string& deviceName, const cl::Error& e) {
+    return "OpenCL read of " + std::to_string(bytes) + " bytes from " + deviceName + ": " + clFailure(e);
+}
+
+} // namespace
+
+Context::PendingRead Context::startRead(const cl::Buffer& buffer, std::size_t bytes, void* destination) {
+    PendingRead read;
+    read.bytes = bytes;
+    {
+        std::lock_guard lock(mutex_);
+        read.kernelsBefore = kernelsRun_;
     }
-    waitForPending(&read, failure);
+    try {
+        queue_.enqueueReadBuffer(buffer, CL_FALSE, 0, bytes, destination, nullptr, &read.event);
+        queue_.flush();
+    } catch (const cl::Error& e) {
+        // A kernel's failure first: the read may only be its consequence.
+        waitForPending(read.kernelsBefore, nullptr, nullptr);
+        throw Error(readFailure(bytes, info_.deviceName, e));
+    }
+    return read;
+}
+
+void Context::finishRead(const PendingRead& read) {
+    waitForPending(read.kernelsBefore, &read.event,
+                   [&](const cl::Error& e) { return readFailure(read.bytes, info_.deviceName, e); });
+}
+
+void Context::waitForQueue() noexcept {
+    try {
+        queue_.finish();
+    } catch (...) {
+    }
 }
 
 void Context::run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
@@ -231,18 +260,21 @@ void Context::run(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRan
         queue_.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &event);
         queue_.flush(); // started now, not when the read is enqueued
         std::lock_guard lock(mutex_);
-        pending_.push_back({std::move(name), std::move(event)});
+        pending_.push_back({std::move(name), std::move(event), kernelsRun_++});
     } catch (const cl::Error& e) {
         throw Error("OpenCL kernel " + name + " on " + info_.deviceName + ": " + clFailure(e));
     }
 }
 
-void Context::waitForPending(const cl::Event* last,
+void Context::waitForPending(std::uint64_t before, const cl::Event* last,
                              const std::function<std::string(const cl::Error&)>& failure) {
     std::vector<PendingDispatch> pending;
     {
         std::lock_guard lock(mutex_);
-        pending = std::exchange(pending_, {});
+        const auto end = std::find_if(pending_.begin(), pending_.end(),
+                                      [&](const PendingDispatch& p) { return p.sequence >= before; });
+        pending.assign(std::make_move_iterator(pending_.begin()), std::make_move_iterator(end));
+        pending_.erase(pending_.begin(), end);
     }
     std::vector<cl::Event> events;
     for (const PendingDispatch& p : pending)
@@ -279,7 +311,7 @@ void Context::waitForPending(const cl::Event* last,
 }
 
 std::vector<DispatchTiming> Context::takeTimings() {
-    waitForPending(nullptr, nullptr);
+    waitForPending(std::numeric_limits<std::uint64_t>::max(), nullptr, nullptr);
     std::lock_guard lock(mutex_);
     return std::exchange(timings_, {});
 }

@@ -63,6 +63,9 @@ inline constexpr int kStandaloneCpuFaceSize = 256;
 Backend standaloneSpecularBackend(Backend requested, bool deviceNamed, const SpecularSettings& settings,
                                   int faceSize);
 
+// A level's wall time from the previous level's end (the chain's start for the first) to its own end. On
+// OpenCL the next level is enqueued before a level is read back, so this counts the device's time for the
+// level and the host's work that did not overlap it.
 struct SpecularLevelTiming {
     int level;
     float perceptualRoughness;

@@ -26,6 +26,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -94,6 +95,24 @@ class DispatchOutput {
     DispatchGrid grid_;
     std::vector<float> host_;
     cl::Buffer buffer_;
+};
+
+// A download of a DispatchOutput under way (Dispatcher::startDownload): on OpenCL a read enqueued behind the
+// output's kernels, on the CPU backend a copy already made. Destroyed unfinished (an error path), it waits
+// for the device's queue, so that no read lands in freed memory.
+class PendingDownload {
+  public:
+    PendingDownload(PendingDownload&& other) noexcept;
+    PendingDownload& operator=(PendingDownload&&) = delete;
+    ~PendingDownload();
+
+  private:
+    friend class Dispatcher;
+    PendingDownload(ocl::Context* cl, const DispatchGrid& grid) : cl_(cl), grid_(grid) {}
+    ocl::Context* cl_;
+    DispatchGrid grid_;
+    std::vector<glm::vec4> elements_;
+    std::optional<ocl::Context::PendingRead> read_; // OpenCL, until finished
 };
 
 // A kernel of kernels/<file>: its OpenCL entry point and the portable item function it calls.
@@ -170,6 +189,14 @@ class Dispatcher {
 
     // The output, element by element.
     std::vector<glm::vec4> download(const DispatchOutput& out) const;
+    // download() in two halves: the host may enqueue more work between them, which an OpenCL device then
+    // runs without waiting for the host (a chain's next level). finishCube waits for the read and the
+    // kernels before it and gives the output of a cube grid as a cube map.
+    PendingDownload startDownload(const DispatchOutput& out) const;
+    CubeMap finishCube(PendingDownload pending) const;
+    // Waits for every command enqueued on the device, whatever its outcome (an owner of host arrays that
+    // dispatches may still read, before it frees them on an error path). Nothing on the CPU backend.
+    void waitForDevice() const noexcept;
     // The output of a cube grid as a cube map; of an image grid as an image.
     CubeMap downloadCube(const DispatchOutput& out) const;
     ImageRGBA downloadImage(const DispatchOutput& out) const;
@@ -185,6 +212,7 @@ class Dispatcher {
             array.host_ = data.data();
         return array;
     }
+    std::vector<glm::vec4> finishElements(PendingDownload pending) const;
     cl::Buffer uploadBytes(const std::string& name, const void* data, std::size_t bytes, bool shared) const;
     template <class T>
     static void setArg(cl::Kernel& k, const char* entryPoint, cl_uint index, const T& value) {

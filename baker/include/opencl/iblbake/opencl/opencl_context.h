@@ -93,6 +93,19 @@ class Context {
     // Reads a buffer after the kernels run before it, in one wait with them; a kernel's failure is thrown
     // as its own (run).
     void download(const cl::Buffer& buffer, std::size_t bytes, void* destination);
+    // download() in two halves, so that the host can enqueue more work before it waits: startRead enqueues
+    // the read, finishRead waits for it and for the kernels enqueued before it (not those enqueued since).
+    // `destination` must stay valid until finishRead, or waitForQueue when a caller gives up.
+    struct PendingRead {
+        cl::Event event;
+        std::uint64_t kernelsBefore = 0; // run() calls before the read
+        std::size_t bytes = 0;
+    };
+    PendingRead startRead(const cl::Buffer& buffer, std::size_t bytes, void* destination);
+    void finishRead(const PendingRead& read);
+    // Waits until every command enqueued so far has ended, whatever its outcome (for an owner of host memory
+    // a queued command may still use, before it frees it on an error path); throws nothing.
+    void waitForQueue() noexcept;
 
     // Enqueues a kernel over an NDRange without waiting for it: the queue is in order, so a later kernel
     // or read sees its output. The next download (or takeTimings) waits for it, records its device time
@@ -119,12 +132,16 @@ class Context {
     struct PendingDispatch {
         std::string kernel;
         cl::Event event;
+        std::uint64_t sequence; // its run() call's number
     };
-    std::vector<PendingDispatch> pending_; // kernels enqueued and not yet waited for
+    std::vector<PendingDispatch> pending_; // kernels enqueued and not yet waited for, in order
+    std::uint64_t kernelsRun_ = 0;
 
-    // Waits for the pending kernels and `last` (a read after them, if any) and records the kernels'
-    // times. Throws ibl::Error naming the first kernel that failed, else `failure(last's error)`.
-    void waitForPending(const cl::Event* last, const std::function<std::string(const cl::Error&)>& failure);
+    // Waits for the pending kernels run before kernel number `before` and `last` (a read after them, if any)
+    // and records those kernels' times. Throws ibl::Error naming the first kernel that failed, else
+    // `failure(last's error)`.
+    void waitForPending(std::uint64_t before, const cl::Event* last,
+                        const std::function<std::string(const cl::Error&)>& failure);
 };
 
 } // namespace ibl::ocl
