@@ -28,7 +28,7 @@ IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, uin
         int8 point =
             (islessequal(subdivisions, 1.0f) | isless(cosAngle, 0.0f)) &
             ~(closedFormPossible ? isless(angle, closedFormAngle) : (int8)0) &
-            isgreaterequal(angle, nearAngle); // brightEntryNearFootprint: all lanes false without one
+            isgreaterequal(angle, nearAngle); // not brightEntryNearFootprint (every lane without a footprint)
         if (any(valid & ~point)) {
             int blockEnd = block + (int)IBL_LANES < end ? block + (int)IBL_LANES : end;
             for (int i = block; i < blockEnd; ++i) {

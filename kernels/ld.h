@@ -317,8 +317,8 @@ IBL_FN float brightEntryWeight(BrightTarget* t, IBL_GLOBAL const float* e, float
     return brightTexelWeight(t->centre, t->frame, e, alpha, texelSize);
 }
 
-// sum of the entries [first, first + count) of a cluster weighted by brightEntryWeight, with the entries in
-// vector lanes where each takes its point value.
+// The sum of the entries [first, first + count) of a cluster weighted by brightEntryWeight, with the entries
+// in vector lanes where each takes its point value.
 #include "bright_lanes.h"
 
 IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const float* clusters,

@@ -195,9 +195,10 @@ class LdBake {
 
 // The chain of `source` from `bake` (its bright texels taken out; the residual is what is sampled). On
 // OpenCL, level m + 1 is enqueued before level m is waited for, so that the device runs the levels back to
-// back while the host builds the next table (PoCL's ~0.1 ms from enqueue to read-back per level was the
-// whole difference at the 1-8 px levels). A level's time is then from the previous level's end to its own,
-// on both backends.
+// back while the host builds the next table (on PoCL, each level waited ~0.1 ms from enqueue to read-back).
+// A level's time is then from the previous level's end to its own, on both backends; on a CPU device the
+// host thread that waits shares the cores with the next level's kernels, so the boundary between two
+// levels' times can shift by a wake-up (README, "Bright entries in lanes, overlapped levels").
 CubeMapChain bakeChain(CubeMap source, const LdBake& bake, const SpecularSettings& settings,
                        std::vector<SpecularLevelTiming>* timings) {
     const int faceSize = source.faceSize;
