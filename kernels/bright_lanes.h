@@ -23,10 +23,9 @@ IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, uin
         float8 dx = readLanes(bright, at), dy = readLanes(bright, at + 1u), dz = readLanes(bright, at + 2u);
         // brightTexelWeight's and brightEntryWeight's choices, lane by lane.
         float8 cosAngle = t->centre.x * dx + t->centre.y * dy + t->centre.z * dz;
-        float8 angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chordAngle
-        float8 subdivisions = ceil(10.0f * texelSize / fmax(angle, alpha));
-        int8 point =
-            (islessequal(subdivisions, 1.0f) | isless(cosAngle, 0.0f)) &
+        float8 angle, subdivisions;
+        int8 point = brightPointValueLanes(cosAngle, alpha, texelSize, &angle, &subdivisions);
+        point &=
             ~(closedFormPossible ? isless(angle, closedFormAngle) : (int8)0) &
             isgreaterequal(angle, nearAngle); // not brightEntryNearFootprint (every lane without a footprint)
         if (any(valid & ~point)) {

@@ -16,6 +16,16 @@ IBL_FN float8 dGgxLanes(float8 NoH, float alpha) {
     return a2 / (IBL_PI * f * f);
 }
 
+// brightTexelWeight's first test in every lane, for bright texels (face-plane size texelSize) at cosine
+// cosAngle from the lobe centre: their chord angle and sub-grid size (into *angle and *subdivisions), and
+// whether they take the point value (one sub-patch, or behind the lobe). The closed form is the caller's.
+IBL_FN int8 brightPointValueLanes(float8 cosAngle, float alpha, float texelSize, float8* angle,
+                                  float8* subdivisions) {
+    *angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle)); // chordAngle
+    *subdivisions = ceil(10.0f * texelSize / fmax(*angle, alpha));
+    return islessequal(*subdivisions, 1.0f) | isless(cosAngle, 0.0f);
+}
+
 // brightTexelWeight's point value in every lane: D(h) NoL times the solid angle of a bright texel in unit
 // direction d, for the lobe around unit direction n, with cosAngle = n.d.
 IBL_FN float8 brightPointWeightLanes(float8 nx, float8 ny, float8 nz, float8 dx, float8 dy, float8 dz,
@@ -61,9 +71,8 @@ IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, in
         float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
         // brightTexelWeight(n, ..., e): the point value where one sub-patch suffices or e is behind n.
         float8 cosAngle = nx * e[0] + ny * e[1] + nz * e[2];
-        float8 angle = sqrt(fmax(0.0f, 2.0f - 2.0f * cosAngle));
-        float8 subdivisions = ceil(10.0f * sourceTexelSize / fmax(angle, alpha));
-        int8 point = islessequal(subdivisions, 1.0f) | isless(cosAngle, 0.0f);
+        float8 angle, subdivisions;
+        int8 point = brightPointValueLanes(cosAngle, alpha, sourceTexelSize, &angle, &subdivisions);
         float8 pointWeight = brightPointWeightLanes(nx, ny, nz, e[0], e[1], e[2], cosAngle, e[3], alpha);
         // Else the lane's own S x S sub-grid of the bright texel.
         int8 sub = select(convert_int8(fmin(subdivisions, 32.0f)), (int8)0, point);

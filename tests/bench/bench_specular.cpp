@@ -41,6 +41,13 @@ LevelKernelMs kernelMsPerLevel(const std::vector<ibl::ocl::DispatchTiming>& disp
     return levels;
 }
 
+// Adds one chain's per-level values to the sums over the iterations.
+void addPerLevel(std::vector<double>& sums, const std::vector<double>& values) {
+    sums.resize(values.size());
+    for (std::size_t k = 0; k < values.size(); ++k)
+        sums[k] += values[k];
+}
+
 // The production chain's levels one by one (issue 18: OpenCL at least as fast as the CPU backend at every
 // level), means over the iterations in ms: L1.. each level's time as the bake measures it (from the previous
 // level's end to its own: table, upload, kernels, read-back, which OpenCL overlaps with the next level's
@@ -60,12 +67,8 @@ void bakeChainLevels(benchmark::State& state, ibl::Backend backend) {
         for (std::size_t k = 0; k < timings.size(); ++k)
             levelMs[k] += timings[k].milliseconds;
         const LevelKernelMs kernels = kernelMsPerLevel(executor.takeTimings());
-        kernelMs.resize(kernels.all.size());
-        brightMs.resize(kernels.all.size());
-        for (std::size_t k = 0; k < kernels.all.size(); ++k) {
-            kernelMs[k] += kernels.all[k];
-            brightMs[k] += kernels.bright[k];
-        }
+        addPerLevel(kernelMs, kernels.all);
+        addPerLevel(brightMs, kernels.bright);
     }
     const auto report = [&](const char* prefix, const std::vector<double>& ms) {
         for (std::size_t k = 0; k < ms.size(); ++k)
