@@ -3,14 +3,15 @@
 // clusters, nearly all of them at their point value (brightTexelWeight's last case); one entry at a time,
 // that loop was most of the bright pass. A block of entries runs in lanes when each of its entries takes the
 // point value, and one entry at a time (brightEntryWeight) when any needs a sub-grid, the closed form or the
-// footprint.
+// footprint. A block's centre directions, solid angles and excesses are vector reads of the entries in lanes
+// (brightLaneStride), not gathers of the list's entries: 7 gathers were most of a block's time on PoCL.
 #ifndef IBL_BRIGHT_LANES_H
 #define IBL_BRIGHT_LANES_H
 
 #include "lanes.h"
 
-IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, uint first, uint count,
-                            float alpha, float texelSize) {
+IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, IBL_GLOBAL const float* lanes,
+                            uint laneStride, uint first, uint count, float alpha, float texelSize) {
     float8 r = 0.0f, g = 0.0f, b = 0.0f;
     vec3 oneByOne = v3(0.0f, 0.0f, 0.0f);
     int end = (int)(first + count);
@@ -19,8 +20,9 @@ IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, uin
     for (int block = (int)first; block < end; block += (int)IBL_LANES) {
         int8 entry = block + laneIndices();
         int8 valid = entry < end;
-        uint8 at = as_uint8(select((int8)(end - 1), entry, valid) * IBL_BRIGHT_ENTRY_FLOATS);
-        float8 dx = readLanes(bright, at), dy = readLanes(bright, at + 1u), dz = readLanes(bright, at + 2u);
+        // Component c of the block's entries (lanes past the cluster's end read the next entries or zeros).
+        IBL_GLOBAL const float* at = lanes + block;
+        float8 dx = vload8(0, at), dy = vload8(0, at + laneStride), dz = vload8(0, at + 2u * laneStride);
         // brightTexelWeight's and brightEntryWeight's choices, lane by lane.
         float8 cosAngle = t->centre.x * dx + t->centre.y * dy + t->centre.z * dz;
         float8 angle, subdivisions;
@@ -39,11 +41,11 @@ IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, uin
         }
         float8 weight = select((float8)0.0f,
                                brightPointWeightLanes(t->centre.x, t->centre.y, t->centre.z, dx, dy, dz,
-                                                      cosAngle, readLanes(bright, at + 3u), alpha),
+                                                      cosAngle, vload8(0, at + 3u * laneStride), alpha),
                                valid);
-        r += weight * readLanes(bright, at + 4u);
-        g += weight * readLanes(bright, at + 5u);
-        b += weight * readLanes(bright, at + 6u);
+        r += weight * vload8(0, at + 4u * laneStride);
+        g += weight * vload8(0, at + 5u * laneStride);
+        b += weight * vload8(0, at + 6u * laneStride);
     }
     return v3add(oneByOne, v3(sumLanes(r), sumLanes(g), sumLanes(b)));
 }

@@ -2,7 +2,8 @@
 // A pyramid is one flat float array: per level, six faces of (n + 2)^2 RGB texels, each face with a
 // one-texel border copied from its neighbours (cube_pyramid.cpp), so that bilinear filtering is
 // continuous across face edges and corners without branches. Texels are 3 scalar floats, not
-// float3/float4, which keeps gathers vectorizable on CPU devices (see portable.h).
+// float3/float4 (see portable.h): a bilinear read's two taps of one row are 6 consecutive floats, which
+// integrateLd (ld_lanes.h) reads as one vector.
 #ifndef IBL_CUBE_SAMPLE_H
 #define IBL_CUBE_SAMPLE_H
 
@@ -42,6 +43,15 @@ IBL_FN uint cubePyramidTexelCount(CubePyramidLayout shape) {
 
 IBL_FN uint cubePyramidFloatCount(CubePyramidLayout shape) {
     return cubeLevelOffset(shape, shape.levelCount);
+}
+
+// The floats a pyramid's storage holds: its texels, then IBL_PYRAMID_TAIL_FLOATS zeros, since integrateLd
+// (ld_lanes.h) reads a pair of taps as 8 floats, 2 past the pair's 6, and the last pair ends at the last
+// texel.
+#define IBL_PYRAMID_TAIL_FLOATS 2u
+
+IBL_FN uint cubePyramidStorageFloatCount(CubePyramidLayout shape) {
+    return cubePyramidFloatCount(shape) + IBL_PYRAMID_TAIL_FLOATS;
 }
 
 // The texel (x, y) of a face (-1..n, border included) as a texel number: its RGB floats start at 3 times

@@ -15,13 +15,8 @@ IBL_BEGIN_NAMESPACE
 
 #define IBL_LANES 8u
 
-// Eight reads of a buffer at the lanes' indices, and the lanes' sum, pairwise.
+// The lanes' sum, pairwise.
 #ifdef __OPENCL_VERSION__
-static inline float8 readLanes(__global const float* buffer, uint8 index) {
-    return (float8)(buffer[index.s0], buffer[index.s1], buffer[index.s2], buffer[index.s3], buffer[index.s4],
-                    buffer[index.s5], buffer[index.s6], buffer[index.s7]);
-}
-
 static inline float sumLanes(float8 v) {
     float4 pairs = v.lo + v.hi;
     return (pairs.x + pairs.y) + (pairs.z + pairs.w);
@@ -38,11 +33,6 @@ static inline int8 laneIndices(void) {
     return (int8)(0, 1, 2, 3, 4, 5, 6, 7);
 }
 #else
-inline float8 readLanes(const float* buffer, uint8 index) {
-    return float8(FloatLanes{buffer[index.v[0]], buffer[index.v[1]], buffer[index.v[2]], buffer[index.v[3]],
-                             buffer[index.v[4]], buffer[index.v[5]], buffer[index.v[6]], buffer[index.v[7]]});
-}
-
 inline float sumLanes(float8 v) {
     float pairs[4];
     for (int i = 0; i < 4; ++i)

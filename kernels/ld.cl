@@ -8,13 +8,13 @@ __kernel void ldLevel(__global float* out, LdParams params, __global const float
 }
 
 __kernel void ldBright(__global float* out, LdParams params, __global const float* clusters,
-                       __global const float* bright) {
-    ldBrightItem(cubeWorkItemStrided(params.faceSize), out, params, clusters, bright);
+                       __global const float* bright, __global const float* brightLanes) {
+    ldBrightItem(cubeWorkItemStrided(params.faceSize), out, params, clusters, bright, brightLanes);
 }
 
 // Both parts in one dispatch, for the smallest levels (ld.h's ldOnePassItem).
 __kernel void ldOnePass(__global float* out, LdParams params, __global const float* pyramid,
                         __global const float* table, __global const float* clusters,
-                        __global const float* bright) {
-    ldOnePassItem(cubeWorkItem(params.faceSize), out, params, pyramid, table, clusters, bright);
+                        __global const float* bright, __global const float* brightLanes) {
+    ldOnePassItem(cubeWorkItem(params.faceSize), out, params, pyramid, table, clusters, bright, brightLanes);
 }

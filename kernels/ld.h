@@ -14,12 +14,13 @@ IBL_BEGIN_NAMESPACE
 // Kernel arguments of one LD level (fixed-width scalars; layout checked on the host).
 typedef struct {
     CubePyramidLayout source;
-    uint32_t faceSize;     // output face size of this level
-    uint32_t sampleCount;  // table entries
-    float invWeightSum;    // 1 / sum of the table's weights
-    uint32_t brightCount;  // clusters of the bright-texel list
-    float alpha;           // GGX alpha of this level
-    float invLobeIntegral; // 1 / W(alpha), W = integral of D(h) NoL dl (N = V)
+    uint32_t faceSize;         // output face size of this level
+    uint32_t sampleCount;      // table entries
+    float invWeightSum;        // 1 / sum of the table's weights
+    uint32_t brightCount;      // clusters of the bright-texel list
+    float alpha;               // GGX alpha of this level
+    float invLobeIntegral;     // 1 / W(alpha), W = integral of D(h) NoL dl (N = V)
+    uint32_t brightLaneStride; // brightLaneStride(entries of the bright-texel list)
 } LdParams;
 
 // One sample of a level's table, in the texel's tangent frame: light direction, its weight NoL, and
@@ -74,6 +75,16 @@ IBL_FN LdSample ldSampleEntry(uint i, uint n, float alpha, float omegaP, float l
 // sum_b B_b integral_texel D(h) NoL dl / W(alpha) is summed here over every bright texel.
 // A list entry has 10 floats: centre direction (3), solid angle, excess radiance (3), face, x, y.
 #define IBL_BRIGHT_ENTRY_FLOATS 10
+
+// The entries' first IBL_BRIGHT_LANE_FLOATS floats (centre direction, solid angle, excess RGB) are also in a
+// second array component by component: component c of entry i at c * brightLaneStride(count) + i, so that
+// brightClusterLd reads a component of 8 consecutive entries as one vector (bright_lanes.h). The stride
+// leaves room for a read of 8 from the last entry.
+#define IBL_BRIGHT_LANE_FLOATS 7u
+
+IBL_FN uint brightLaneStride(uint entryCount) {
+    return (entryCount + 2u * IBL_LANES - 1u) / IBL_LANES * IBL_LANES;
+}
 
 // D(h) NoL over a sub-rectangle [u0, u0 + step] x [v0, v0 + step] (face-plane coordinates in [-1, 1])
 // of one face, evaluated at its centre with its solid angle.
@@ -322,7 +333,8 @@ IBL_FN float brightEntryWeight(BrightTarget* t, IBL_GLOBAL const float* e, float
 #include "bright_lanes.h"
 
 IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const float* clusters,
-                           uint clusterCount, IBL_GLOBAL const float* bright, float alpha,
+                           uint clusterCount, IBL_GLOBAL const float* bright,
+                           IBL_GLOBAL const float* brightLanes, uint laneStride, float alpha,
                            float invLobeIntegral, uint sourceFaceSize, float skipBelow) {
     float texelSize = 2.0f / (float)sourceFaceSize;
     BrightTarget t;
@@ -345,7 +357,8 @@ IBL_FN vec3 brightTexelsLd(int face, uint x, uint y, uint n, IBL_GLOBAL const fl
         float bound = D_GGX(cosHalfNearestAngle(cosAngle, cl[7], cosHalfReach, sinHalfReach), alpha) * cl[4] *
                       invLobeIntegral;
         if (bound < skipBelow) continue;
-        sum = v3add(sum, brightClusterLd(&t, bright, (uint)cl[5], (uint)cl[6], alpha, texelSize));
+        sum = v3add(sum, brightClusterLd(&t, bright, brightLanes, laneStride, (uint)cl[5], (uint)cl[6], alpha,
+                                         texelSize));
     }
     return v3scale(sum, invLobeIntegral);
 }
@@ -369,16 +382,16 @@ IBL_FN void ldLevelItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_
 
 // A texel's sampled part plus its bright texels, as ldBrightItem adds them to the stored sampled part.
 IBL_FN vec3 ldWithBrightTexels(WorkItem t, vec3 sampled, LdParams params, IBL_GLOBAL const float* clusters,
-                               IBL_GLOBAL const float* bright) {
+                               IBL_GLOBAL const float* bright, IBL_GLOBAL const float* brightLanes) {
     float skipBelow = brightSkipThreshold(sampled, params.brightCount);
-    return v3add(sampled,
-                 brightTexelsLd((int)t.face, t.x, t.y, params.faceSize, clusters, params.brightCount, bright,
-                                params.alpha, params.invLobeIntegral, params.source.baseFaceSize, skipBelow));
+    return v3add(sampled, brightTexelsLd((int)t.face, t.x, t.y, params.faceSize, clusters, params.brightCount,
+                                         bright, brightLanes, params.brightLaneStride, params.alpha,
+                                         params.invLobeIntegral, params.source.baseFaceSize, skipBelow));
 }
 
 IBL_FN void ldBrightItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* clusters,
-                         IBL_GLOBAL const float* bright) {
-    storeTexel(out, t, ldWithBrightTexels(t, loadTexel(out, t), params, clusters, bright));
+                         IBL_GLOBAL const float* bright, IBL_GLOBAL const float* brightLanes) {
+    storeTexel(out, t, ldWithBrightTexels(t, loadTexel(out, t), params, clusters, bright, brightLanes));
 }
 
 // Levels of at most IBL_LD_ONE_PASS_FACE_SIZE texels a side (at most 96 texels) take both parts in one
@@ -390,12 +403,12 @@ IBL_FN void ldBrightItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL
 
 IBL_FN void ldOnePassItem(WorkItem t, IBL_GLOBAL float* out, LdParams params, IBL_GLOBAL const float* pyramid,
                           IBL_GLOBAL const float* table, IBL_GLOBAL const float* clusters,
-                          IBL_GLOBAL const float* bright) {
+                          IBL_GLOBAL const float* bright, IBL_GLOBAL const float* brightLanes) {
     storeTexel(out, t,
                ldWithBrightTexels(t,
                                   integrateLd(cubeWorkItemDirection(t, params.faceSize), pyramid,
                                               params.source, table, params.sampleCount, params.invWeightSum),
-                                  params, clusters, bright));
+                                  params, clusters, bright, brightLanes));
 }
 
 IBL_END_NAMESPACE

@@ -166,6 +166,11 @@ inline float8 vload8(std::uint32_t offset, const float* p) {
     return r;
 }
 
+// vstore8 (6.12.7): v to the 8 values at p + 8 offset.
+inline void vstore8(uint8 v, std::uint32_t offset, std::uint32_t* p) {
+    __builtin_memcpy(p + 8 * offset, &v.v, sizeof(v.v));
+}
+
 } // namespace ibl
 
 #endif

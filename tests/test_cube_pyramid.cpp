@@ -28,7 +28,7 @@ TEST(CubePyramid, LevelsAverageAndBordersComeFromNeighbours) {
                 cube.faces[f].at(x, y) = glm::vec4(float(f * 100 + y * 4 + x), 0, 0, 1);
     CubePyramid p = buildCubePyramid(cube);
     ASSERT_EQ(p.layout.levelCount, 3u);
-    ASSERT_EQ(p.data.size(), cubePyramidFloatCount(p.layout));
+    ASSERT_EQ(p.data.size(), cubePyramidStorageFloatCount(p.layout));
     // Level 2 (1x1) of face f is the mean of its 16 texels.
     for (int f = 0; f < 6; ++f)
         EXPECT_FLOAT_EQ(p.data[cubeBorderedTexelIndex(p.layout, 2, f, 0, 0)], f * 100 + 7.5f);

@@ -2,6 +2,8 @@
 // keep OpenCL C's semantics, and each lane form computes, lane by lane, the bits of the scalar function it
 // restates. The CPU backend runs these forms (ld_host_items.cpp), so a difference here is a difference
 // between what the CPU bakes and what the scalar functions, and the tests written against them, say.
+#include "bright_split.h"
+
 #include <ld.h>
 
 #include <gtest/gtest.h>
@@ -70,10 +72,11 @@ TEST(Lanes, BuiltInsKeepOpenClSemantics) {
     // The lanes' sum is pairwise: (l0 + l4) + (l1 + l5) + ..., not left to right.
     const float8 sums = lanesOf({1e8f, 1.0f, 0.0f, 0.0f, -1e8f, 1.0f, 0.0f, 0.0f});
     EXPECT_EQ(ibl::sumLanes(sums), 2.0f);
-    const float buffer[5] = {10.0f, 11.0f, 12.0f, 13.0f, 14.0f};
-    const float8 gathered = ibl::readLanes(buffer, ibl::as_uint8(ibl::laneIndices() % 5));
+    // vstore8 puts the lanes in order.
+    std::uint32_t stored[8];
+    ibl::vstore8(ibl::as_uint8(ibl::laneIndices() * 3), 0, stored);
     for (int i = 0; i < 8; ++i)
-        EXPECT_EQ(lane(gathered, i), buffer[i % 5]);
+        EXPECT_EQ(stored[i], std::uint32_t(3 * i));
 }
 
 // Random values in [lo, hi] in the 8 lanes.
@@ -110,12 +113,8 @@ TEST(Lanes, LaneFormsAreTheScalarFunctionsLaneByLane) {
     }
 }
 
-TEST(Lanes, CubeSampleLanesReadsWhatCubeSampleLevelReads) {
-    // A 4-level pyramid of 8-texel faces, every float distinct.
+TEST(Lanes, CubeTapPairsLanesAreCubeBilinearTaps) {
     const ibl::CubePyramidLayout layout{8u, 4u};
-    std::vector<float> pyramid(ibl::cubePyramidFloatCount(layout));
-    for (std::size_t i = 0; i < pyramid.size(); ++i)
-        pyramid[i] = float(i % 977) * 0.125f + 1.0f;
     std::mt19937 rng(11);
     for (int round = 0; round < 500; ++round) {
         // Directions on every face, edges and corners included, and every level.
@@ -123,23 +122,78 @@ TEST(Lanes, CubeSampleLanesReadsWhatCubeSampleLevelReads) {
         float8 dz = randomLanes(rng, -1.0f, 1.0f);
         if (round % 5 == 0) dz = dx; // on the cube's diagonals and face edges
         const uint8 level = ibl::as_uint8(ibl::laneIndices() % 4);
-        float8 r, g, b;
-        ibl::cubeSampleLanes(pyramid.data(), layout, level, dx, dy, dz, &r, &g, &b);
+        uint8 top, bottom;
+        float8 fx, fy;
+        ibl::cubeTapPairsLanes(layout, level, dx, dy, dz, &top, &bottom, &fx, &fy);
         for (int i = 0; i < 8; ++i) {
-            const ibl::vec3 expected = ibl::cubeSampleLevel(
-                pyramid.data(), layout, level.v[i],
+            const ibl::CubeBilinearTaps taps = ibl::cubeBilinearTaps(
+                layout, level.v[i],
                 ibl::cubeCoordFromDirection(ibl::vec3(lane(dx, i), lane(dy, i), lane(dz, i))));
-            expectSameBits(expected.x, lane(r, i), "red", i);
-            expectSameBits(expected.y, lane(g, i), "green", i);
-            expectSameBits(expected.z, lane(b, i), "blue", i);
+            EXPECT_EQ(top.v[i], 3u * taps.texel00) << i;
+            EXPECT_EQ(bottom.v[i], 3u * (taps.texel00 + taps.stride)) << i;
+            const float x = lane(fx, i), y = lane(fy, i);
+            expectSameBits(taps.w00, (1.0f - x) * (1.0f - y), "w00", i);
+            expectSameBits(taps.w10, x * (1.0f - y), "w10", i);
+            expectSameBits(taps.w01, (1.0f - x) * y, "w01", i);
+            expectSameBits(taps.w11, x * y, "w11", i);
         }
+    }
+}
+
+// integrateLd against the sum over its table of weight times cubeSampleLevel, in double: the lanes read a
+// pair of taps as 8 floats and sum in another order, hence a relative tolerance. The pyramid is exactly its
+// storage, so that the reads that reach past the last texel (the 1-texel level's last face) stay inside it
+// (and the sanitizer build would see one that did not).
+TEST(Lanes, IntegrateLdIsTheWeightedSumOfItsTableSamples) {
+    const ibl::CubePyramidLayout layout{8u, 4u};
+    std::vector<float> pyramid(ibl::cubePyramidStorageFloatCount(layout));
+    for (std::size_t i = 0; i < pyramid.size(); ++i)
+        pyramid[i] = float(i % 977) * 0.125f + 1.0f;
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int round = 0; round < 300; ++round) {
+        const std::uint32_t sampleCount = 8u * (1u + rng() % 4);
+        std::vector<float> table(IBL_LD_SAMPLE_FLOATS * sampleCount);
+        std::vector<ibl::LdSample> samples(sampleCount);
+        for (std::uint32_t i = 0; i < sampleCount; ++i) {
+            ibl::LdSample& s = samples[i];
+            // Any direction of the upper hemisphere, weight 0 sometimes (a sample below the horizon).
+            const float z = unit(rng), phi = 6.2831853f * unit(rng), r = std::sqrt(1.0f - z * z);
+            s = {r * std::cos(phi), r * std::sin(phi), z, i % 7 == 3 ? 0.0f : z, float(rng() % 4)};
+            const float values[] = {s.x, s.y, s.z, s.weight, s.lod};
+            for (std::uint32_t c = 0; c < IBL_LD_SAMPLE_FLOATS; ++c)
+                table[ibl::ldTableIndex(i, c)] = values[c];
+        }
+        // Normals anywhere, and at face 5's last corner (its 1-texel level's taps end the pyramid).
+        ibl::vec3 normal = round % 10 == 0 ? ibl::vec3(0.4f, -0.4f, -1.0f)
+                                           : ibl::vec3(2.0f * unit(rng) - 1.0f, 2.0f * unit(rng) - 1.0f,
+                                                       2.0f * unit(rng) - 1.0f);
+        normal = ibl::v3normalize(normal);
+        const ibl::Frame frame = ibl::frameFromNormal(normal);
+        double expected[3] = {0.0, 0.0, 0.0}, weightSum = 0.0;
+        for (const ibl::LdSample& s : samples) {
+            const ibl::vec3 l = ibl::frameToWorld(frame, ibl::vec3(s.x, s.y, s.z));
+            const ibl::vec3 c = ibl::cubeSampleLevel(pyramid.data(), layout, std::uint32_t(s.lod),
+                                                     ibl::cubeCoordFromDirection(l));
+            expected[0] += double(s.weight) * c.x;
+            expected[1] += double(s.weight) * c.y;
+            expected[2] += double(s.weight) * c.z;
+            weightSum += s.weight;
+        }
+        const ibl::vec3 actual = ibl::integrateLd(normal, pyramid.data(), layout, table.data(), sampleCount,
+                                                  float(1.0 / weightSum));
+        const float got[] = {actual.x, actual.y, actual.z};
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(got[c], expected[c] / weightSum, 2e-6 * expected[c] / weightSum) << round << " " << c;
     }
 }
 
 // brightClusterLd (bright_lanes.h) against brightEntryWeight entry by entry: clusters of 1 to 20 bright
 // texels around an output texel, on levels with and without a footprint and with lobes narrow enough for the
-// closed form, so that blocks take both the lanes and the one-by-one path. The lanes sum in another order,
-// hence a relative tolerance; a point value in a lane is the scalar one's bits.
+// closed form, so that blocks take both the lanes and the one-by-one path. The cluster sits between other
+// entries, in the list and in its lanes (brightEntryLanes), so that its blocks start anywhere and read past
+// its end. The lanes sum in another order, hence a relative tolerance; a point value in a lane is the scalar
+// one's bits.
 TEST(Lanes, BrightClusterLanesSumTheEntriesWeights) {
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -152,9 +206,9 @@ TEST(Lanes, BrightClusterLanesSumTheEntriesWeights) {
         const int face = int(rng() % 6);
         const std::uint32_t x = rng() % n, y = rng() % n;
         // Entries on the output texel's face near it (some within three texels) or anywhere.
-        const int count = 1 + int(rng() % 20);
+        const int count = 1 + int(rng() % 20), before = int(rng() % 10), after = int(rng() % 10);
         std::vector<float> bright;
-        for (int i = 0; i < count; ++i) {
+        for (int i = 0; i < before + count + after; ++i) {
             const bool nearby = rng() % 2 == 0;
             const int entryFace = nearby ? face : int(rng() % 6);
             const float scale = float(sourceFaceSize) / float(n);
@@ -184,7 +238,7 @@ TEST(Lanes, BrightClusterLanesSumTheEntriesWeights) {
         ibl::BrightTarget scalarTarget = target;
         double expected[3] = {0.0, 0.0, 0.0};
         int pointEntries = 0;
-        for (int i = 0; i < count; ++i) {
+        for (int i = before; i < before + count; ++i) {
             const float* e = &bright[std::size_t(i) * IBL_BRIGHT_ENTRY_FLOATS];
             const float weight = ibl::brightEntryWeight(&scalarTarget, e, alpha, texelSize);
             for (int c = 0; c < 3; ++c)
@@ -206,8 +260,11 @@ TEST(Lanes, BrightClusterLanesSumTheEntriesWeights) {
         }
         allPoint += pointEntries == count;
         mixed += pointEntries > 0 && pointEntries < count;
-        const ibl::vec3 lanes =
-            ibl::brightClusterLd(&target, bright.data(), 0u, std::uint32_t(count), alpha, texelSize);
+        const ibl::BrightTexels list{bright, {}};
+        const std::vector<float> entryLanes = ibl::brightEntryLanes(list);
+        const ibl::vec3 lanes = ibl::brightClusterLd(
+            &target, bright.data(), entryLanes.data(), ibl::brightLaneStride(list.count()),
+            std::uint32_t(before), std::uint32_t(count), alpha, texelSize);
         const float actual[3] = {lanes.x, lanes.y, lanes.z};
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(actual[c], expected[c], 1e-5 * std::abs(expected[c]) + 1e-30)

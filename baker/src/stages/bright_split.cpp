@@ -16,6 +16,15 @@ std::uint32_t BrightTexels::clusterCount() const {
     return std::uint32_t(clusters.size() / IBL_BRIGHT_CLUSTER_FLOATS);
 }
 
+std::vector<float> brightEntryLanes(const BrightTexels& bright) {
+    const std::uint32_t count = bright.count(), stride = brightLaneStride(count);
+    std::vector<float> lanes(std::size_t(IBL_BRIGHT_LANE_FLOATS) * stride, 0.0f);
+    for (std::uint32_t i = 0; i < count; ++i)
+        for (std::uint32_t c = 0; c < IBL_BRIGHT_LANE_FLOATS; ++c)
+            lanes[std::size_t(c) * stride + i] = bright.entries[std::size_t(i) * IBL_BRIGHT_ENTRY_FLOATS + c];
+    return lanes;
+}
+
 namespace {
 
 // Clusters are the bright texels of one 8 x 8 tile of a face: a sun falls into a handful of them.

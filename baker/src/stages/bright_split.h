@@ -18,6 +18,10 @@ struct BrightTexels {
     std::uint32_t clusterCount() const;
 };
 
+// The entries' first IBL_BRIGHT_LANE_FLOATS floats component by component (kernels/ld.h, brightLaneStride),
+// the rest of each component's row zeros.
+std::vector<float> brightEntryLanes(const BrightTexels& bright);
+
 struct BrightSplit {
     CubeMap residual;
     BrightTexels bright;

@@ -29,7 +29,7 @@ CubePyramid buildCubePyramid(const CubeMap& base) {
     pyramid.layout.levelCount = 1;
     for (int n = base.faceSize; n > 1 && pyramid.layout.levelCount < IBL_MAX_CUBE_LEVELS; n /= 2)
         ++pyramid.layout.levelCount;
-    pyramid.data.assign(cubePyramidFloatCount(pyramid.layout), 0.0f);
+    pyramid.data.assign(cubePyramidStorageFloatCount(pyramid.layout), 0.0f);
     // Each level from the one above, stored as it is made. The base is read where it is, not copied: a
     // 256-px cube is 6 MB of memory first touched, a page fault per 4 KB (ingest/read_image.cpp).
     storeBorderedLevel(base, 0, pyramid.layout, pyramid.data.data());

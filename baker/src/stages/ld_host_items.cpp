@@ -15,13 +15,14 @@ IBL_HOST_CLONES void ldLevelItemHost(WorkItem t, float* out, LdParams params, co
 }
 
 IBL_HOST_CLONES void ldBrightItemHost(WorkItem t, float* out, LdParams params, const float* clusters,
-                                      const float* bright) {
-    ldBrightItem(t, out, params, clusters, bright);
+                                      const float* bright, const float* brightLanes) {
+    ldBrightItem(t, out, params, clusters, bright, brightLanes);
 }
 
 IBL_HOST_CLONES void ldOnePassItemHost(WorkItem t, float* out, LdParams params, const float* pyramid,
-                                       const float* table, const float* clusters, const float* bright) {
-    ldOnePassItem(t, out, params, pyramid, table, clusters, bright);
+                                       const float* table, const float* clusters, const float* bright,
+                                       const float* brightLanes) {
+    ldOnePassItem(t, out, params, pyramid, table, clusters, bright, brightLanes);
 }
 
 } // namespace ibl

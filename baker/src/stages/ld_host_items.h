@@ -8,9 +8,10 @@
 namespace ibl {
 
 void ldLevelItemHost(WorkItem t, float* out, LdParams params, const float* pyramid, const float* table);
-void ldBrightItemHost(WorkItem t, float* out, LdParams params, const float* clusters, const float* bright);
+void ldBrightItemHost(WorkItem t, float* out, LdParams params, const float* clusters, const float* bright,
+                      const float* brightLanes);
 void ldOnePassItemHost(WorkItem t, float* out, LdParams params, const float* pyramid, const float* table,
-                       const float* clusters, const float* bright);
+                       const float* clusters, const float* bright, const float* brightLanes);
 
 } // namespace ibl
 

@@ -18,8 +18,9 @@ namespace ibl {
 namespace {
 
 static_assert(sizeof(CubePyramidLayout) == 8, "CubePyramidLayout must match cube_sample.h");
-static_assert(sizeof(LdParams) == sizeof(CubePyramidLayout) + 24 &&
-                  offsetof(LdParams, invLobeIntegral) == sizeof(CubePyramidLayout) + 20,
+static_assert(sizeof(LdParams) == sizeof(CubePyramidLayout) + 28 &&
+                  offsetof(LdParams, invLobeIntegral) == sizeof(CubePyramidLayout) + 20 &&
+                  offsetof(LdParams, brightLaneStride) == sizeof(CubePyramidLayout) + 24,
               "LdParams must match ld.h");
 
 struct LevelTable {
@@ -133,10 +134,11 @@ class LdBake {
     LdBake(CubePyramid residualPyramid, BrightTexels bright, const SpecularSettings& settings,
            const Executor& executor)
         : settings_(settings), dispatcher_(executor), pyramid_(std::move(residualPyramid)),
-          bright_(std::move(bright)),
+          bright_(std::move(bright)), brightLanes_(brightEntryLanes(bright_)),
           pyramidData_(dispatcher_.share("specular source pyramid", pyramid_.data)),
           clustersData_(dispatcher_.upload("bright-texel clusters", bright_.clusters)),
-          brightData_(dispatcher_.upload("bright texels", bright_.entries)) {}
+          brightData_(dispatcher_.upload("bright texels", bright_.entries)),
+          brightLanesData_(dispatcher_.upload("bright texels in lanes", brightLanes_)) {}
     // The residual is read only into the pyramid; the split is the argument, so it is released once the
     // pyramid is built and the levels' memory reuses its pages.
     LdBake(BrightSplit split, const SpecularSettings& settings, const Executor& executor)
@@ -167,18 +169,19 @@ class LdBake {
                         table.invWeightSum,
                         bright_.clusterCount(),
                         alpha,
-                        float(1.0 / lobeIntegral(alpha))};
+                        float(1.0 / lobeIntegral(alpha)),
+                        brightLaneStride(bright_.count())};
         DispatchOutput out = dispatcher_.output(DispatchGrid::cube(std::uint32_t(n)));
         const DeviceArray<float> tableData = dispatcher_.upload("LD sample table", table.samples);
         if (std::uint32_t(n) <= IBL_LD_ONE_PASS_FACE_SIZE) {
             dispatcher_.run(kernel("ld.cl", "ldOnePass", ldOnePassItemHost), out, params, pyramidData_,
-                            tableData, clustersData_, brightData_);
+                            tableData, clustersData_, brightData_, brightLanesData_);
             return dispatcher_.startDownload(out);
         }
         dispatcher_.run(kernel("ld.cl", "ldLevel", ldLevelItemHost), out, params, pyramidData_, tableData);
         if (params.brightCount > 0)
             dispatcher_.run(kernel("ld.cl", "ldBright", ldBrightItemHost), out, params, clustersData_,
-                            brightData_);
+                            brightData_, brightLanesData_);
         return dispatcher_.startDownload(out);
     }
     CubeMap finishLevel(PendingDownload level) const { return dispatcher_.finishCube(std::move(level)); }
@@ -190,7 +193,8 @@ class LdBake {
     const Dispatcher dispatcher_;
     const CubePyramid pyramid_;
     const BrightTexels bright_;
-    const DeviceArray<float> pyramidData_, clustersData_, brightData_;
+    const std::vector<float> brightLanes_; // bright_'s entries in lanes (bright_split.h)
+    const DeviceArray<float> pyramidData_, clustersData_, brightData_, brightLanesData_;
 };
 
 // The chain of `source` from `bake` (its bright texels taken out; the residual is what is sampled). On
