@@ -18,8 +18,7 @@ IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, IBL
     bool closedFormPossible = 4.0f * alpha < texelSize; // narrowLobeClosedFormApplies' first half
     float closedFormAngle = fmin(3.0f * texelSize, 0.5f), nearAngle = t->footprint ? 3.0f * t->size : 0.0f;
     for (int block = (int)first; block < end; block += (int)IBL_LANES) {
-        int8 entry = block + laneIndices();
-        int8 valid = entry < end;
+        int8 valid = block + laneIndices() < end;
         // Component c of the block's entries (lanes past the cluster's end read the next entries or zeros).
         IBL_GLOBAL const float* at = lanes + block;
         float8 dx = vload8(0, at), dy = vload8(0, at + laneStride), dz = vload8(0, at + 2u * laneStride);

@@ -55,6 +55,8 @@ IBL_FN float8 tapPairWeights(float8 left, float8 right, uint k) {
 #ifdef __OPENCL_VERSION__
     return shuffle2(left, right, (uint8)(k, k, k, k + 8u, k + 8u, k + 8u, k, k));
 #elif defined(__clang__)
+    // Clang's __builtin_shufflevector takes constant indices only; its builds (the sanitizer's) need no
+    // speed.
     float l = left.v[k], r = right.v[k];
     return float8(FloatLanes{l, l, l, r, r, r, l, l});
 #else
@@ -70,8 +72,7 @@ IBL_FN float8 tapPairsLane(IBL_GLOBAL const float* pyramid, uint top, uint botto
            vload8(0, pyramid + bottom) * tapPairWeights(w01, w11, k);
 }
 
-// A table block at a time; lane k's samples sum into sums[k], whose RGB are its first 3 floats plus its
-// next 3.
+// A table block at a time; lane k's samples sum into sk, whose RGB are its first 3 floats plus its next 3.
 IBL_FN vec3 integrateLd(vec3 normal, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
                         IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
     Frame f = frameFromNormal(normal);
