@@ -332,9 +332,10 @@ TEST(Docs, DocumentedSubcommandsAndFlagsExist) {
     for (const fs::path& file : docFiles())
         for (const DocLine& line : readDoc(file))
             for (const auto& [subcommand, flag] : documentedFlags(line)) {
-                if (!known.count(subcommand)) {
-                    ADD_FAILURE() << where(line) << ": `iblbake " << subcommand
-                                  << "` is no subcommand of iblbake";
+                if (!known.count(subcommand)) { // once per usage: its flags cannot be checked
+                    if (flag.empty())
+                        ADD_FAILURE()
+                            << where(line) << ": `iblbake " << subcommand << "` is no subcommand of iblbake";
                     continue;
                 }
                 if (flag.empty()) continue;
