@@ -32,7 +32,7 @@ Scene BakeCommandOptions::loadScene() const {
 
 CLI::App* addBakeSubcommand(CLI::App& app, BakeCommandOptions& o) {
     CLI::App* cmd = app.add_subcommand("bake", "bake what a scene needs (cached stages are not recomputed)");
-    cmd->add_option("scene", o.scene, "scene file (JSON, README \"Scenes\")")->required();
+    cmd->add_option("scene", o.scene, "scene file (JSON, docs/scenes.md \"Schema\")")->required();
     o.addTo(*cmd, "recompute every stage", "cache directory (default: <outputs.directory>/.iblbake-cache)");
     cmd->add_flag(
         "--clamp-to-format", o.clampToFormat,

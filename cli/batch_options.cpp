@@ -12,7 +12,7 @@ namespace ibl::cli {
 
 CLI::App* addBatchSubcommand(CLI::App& app, BatchCommandOptions& o) {
     CLI::App* cmd = app.add_subcommand("batch", "bake every item of a batch manifest (build farms: --shard)");
-    cmd->add_option("manifest", o.manifest, "batch manifest (JSON, README \"Batch\")")->required();
+    cmd->add_option("manifest", o.manifest, "batch manifest (JSON, docs/batch.md \"Batch\")")->required();
     cmd->add_option("--jobs,-j", o.jobs, "items baked in parallel (each with its own OpenCL context)")
         ->check(CLI::Range(1, 256));
     cmd->add_option("--shard", o.shard,

@@ -1,6 +1,6 @@
-// The command line of `iblbake batch MANIFEST` (README "Batch"), declared once: the engine's batch command
-// bakes stale items with bakeStaleScene, the front end (front_end.cpp) answers a batch whose items are all
-// up to date; both run it through the library's runBatch (iblbake/batch_run/batch_run.h).
+// The command line of `iblbake batch MANIFEST` (docs/batch.md "Batch"), declared once: the engine's batch
+// command bakes stale items with bakeStaleScene, the front end (front_end.cpp) answers a batch whose items
+// are all up to date; both run it through the library's runBatch (iblbake/batch_run/batch_run.h).
 #pragma once
 
 #include "bake_options.h"

@@ -1,7 +1,7 @@
 // Progress of `iblbake batch`: the library's batch observer printing each stage and item as a line or a JSON
 // event naming its item; lines from parallel items never interleave (one mutex). Lines mode prints one line
-// per stage and per item on stderr, --quiet only errors, --json one JSON object per line on stdout (README
-// "Batch").
+// per stage and per item on stderr, --quiet only errors, --json one JSON object per line on stdout
+// (docs/batch.md "Batch").
 #pragma once
 
 #include "scene_progress.h"

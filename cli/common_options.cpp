@@ -20,7 +20,7 @@ Executor BackendOptions::makeExecutor() const {
 Executor BackendOptions::makeExecutor(Backend chosen) const {
     Executor executor = Executor::create(chosen, device, std::cerr);
     // A program loaded from its binary skips the compiler and PoCL's own cache look-up, which runs clang's
-    // preprocessor over the source (README "Kernel binaries").
+    // preprocessor over the source (docs/conventions.md "Kernels, backends and kernel binaries").
     if (executor.usesOpenCL())
         if (std::optional<std::filesystem::path> directory = ocl::userProgramBinaryDirectory())
             executor.cl().useProgramBinaries(*directory);

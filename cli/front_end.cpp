@@ -3,7 +3,8 @@
 // scene, manifest.json and content hashes alone; every other command line goes, unchanged, to the engine
 // (iblbake-engine beside this program, or $IBLBAKE_ENGINE) by exec. Why two programs: the engine links
 // OpenColorIO, OpenEXR, TBB and the OpenCL loader, which the dynamic loader maps and relocates in about as
-// long as the whole up-to-date check takes (10 ms here against the engine's 17 ms, README "Cache").
+// long as the whole up-to-date check takes (10 ms here against the engine's 17 ms, docs/performance.md
+// "Scenes, the front end and the cache").
 #include "bake_options.h"
 #include "batch_options.h"
 #include "plan_command.h"
@@ -111,7 +112,7 @@ fs::path enginePath() {
 // caller's GLIBC_TUNABLES already chooses: a bake first touches 20-60 MB of blocks (a lat-long, a cube, its
 // pyramid, the levels), one page fault per 4 KB page and 3-13 us each on the VM the benchmarks ran on; in
 // 2 MB pages, `specular` of the 1k sample took 5,100 -> 716-1,602 page faults and 0.17-0.19 -> 0.12-0.16 s
-// (peak memory 30.1-30.3 -> 30.5-32.2 MB; README "The bright pass on PoCL, and huge pages"). The rest of the
+// (peak memory 30.1-30.3 -> 30.5-32.2 MB; docs/performance.md "Memory"). The rest of the
 // allocator policy is the engine's (iblbake/baker/process_memory.h). Where the kernel gives no huge pages
 // (transparent_hugepage "never"), nothing changes.
 std::string tunablesWithHugePages(const char* current) {

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
     ibl::reuseFreedBlocks();
     CLI::App app{"iblbake: image-based-lighting and light-probe baker", "iblbake"};
     app.require_subcommand(1);
-    // The stage-code digest names the code behind cached stages (README "Cache").
+    // The stage-code digest names the code behind cached stages (docs/scenes.md "Cache").
     app.set_version_flag("--version", std::string("iblbake " IBLBAKE_VERSION " (stage code ") +
                                           ibl::builtInCodeDigest() + ")");
 

@@ -36,7 +36,7 @@ void printPlan(const Scene& scene, const Plan& plan) {
 
 CLI::App* addPlanSubcommand(CLI::App& app, PlanOptions& o) {
     CLI::App* cmd = app.add_subcommand("plan", "print the stages a scene needs, and why, without baking");
-    cmd->add_option("scene", o.scene, "scene file (JSON, README \"Scenes\")")->required();
+    cmd->add_option("scene", o.scene, "scene file (JSON, docs/scenes.md \"Schema\")")->required();
     cmd->add_flag("--json", o.json, "print the plan as one JSON object");
     return cmd;
 }

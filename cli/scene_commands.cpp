@@ -1,4 +1,4 @@
-// iblbake plan SCENE / iblbake bake SCENE: scene-driven bakes (README "Scenes").
+// iblbake plan SCENE / iblbake bake SCENE: scene-driven bakes (docs/scenes.md "Scenes").
 #include "bake_options.h"
 #include "commands.h"
 #include "plan_command.h"

@@ -90,8 +90,9 @@ Action addSpecularCommand(CLI::App& app) {
         ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
     cmd->add_option("--preview", o->preview, "also write a tone-mapped PNG of every level");
-    cmd->add_option("--rough-layers", o->roughLayers,
-                    "also write the chain's rough layers (KTX2 cube map array, README \"Rough layers\")");
+    cmd->add_option(
+        "--rough-layers", o->roughLayers,
+        "also write the chain's rough layers (KTX2 cube map array, docs/formats.md \"Rough layers\")");
     cmd->add_option("--mip-mapping", o->mipMapping, "roughness per level: frostbite (eq. 63) or linear")
         ->capture_default_str()
         ->check(CLI::IsMember(std::vector<std::string>(kMipMappingNames.begin(), kMipMappingNames.end())));

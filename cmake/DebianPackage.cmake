@@ -1,6 +1,6 @@
 # The Debian package: `cpack --config build/CPackConfig.cmake -B build` writes build/iblbake_<version>_<arch>.deb
 # with everything cmake/InstallRules.cmake installs, under /usr; `apt-get install ./build/iblbake_*.deb` installs
-# it with its dependencies (README "Install").
+# it with its dependencies (docs/install.md "Install").
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME iblbake)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})

@@ -80,7 +80,7 @@ if(BUILD_SHARED_LIBS)
 endif()
 # data/ as in the source tree, in share/iblbake/data: the OCIO config the engine reads at run time
 # (baker/src/ingest/color.cpp finds it relative to the program), the sample HDRI and the example scene, whose
-# relative paths then still hold (a copy of the folder bakes to scenes/out/park inside it, README "Install"), and
+# relative paths then still hold (a copy of the folder bakes to scenes/out/park inside it, docs/install.md "Install"), and
 # data/README.md with the sample data's licences and attribution.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${IBLBAKE_INSTALL_SHAREDIR}/data COMPONENT tools)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT tools)

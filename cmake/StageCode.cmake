@@ -1,4 +1,4 @@
-# What code decides each stage kind's bytes (README "Cache"): the table behind the stage-code identity
+# What code decides each stage kind's bytes (docs/scenes.md "Cache"): the table behind the stage-code identity
 # that every stage-cache key holds. Included by baker/CMakeLists.txt (configure time: the checks below) and
 # by cmake/StageCodeIdentity.cmake (build time: the hashes).
 #

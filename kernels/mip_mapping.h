@@ -44,10 +44,10 @@ IBL_FN float mipLevelForRoughness(uint mapping, float perceptualRoughness, uint 
 // layer k holds r_k = ((IBL_ROUGH_LAYER_FIRST + k) / IBL_ROUGH_LAYER_GRID)^2, the Frostbite mapping on 21
 // levels (steps of 0.05 in sqrt(r), 0.02-0.1 in r, finest where the LD changes fastest), k = 0..11: r =
 // 0.2025 to 1, on faces of min(32, the chain's base face size). Measured on the seven shared HDRIs at 256 px
-// against the exact LD (README "Rough layers"): 0.3-2.5% at r = 0.25-1 (2 x 2 design measurements before
-// choosing: 16-px faces keep 4-28% at r = 0.2-0.3; a 0.1 step in r is 2-11% between layers at r < 0.5). The
-// runtime reads the chain for r <= r_0, the layers for r >= r_1, and between them blends the two linearly in
-// sqrt(r) (roughLayerWeight), so the lookup is continuous in r.
+// against the exact LD (docs/accuracy.md "Rough layers"): 0.3-2.5% at r = 0.25-1 (2 x 2 design measurements
+// before choosing: 16-px faces keep 4-28% at r = 0.2-0.3; a 0.1 step in r is 2-11% between layers at r <
+// 0.5). The runtime reads the chain for r <= r_0, the layers for r >= r_1, and between them blends the two
+// linearly in sqrt(r) (roughLayerWeight), so the lookup is continuous in r.
 #define IBL_ROUGH_LAYER_GRID 20u
 #define IBL_ROUGH_LAYER_FIRST 9u
 #define IBL_ROUGH_LAYER_COUNT 12u

@@ -63,7 +63,7 @@ TEST(CliSpecular, CalibrationAndSunExtractionAreRecorded) {
     std::string text(std::istreambuf_iterator<char>(sun), {});
     EXPECT_NE(text.find("\"illuminanceLux\": 99999.99"), std::string::npos) << text;
     // A calibrated sun (~1e9 cd/m2) does not fit half floats as it is: level 0 keeps it with a storage scale
-    // (README "Float storage"), which the readers divide out.
+    // (docs/conventions.md "Float storage and the storage scale"), which the readers divide out.
     EXPECT_EQ(ktx.keyValues.at("iblbake.sunInLevel0"), "true");
     EXPECT_LT(ibl::ktx2StorageScale(ktx), 1.0);
     ibl::unscaleKtx2Texels(ktx);
@@ -169,8 +169,9 @@ TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
 }
 
 // The standalone commands keep program binaries for the user running them (ocl::userProgramBinaryDirectory,
-// README "Kernel binaries"): the first bake builds its programs and stores them, a second loads them and
-// builds none (the same bytes), $XDG_CACHE_HOME moves them, and an empty $IBLBAKE_KERNEL_CACHE keeps none.
+// docs/conventions.md "Kernels, backends and kernel binaries"): the first bake builds its programs and stores
+// them, a second loads them and builds none (the same bytes), $XDG_CACHE_HOME moves them, and an empty
+// $IBLBAKE_KERNEL_CACHE keeps none.
 TEST(CliSpecular, KeepsKernelBinariesForTheUser) {
     const fs::path dir = freshTempDir("specular_kernels");
     const std::string bake =

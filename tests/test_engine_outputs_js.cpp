@@ -150,7 +150,8 @@ TEST_P(Ktx2ByKtxParse, TwoDimensionalImage) {
     fs::remove_all(dir);
 }
 
-// writeKtx2CubeArray (a scene bake's rough layers, README "Rough layers"): 12 layers of 6 faces, one level.
+// writeKtx2CubeArray (a scene bake's rough layers, docs/formats.md "Rough layers"): 12 layers of 6 faces, one
+// level.
 TEST_P(Ktx2ByKtxParse, CubeMapArray) {
     const auto [format, vkFormat] = GetParam();
     const fs::path dir = ibl::test::freshTempDir(std::string("ktx_cube_array_") + format);

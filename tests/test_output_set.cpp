@@ -1,5 +1,5 @@
 // OutputSet and the temporary-name rule (iblbake/ktx2/output_set.h, iblbake/core/temporary_path.h): the
-// mechanism behind "Failures leave nothing behind" (README), tested on its own.
+// mechanism behind docs/scenes.md "Failures leave nothing behind", tested on its own.
 #include "cli_runner.h"
 #include "test_support.h"
 

@@ -1,5 +1,6 @@
-// Program binaries kept on disk (README "Kernel binaries"): a fresh context with a warm directory builds no
-// program from source and bakes the same bytes; a damaged binary is rebuilt from source, never trusted.
+// Program binaries kept on disk (docs/conventions.md "Kernels, backends and kernel binaries"): a fresh
+// context with a warm directory builds no program from source and bakes the same bytes; a damaged binary is
+// rebuilt from source, never trusted.
 #include "cli_runner.h"
 #include "scene_test_support.h"
 

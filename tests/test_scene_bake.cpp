@@ -182,9 +182,9 @@ TEST(SceneBake, RunsExactlyThePlannedStagesForEachNeed) {
     }
 }
 
-// Rough layers (README "Rough layers") only where a material reads past their first roughness: listed with
-// the specular stage's products and in the manifest, and loaded; a scene whose roughest material is 0.2
-// gets none.
+// Rough layers (docs/formats.md "Rough layers") only where a material reads past their first roughness:
+// listed with the specular stage's products and in the manifest, and loaded; a scene whose roughest material
+// is 0.2 gets none.
 TEST(SceneBake, RoughLayersOnlyWhenAMaterialReadsPastTheirFirstRoughness) {
     SceneDir d("scene_rough_layers");
     for (const double roughnessMax : {1.0, 0.2}) {

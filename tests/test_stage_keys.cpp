@@ -1,5 +1,5 @@
-// Stage-cache keys know the code (README "Cache"): each key holds its stage kind's code identity, so a
-// changed kernel or stage reaches that stage and every stage downstream of it, nothing else, and unchanged
+// Stage-cache keys know the code (docs/scenes.md "Cache"): each key holds its stage kind's code identity, so
+// a changed kernel or stage reaches that stage and every stage downstream of it, nothing else, and unchanged
 // code keeps every key. The identity table itself is checked by running cmake/StageCodeIdentity.cmake on
 // copies of the source tree with one file edited.
 #include "cli_runner.h"

@@ -95,7 +95,7 @@ prepare_batch() {
   done
   (IFS=,; echo "{\"items\": [${items[*]}]}") >"$work/batch.json"
   # A vertical strip (+X -X +Y -Y +Z -Z) becomes a vertical cross (. +Y . / -X +Z +X / . -Y . / . -Z .)
-  # for cmgen, -Z turned 180 degrees as README "Specular LD chain" lays out a cross.
+  # for cmgen, -Z turned 180 degrees as docs/conventions.md "Lat-long mapping and pixel placement" lays out a cross.
   local strip cell cells
   for strip in "$work"/cmgen-input/*.hdr; do
     oiiotool --info "$strip" | grep -q ': *256 x 1536,' || continue

@@ -93,7 +93,7 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
         sun.illuminance = light.at("illuminance").get<float>();
         out.set.setSun(sun);
     }
-    if (glossy && products["specular"].contains("roughLayers")) // README "Rough layers"
+    if (glossy && products["specular"].contains("roughLayers")) // docs/formats.md "Rough layers"
         out.set.setRoughLayers(
             loadRoughLayersKtx2(dir / products["specular"]["roughLayers"].at("file").get<std::string>()));
     if (products.contains("irradiance")) // diffuse then reads the cube instead of the SH (runtime.h)

@@ -1,5 +1,5 @@
-// Batch manifests (batch.h, README "Batch"): validated like scene files, every error one line naming the
-// manifest and the key path; unknown keys are errors.
+// Batch manifests (batch.h, docs/batch.md "Batch"): validated like scene files, every error one line naming
+// the manifest and the key path; unknown keys are errors.
 #include "iblbake/batch/batch.h"
 #include "iblbake/core/numeric.h"
 

@@ -1,8 +1,8 @@
-// Program binaries kept on disk (README "Kernel binaries"), so that a farm node with a warm cache
-// directory pays the OpenCL compiler once per cache, not once per machine. A binary is found under a key
-// that holds everything its validity depends on: platform, device, driver version, build options and the
-// whole assembled source. A file is used only when its header names that key and its payload matches the
-// hash it carries; anything else (stale, foreign, truncated, corrupt) is ignored and rebuilt.
+// Program binaries kept on disk (docs/conventions.md "Kernels, backends and kernel binaries"), so that a farm
+// node with a warm cache directory pays the OpenCL compiler once per cache, not once per machine. A binary is
+// found under a key that holds everything its validity depends on: platform, device, driver version, build
+// options and the whole assembled source. A file is used only when its header names that key and its payload
+// matches the hash it carries; anything else (stale, foreign, truncated, corrupt) is ignored and rebuilt.
 #pragma once
 
 #define CL_HPP_TARGET_OPENCL_VERSION 120

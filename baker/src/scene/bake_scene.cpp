@@ -32,8 +32,8 @@ bool needsBackend(const Plan& plan) {
     return false;
 }
 
-// Every output path of the plan, checked before any work (README "Failures leave nothing behind"): the
-// output directory is a directory or can be made one, and no product or manifest path is a directory.
+// Every output path of the plan, checked before any work (docs/scenes.md "Failures leave nothing behind"):
+// the output directory is a directory or can be made one, and no product or manifest path is a directory.
 void checkOutputPaths(const Scene& scene, const Plan& plan) {
     const fs::path& directory = scene.outputs.directory;
     std::error_code ec;
@@ -125,8 +125,8 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache" : options.cacheDirectory;
         outputs.createDirectories(cacheDirectory, scene.name + ": cache");
         const StageCache cache(cacheDirectory);
-        // Compiled kernels beside the entries (README "Kernel binaries"): a node with a warm cache compiles
-        // none.
+        // Compiled kernels beside the entries (docs/conventions.md "Kernels, backends and kernel binaries"):
+        // a node with a warm cache compiles none.
         const fs::path programBinaries = cache.directory() / "kernels";
         if (executor && executor->usesOpenCL()) executor->cl().useProgramBinaries(programBinaries);
 

@@ -1,4 +1,4 @@
-// manifest.json (README "Manifest"): what the runtime loads (ibl::loadProbeSetFromManifest).
+// manifest.json (docs/formats.md "Manifest"): what the runtime loads (ibl::loadProbeSetFromManifest).
 #pragma once
 
 #include "iblbake/scene/scene.h"

@@ -1,6 +1,6 @@
-// Scene file parsing and validation (README "Scenes"). Every accessor knows its key path, so each error
-// names it; keys are consumed as read and whatever is left in an object is an unknown key (a typo must not
-// be silently ignored).
+// Scene file parsing and validation (docs/scenes.md "Schema"). Every accessor knows its key path, so each
+// error names it; keys are consumed as read and whatever is left in an object is an unknown key (a typo must
+// not be silently ignored).
 #include "iblbake/core/numeric.h"
 #include "iblbake/scene/scene.h"
 

@@ -187,8 +187,8 @@ Plan planScene(const Scene& scene) {
         s.reason = std::string(m.specular ? "materials use specular" : "clear coat is used") + "; levels 0-" +
                    std::to_string(last) + " of " + std::to_string(levels) + " integrated (roughness max " +
                    json(m.roughnessMax).dump() + ")";
-        // The rough layers (README "Rough layers") only when some material reads past r_0; their roughness
-        // grid is part of the settings, so a cache entry of another grid is not reused.
+        // The rough layers (docs/formats.md "Rough layers") only when some material reads past r_0; their
+        // roughness grid is part of the settings, so a cache entry of another grid is not reused.
         const bool roughLayers = m.roughnessMax > double(roughLayerRoughness(0));
         s.settings["roughLayers"] = roughLayers ? json(roughLayerRoughnessValues()) : json::array();
         if (roughLayers) {

@@ -1,6 +1,6 @@
-// The stage cache (README "Scenes"): one directory per entry, named by the stage's key, holding its files
-// and entry.json with each file's content hash. Entries are written into a private staging directory and
-// renamed into place (atomic on one file system, local or shared), so concurrent runs never see a torn
+// The stage cache (docs/scenes.md "Cache"): one directory per entry, named by the stage's key, holding its
+// files and entry.json with each file's content hash. Entries are written into a private staging directory
+// and renamed into place (atomic on one file system, local or shared), so concurrent runs never see a torn
 // entry; an entry whose files do not match their recorded hashes is removed and recomputed.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Cache keys of a plan's stages (README "Cache"): shared by bakeScene and the up-to-date check, so that
-// both agree on what "the same inputs" means.
+// Cache keys of a plan's stages (docs/scenes.md "Cache"): shared by bakeScene and the up-to-date check, so
+// that both agree on what "the same inputs" means.
 #pragma once
 
 #include "iblbake/bake_state/code_identity.h"

@@ -202,7 +202,7 @@ class LdBake {
 // back while the host builds the next table (on PoCL, each level waited ~0.1 ms from enqueue to read-back).
 // A level's time is then from the previous level's end to its own, on both backends; on a CPU device the
 // host thread that waits shares the cores with the next level's kernels, so the boundary between two
-// levels' times can shift by a wake-up (README, "Bright entries in lanes, overlapped levels").
+// levels' times can shift by a wake-up (docs/performance.md "LD chain per level").
 CubeMapChain bakeChain(CubeMap source, const LdBake& bake, const SpecularSettings& settings,
                        std::vector<SpecularLevelTiming>* timings) {
     const int faceSize = source.faceSize;

@@ -1,7 +1,8 @@
-// The accuracy sweep behind `iblbake accuracy` (README "What accuracy costs in time"): the quality knobs of
-// every stage swept on one environment, each setting timed (median of repeats) and compared with the
+// The accuracy sweep behind `iblbake accuracy` (docs/accuracy.md "What accuracy costs in time"): the quality
+// knobs of every stage swept on one environment, each setting timed (median of repeats) and compared with the
 // stage's brute-force reference at sizes where that is affordable, and the reports of a run: report.json
-// (schema iblbake.accuracy), report.md (the README's table) and report.html (one SVG plot per stage).
+// (schema iblbake.accuracy), report.md (docs/accuracy.md "The sample's report") and report.html (one SVG plot
+// per stage).
 #pragma once
 
 #include "iblbake/core/cubemap.h"

@@ -1,7 +1,7 @@
-// What a scene bake reports and what a bake directory holds, without baking (README "Scenes"): options,
-// stage results, the summary and its JSON, progress, and the up-to-date check. No OpenCL, OpenImageIO or
-// OpenColorIO: the front end (cli/front_end.cpp) answers up-to-date bakes with this alone; the bake itself
-// is baker/bake_scene.h.
+// What a scene bake reports and what a bake directory holds, without baking (docs/scenes.md "Scenes"):
+// options, stage results, the summary and its JSON, progress, and the up-to-date check. No OpenCL,
+// OpenImageIO or OpenColorIO: the front end (cli/front_end.cpp) answers up-to-date bakes with this alone; the
+// bake itself is baker/bake_scene.h.
 #pragma once
 
 #include "iblbake/core/backend.h"

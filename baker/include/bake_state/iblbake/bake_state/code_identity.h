@@ -1,4 +1,4 @@
-// The code behind a stage's bytes (README "Cache"): which sources decide each stage kind is listed in
+// The code behind a stage's bytes (docs/scenes.md "Cache"): which sources decide each stage kind is listed in
 // cmake/StageCode.cmake, and the build hashes them (cmake/StageCodeIdentity.cmake) into this table, which
 // every stage-cache key holds, so a build with a changed kernel or stage never reuses an old entry.
 #pragma once

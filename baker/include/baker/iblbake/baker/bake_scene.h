@@ -1,4 +1,4 @@
-// Scene-driven bakes (README "Scenes"): run a scene's plan through the stage cache and write the bake
+// Scene-driven bakes (docs/scenes.md "Scenes"): run a scene's plan through the stage cache and write the bake
 // directory (products + manifest.json, written last). Re-entrant and free of global state: a batch runner
 // may call bakeScene for many scenes, one after another or from several processes sharing a cache.
 #pragma once

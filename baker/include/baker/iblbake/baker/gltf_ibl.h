@@ -1,9 +1,9 @@
 // A bake as glTF 2.0: the image-based light through EXT_lights_image_based (Khronos glTF repository,
 // extensions/2.0/Vendor/EXT_lights_image_based) and the extracted sun through KHR_lights_punctual.
 //
-// Conventions written (README "Engine outputs"). Where the extension's text is unclear or disagrees with
-// Babylon.js (9.28, the loader it was written for), the file follows Babylon, checked by numbers in
-// headless Chromium (tests/js/babylon_gltf.mjs):
+// Conventions written (docs/engines.md "glTF 2.0 and Babylon.js"). Where the extension's text is unclear or
+// disagrees with Babylon.js (9.28, the loader it was written for), the file follows Babylon, checked by
+// numbers in headless Chromium (tests/js/babylon_gltf.mjs):
 // - Frame: glTF's (right-handed, +Y up) is DESIGN.md's, so `rotation` is the identity [0, 0, 0, 1].
 // - specularImages[m][f]: level m of N holds perceptual roughness m / (N - 1) ("the various mip levels
 //   evenly map to roughness values from 0 to 1"); faces +X, -X, +Y, -Y, +Z, -Z. Babylon uploads each

@@ -140,14 +140,14 @@ Ktx2WriteStats writeProductCubeArray(const std::filesystem::path& path, const st
                                      Ktx2Format format, const Ktx2KeyValues& keyValues,
                                      const ProductStorage& storage);
 
-// The manifest entry's keys (README "Manifest"): "storageScale", and with `clamped` "storageClamp"
+// The manifest entry's keys (docs/formats.md "Manifest"): "storageScale", and with `clamped` "storageClamp"
 // {"energyLostPercent": [per level], "meaning"}; the same object is a stage's cache record. Its reader
 // throws ibl::Error naming the key.
 nlohmann::json productStorageToJson(const ProductStorage& storage);
 ProductStorage productStorageFromJson(const nlohmann::json& json);
 
 // ---------------------------------------------------------------------------------------------------
-// The iblbake.diffuse document (schemaVersion 1; README "Diffuse probes")
+// The iblbake.diffuse document (schemaVersion 1; docs/formats.md "Diffuse probes")
 
 struct DiffuseSource {
     std::string file; // as the writer names it (the command's argument, or the scene's file name)
@@ -168,7 +168,7 @@ nlohmann::json diffuseDocument(const DiffuseSH& sh, const std::string& requested
                                const CalibrationRecord& record, const std::optional<DiskLight>& sun);
 
 // ---------------------------------------------------------------------------------------------------
-// Manifest entries (README "Manifest"); contentHash is the product file's.
+// Manifest entries (docs/formats.md "Manifest"); contentHash is the product file's.
 
 nlohmann::json dfgManifestEntry(std::uint32_t size, std::uint32_t samples, bool disneyChannelUsed,
                                 const std::string& contentHash);
@@ -180,7 +180,8 @@ struct LdManifestFacts {
     double validRoughnessMax = 1.0;
     std::string quality;
     std::optional<bool> sunInLevel0; // the distant chain's (absent for local probes)
-    // The distant chain's rough layers (README "Rough layers"), when baked: the manifest's "roughLayers"
+    // The distant chain's rough layers (docs/formats.md "Rough layers"), when baked: the manifest's
+    // "roughLayers"
     // {"file", "faceSize", "layerCount", "roughness", "meaning", "storageScale" ...}.
     struct RoughLayers {
         std::string file;
@@ -204,9 +205,10 @@ struct ProbeVisibilityFacts {
 };
 nlohmann::json probeVisibilityFactsToJson(const ProbeVisibilityFacts& facts);
 ProbeVisibilityFacts probeVisibilityFactsFromJson(const nlohmann::json& json);
-// The manifest's keys of a local probe (README "Manifest"): with a visibility, "visibility" {"convention":
-// "premultiplied-alpha", "channel": "A", "meaning"}; with repaired alpha values, "alphaRepaired" {"nan",
-// "negative", "overOne"}; nothing for a capture without alpha (every manifest before visibility existed).
+// The manifest's keys of a local probe (docs/formats.md "Manifest"): with a visibility, "visibility"
+// {"convention": "premultiplied-alpha", "channel": "A", "meaning"}; with repaired alpha values,
+// "alphaRepaired" {"nan", "negative", "overOne"}; nothing for a capture without alpha (every manifest before
+// visibility existed).
 void addProbeVisibilityToManifest(nlohmann::json& probeEntry, const ProbeVisibilityFacts& facts);
 
 // From the diffuse document: sh.irradiance, its convention, sh.window {name, parameter, searched,

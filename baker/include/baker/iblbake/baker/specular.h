@@ -39,7 +39,8 @@ struct SpecularSettings {
     // within 0.5% (level 8: 1.0%), for 3.7x that map's bake time; the others' bytes and times are unchanged.
     float brightThreshold = 32.0f;
     std::uint32_t maxBrightTexels = 4096;
-    float lodBias = -0.5f; // added to Listing 19's 0.5 log2(omegaS / omegaP); measured best (README)
+    float lodBias =
+        -0.5f; // added to Listing 19's 0.5 log2(omegaS / omegaP); measured best (docs/accuracy.md "Presets")
     // Levels from this one on are not integrated but box-downsampled from the level before (0: integrate
     // every level). A scene whose roughest material reads level m needs only m + 1 integrated levels; the
     // chain keeps its full length so that its roughness mapping stays the same (scene_plan.h).

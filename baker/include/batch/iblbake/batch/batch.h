@@ -1,5 +1,5 @@
-// Batch / farm bakes (README "Batch"): a batch manifest lists items (scene files, or HDRIs baked with a
-// default scene built in memory); a shard K/N of a build farm takes the items whose index i in the manifest
+// Batch / farm bakes (docs/batch.md "Batch"): a batch manifest lists items (scene files, or HDRIs baked with
+// a default scene built in memory); a shard K/N of a build farm takes the items whose index i in the manifest
 // has i mod N = K - 1, a pure function of the item's identity, so every item belongs to exactly one shard
 // whichever machine reads the manifest. Parsing is pure; errors are ibl::Error "<name>: <key path>: ...".
 #pragma once
@@ -53,7 +53,7 @@ bool inShard(const BatchItem& item, const Shard& shard); // item.index mod count
 // "K/N", 1 <= K <= N. Throws ibl::Error "--shard: ..." otherwise.
 Shard parseShard(const std::string& text);
 
-// The shard a scheduler's job-array variables name (README "Batch"), or nullopt when none is set:
+// The shard a scheduler's job-array variables name (docs/batch.md "Batch"), or nullopt when none is set:
 // Slurm: SLURM_ARRAY_TASK_ID minus SLURM_ARRAY_TASK_MIN (0 when unset) out of SLURM_ARRAY_TASK_COUNT, or
 // SLURM_ARRAY_TASK_MAX - MIN + 1; Kubernetes indexed jobs: JOB_COMPLETION_INDEX (0-based) out of
 // `countOverride` (--shard-count), else IBLBAKE_SHARD_COUNT. `env` looks a variable up (nullptr: unset);

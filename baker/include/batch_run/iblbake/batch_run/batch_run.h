@@ -1,9 +1,9 @@
-// Batch runs (README "Batch"): every item of a batch manifest in a shard baked, `jobs` at a time, items whose
-// bake is already complete skipped (so a killed batch, run again, resumes without redoing finished items),
-// and a JSON summary (schema iblbake.batch-summary) rewritten atomically after every item so a scheduler (or
-// a person) can watch it. Free of OpenImageIO and OpenCL: the caller supplies how a stale item is baked, so
-// the engine bakes with bakeStaleScene and the front end (cli/front_end.cpp), which links no backend,
-// answers a batch whose items are all up to date.
+// Batch runs (docs/batch.md "Batch"): every item of a batch manifest in a shard baked, `jobs` at a time,
+// items whose bake is already complete skipped (so a killed batch, run again, resumes without redoing
+// finished items), and a JSON summary (schema iblbake.batch-summary) rewritten atomically after every item so
+// a scheduler (or a person) can watch it. Free of OpenImageIO and OpenCL: the caller supplies how a stale
+// item is baked, so the engine bakes with bakeStaleScene and the front end (cli/front_end.cpp), which links
+// no backend, answers a batch whose items are all up to date.
 #pragma once
 
 #include "iblbake/bake_state/bake_state.h"

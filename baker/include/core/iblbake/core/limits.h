@@ -1,7 +1,7 @@
 // The limits that keep untrusted input (scene files written by many people, HDRIs from anywhere, run on a
 // build farm) from taking unbounded memory or time. Each is defined once, here; every check says the
-// allowed range in its refusal and runs before the work the limit protects (README "Scenes", "Untrusted
-// scene files").
+// allowed range in its refusal and runs before the work the limit protects
+// (docs/scenes.md "Untrusted scene files").
 #pragma once
 
 #include <cstdint>

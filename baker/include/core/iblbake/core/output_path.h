@@ -1,7 +1,7 @@
-// Where a scene or batch file may send outputs (README "Scenes", "Batch"): a relative output path resolves
-// against the file's directory and may not leave it, so a file written by someone else cannot make a bake
-// write elsewhere ("../../etc"). An absolute path, or a path given on the command line, is the user's
-// explicit choice and is not confined.
+// Where a scene or batch file may send outputs (docs/scenes.md "Untrusted scene files", docs/batch.md
+// "Batch"): a relative output path resolves against the file's directory and may not leave it, so a file
+// written by someone else cannot make a bake write elsewhere ("../../etc"). An absolute path, or a path given
+// on the command line, is the user's explicit choice and is not confined.
 #pragma once
 
 #include <filesystem>

@@ -1,5 +1,5 @@
-// All outputs of one command, committed together (README "Failures leave nothing behind"): each file is
-// written under a temporary name beside its target and each output directory is built beside its target;
+// All outputs of one command, committed together (docs/scenes.md "Failures leave nothing behind"): each file
+// is written under a temporary name beside its target and each output directory is built beside its target;
 // commit() moves them all into place. An OutputSet destroyed without commit() removes every temporary
 // and every directory it created, so a failed command leaves the tree as it was.
 #pragma once

@@ -23,10 +23,10 @@ namespace ibl::ocl {
 const char* errorName(cl_int status);
 
 // Where a command without a cache directory of its own (`specular`, `diffuse`, `dfg`, ...) keeps program
-// binaries for the user running it (README "Kernel binaries"): $IBLBAKE_KERNEL_CACHE (set and empty: none),
-// else $XDG_CACHE_HOME/iblbake/kernels, else $HOME/.cache/iblbake/kernels (the XDG Base Directory defaults,
-// as PoCL and Mesa keep theirs); nullopt when none applies. Relative XDG/HOME values are ignored, as the XDG
-// specification asks.
+// binaries for the user running it (docs/conventions.md "Kernels, backends and kernel binaries"):
+// $IBLBAKE_KERNEL_CACHE (set and empty: none), else $XDG_CACHE_HOME/iblbake/kernels, else
+// $HOME/.cache/iblbake/kernels (the XDG Base Directory defaults, as PoCL and Mesa keep theirs); nullopt when
+// none applies. Relative XDG/HOME values are ignored, as the XDG specification asks.
 std::optional<std::filesystem::path> userProgramBinaryDirectory();
 
 struct DeviceInfo {
@@ -75,9 +75,10 @@ class Context {
     // Builds arbitrary source; on failure throws ibl::Error with program name, device, options and log.
     cl::Program buildProgram(const std::string& name, const std::string& source, const std::string& options);
 
-    // Program binaries kept in `directory` (README "Kernel binaries"): from now on an embedded program is
-    // loaded from a binary there when one of the same platform, device, driver, options and source is found
-    // and builds; otherwise it is built from source and its binary held for storeProgramBinaries().
+    // Program binaries kept in `directory` (docs/conventions.md "Kernels, backends and kernel binaries"):
+    // from now on an embedded program is loaded from a binary there when one of the same platform, device,
+    // driver, options and source is found and builds; otherwise it is built from source and its binary held
+    // for storeProgramBinaries().
     void useProgramBinaries(std::filesystem::path directory);
     // Writes the binaries built from source since useProgramBinaries (called once a command's outputs are
     // complete, so a failed command adds nothing to a cache). A directory that cannot be written is skipped:

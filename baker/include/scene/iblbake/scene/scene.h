@@ -1,5 +1,5 @@
-// A scene file (README "Scenes"): the distant environment, the local probes with their proxies, what the
-// materials need and where the products go. Parsing is pure (no file system access) so that a fuzzer can
+// A scene file (docs/scenes.md "Scenes"): the distant environment, the local probes with their proxies, what
+// the materials need and where the products go. Parsing is pure (no file system access) so that a fuzzer can
 // call parseScene on arbitrary bytes; every problem is an ibl::Error "<name>: <key path>: <problem>".
 #pragma once
 
@@ -48,7 +48,7 @@ struct SceneProbe {
     std::string name; // [A-Za-z0-9_-], unique; names the product probe_<name>.ktx2
     std::vector<std::filesystem::path> capture;
     // The visibility as a separate image (one per capture file, the same size), replacing the capture's
-    // alpha; empty: the capture's own alpha, if any (README "Schema").
+    // alpha; empty: the capture's own alpha, if any (docs/scenes.md "Schema").
     std::vector<std::filesystem::path> visibilityMask;
     std::string layout = "auto";
     std::string colorSpace;

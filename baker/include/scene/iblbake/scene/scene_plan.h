@@ -1,5 +1,5 @@
 // The planner: a pure function from a scene to the stages its products need, each with its inputs,
-// settings and the reason it runs, and the stages it leaves out with the reason (README "Scenes").
+// settings and the reason it runs, and the stages it leaves out with the reason (docs/scenes.md "Plan").
 #pragma once
 
 #include "iblbake/scene/scene.h"
@@ -14,8 +14,8 @@
 
 namespace ibl {
 
-// The distant chain's rough layers (README "Rough layers"), beside specular.ktx2 when a material reads past
-// r_0.
+// The distant chain's rough layers (docs/formats.md "Rough layers"), beside specular.ktx2 when a material
+// reads past r_0.
 inline constexpr const char* kRoughLayersFile = "specular_rough.ktx2";
 
 struct PlanInput {

@@ -119,7 +119,7 @@ inline constexpr const char* kVisibilityKey = "iblbake.visibility";
 inline constexpr const char* kVisibilityPremultipliedAlpha = "premultiplied-alpha";
 LdPyramid loadLdKtx2(const std::filesystem::path& path);
 DfgTable loadDfgKtx2(const std::filesystem::path& path);
-// The distant chain's rough layers (a scene bake's specular_rough.ktx2, README "Rough layers"), for
+// The distant chain's rough layers (a scene bake's specular_rough.ktx2, docs/formats.md "Rough layers"), for
 // ProbeSet::setRoughLayers: a cube map array of IBL_ROUGH_LAYER_COUNT layers whose key
 // kRoughLayerRoughnessKey names this runtime's grid (kernels/mip_mapping.h); throws ibl::Error naming
 // the file otherwise.

@@ -1,5 +1,5 @@
-// Loading a scene bake through its manifest.json (README "Manifest"): every product the manifest lists,
-// with the runtime options its materials asked for. No OpenImageIO/OpenColorIO: KTX2 and JSON only.
+// Loading a scene bake through its manifest.json (docs/formats.md "Manifest"): every product the manifest
+// lists, with the runtime options its materials asked for. No OpenImageIO/OpenColorIO: KTX2 and JSON only.
 #pragma once
 
 #include "iblbake/runtime/runtime.h"
