@@ -83,4 +83,6 @@ endif()
 # relative paths then still hold (a copy of the folder bakes to scenes/out/park inside it, docs/install.md "Install"), and
 # data/README.md with the sample data's licences and attribution.
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/data/ DESTINATION ${IBLBAKE_INSTALL_SHAREDIR}/data COMPONENT tools)
+# The README and docs/ beside it, so that the README's links into docs/ hold in the installed tree too.
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT tools)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs COMPONENT tools)

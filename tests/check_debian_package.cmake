@@ -40,7 +40,8 @@ foreach(path usr/bin/iblbake usr/bin/iblbake-engine "usr/lib/[^\n]*libiblbake_ru
              "usr/lib/[^\n]*cmake/iblbake/iblbakeTargets\\.cmake" "usr/lib/[^\n]*pkgconfig/iblbake-runtime\\.pc"
              usr/share/iblbake/glsl/probe.glsl usr/share/iblbake/glsl/README.md usr/share/iblbake/js/iblbakeCubeLoader.js
              usr/share/iblbake/data/ocio/config.ocio usr/share/iblbake/data/scenes/park.json
-             usr/share/iblbake/data/rooitou_park_1k.hdr usr/share/iblbake/data/README.md)
+             usr/share/iblbake/data/rooitou_park_1k.hdr usr/share/iblbake/data/README.md
+             usr/share/doc/iblbake/README.md usr/share/doc/iblbake/docs/conventions.md)
   if(NOT contents MATCHES " \\./${path}\n")
     message(FATAL_ERROR "the package lacks ${path}:\n${contents}")
   endif()
