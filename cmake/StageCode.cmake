@@ -11,9 +11,9 @@
 # and the .cl programs it builds, is listed here.
 #
 # Granularity: one identity per stage kind, so that a change reaches only the kinds whose code it touches
-# (kernels/dfg.h: dfg-lut alone; kernels/ld.h: specular-ld, probe-ld and irradiance-cube, whose kernel
-# includes it; kernels/cube.h or ingest/: every kind that ingests, and through the keys' dependency chain
-# every stage downstream). The scene-stage runner (scene_stages.cpp: all kinds in one file) and the KTX2
+# (kernels/dfg.h: dfg-lut alone; kernels/ld.h: specular-ld and probe-ld; kernels/bright_list.h: those and
+# irradiance-cube, whose kernel includes it; kernels/cube.h or ingest/: every kind that ingests, and through
+# the keys' dependency chain every stage downstream). The scene-stage runner (scene_stages.cpp: all kinds in one file) and the KTX2
 # container code are in every kind.
 #
 # Adding a source file: a new file under baker/src/ or kernels/ must be reached by some kind or be listed

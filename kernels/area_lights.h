@@ -20,7 +20,10 @@
 #ifndef IBL_AREA_LIGHTS_H
 #define IBL_AREA_LIGHTS_H
 
-#include "probe.h"
+#include "brdf.h"
+#include "parallax.h" // v3safeNormalize
+#include "sampling.h"
+#include "shading_point.h"
 
 IBL_BEGIN_NAMESPACE
 

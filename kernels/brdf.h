@@ -70,6 +70,20 @@ IBL_FN float3 energyCompensation(float3 f0, float dfg1, float dfg2) {
     return make_float3(1.0f, 1.0f, 1.0f) + f0 * (1.0f / r - 1.0f);
 }
 
+// GGX D with 1 - NoH^2 taken as |N x H|^2 (Filament's precise form): near the peak of a lobe as narrow
+// as the sun's, 1 - NoH^2 in fp32 loses all but a few bits to cancellation.
+IBL_FN float D_GGXFromCross(vec3 NxH, float NoH, float alpha) {
+    float a = NoH * alpha;
+    float d = v3dot(NxH, NxH) + a * a; // 0 only for H = -N (NoH saturated to 0): no microfacet there
+    float k = d > 0.0f ? alpha / d : 0.0f;
+    return k * k * IBL_INV_PI;
+}
+
+IBL_FN vec3 fresnelSchlickRgb(vec3 f0, float f90, float LoH) {
+    float fc = pow5(1.0f - LoH);
+    return v3(f0.x + (f90 - f0.x) * fc, f0.y + (f90 - f0.y) * fc, f0.z + (f90 - f0.z) * fc);
+}
+
 IBL_END_NAMESPACE
 
 #endif

@@ -1,15 +1,23 @@
-// Included by ld.h: brightClusterLd with IBL_LANES bright entries of a cluster in the lanes of float8 vectors
-// (lanes.h). With a sun's long GGX tail, most output texels of levels 1-3 take every entry of the sun's
-// clusters, nearly all of them at their point value (brightTexelWeight's last case); one entry at a time,
-// that loop was most of the bright pass. A block of entries runs in lanes when each of its entries takes the
-// point value, and one entry at a time (brightEntryWeight) when any needs a sub-grid, the closed form or the
-// footprint. A block's centre directions, solid angles and excesses are vector reads of the entries in lanes
-// (brightLaneStride), not gathers of the list's entries: 7 gathers were most of a block's time on PoCL.
+// For brightTexelsLd (ld.h): brightClusterLd with IBL_LANES bright entries of a cluster in the lanes of
+// float8 vectors (lanes.h). With a sun's long GGX tail, most output texels of levels 1-3 take every entry of
+// the sun's clusters, nearly all of them at their point value (brightTexelWeight's last case); one entry at a
+// time, that loop was most of the bright pass. A block of entries runs in lanes when each of its entries
+// takes the point value, and one entry at a time (brightEntryWeight) when any needs a sub-grid, the closed
+// form or the footprint. A block's centre directions, solid angles and excesses are vector reads of the
+// entries in lanes (brightLaneStride), not gathers of the list's entries: 7 gathers were most of a block's
+// time on PoCL.
 #ifndef IBL_BRIGHT_LANES_H
 #define IBL_BRIGHT_LANES_H
 
+#include "bright_entry_weight.h"
+#include "bright_list.h"
+#include "footprint_lanes.h"
 #include "lanes.h"
 
+IBL_BEGIN_NAMESPACE
+
+// The sum of the entries [first, first + count) of a cluster weighted by brightEntryWeight, with the entries
+// in vector lanes where each takes its point value.
 IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, IBL_GLOBAL const float* lanes,
                             uint laneStride, uint first, uint count, float alpha, float texelSize) {
     float8 r = 0.0f, g = 0.0f, b = 0.0f;
@@ -48,5 +56,7 @@ IBL_FN vec3 brightClusterLd(BrightTarget* t, IBL_GLOBAL const float* bright, IBL
     }
     return v3add(oneByOne, v3(sumLanes(r), sumLanes(g), sumLanes(b)));
 }
+
+IBL_END_NAMESPACE
 
 #endif

@@ -1,13 +1,16 @@
-// Included by ld.h: footprintPatchesWeight with IBL_LANES patches of the output texel in the lanes of float8
-// vectors (lanes.h): brightTexelWeight around each patch centre, its point value or its sub-grid of
-// lobeWeightOfPatch (each lane's own size; the lanes run the largest and mask the rest). This was most of the
-// bright pass of a 32 px level (49 patches per bright texel within three texels, up to 4 x 4 sub-patches
-// each). When a lane could take brightTexelWeight's closed form (lobes under a quarter source texel: tiny
-// faces only) the scalar loop runs instead.
+// For brightFootprintWeight (bright_entry_weight.h): footprintPatchesWeight with IBL_LANES patches of the
+// output texel in the lanes of float8 vectors (lanes.h): brightTexelWeight around each patch centre, its
+// point value or its sub-grid of lobeWeightOfPatch (each lane's own size; the lanes run the largest and mask
+// the rest). This was most of the bright pass of a 32 px level (49 patches per bright texel within three
+// texels, up to 4 x 4 sub-patches each). When a lane could take brightTexelWeight's closed form (lobes under
+// a quarter source texel: tiny faces only) the scalar loop runs instead.
 #ifndef IBL_FOOTPRINT_LANES_H
 #define IBL_FOOTPRINT_LANES_H
 
+#include "bright_texel.h"
 #include "lanes.h"
+
+IBL_BEGIN_NAMESPACE
 
 // D_GGX in every lane.
 IBL_FN float8 dGgxLanes(float8 NoH, float alpha) {
@@ -52,6 +55,7 @@ IBL_FN float8 lobeWeightOfPatchLanes(float8 nx, float8 ny, float8 nz, int face, 
     return select((float8)0.0f, dGgxLanes(NoH, alpha) * NoL * omega, isgreater(NoL, 0.0f));
 }
 
+// The sum of footprintPatchWeight over the S x S grid, with the patches in vector lanes.
 IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, int S,
                                     IBL_GLOBAL const float* e, float alpha, float sourceTexelSize) {
     if (4.0f * alpha < sourceTexelSize) { // narrowLobeClosedFormApplies may hold for some patch
@@ -91,5 +95,7 @@ IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, in
     }
     return sumLanes(sum);
 }
+
+IBL_END_NAMESPACE
 
 #endif

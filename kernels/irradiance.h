@@ -9,8 +9,8 @@
 #ifndef IBL_IRRADIANCE_H
 #define IBL_IRRADIANCE_H
 
+#include "bright_list.h" // the bright-texel list is shared with the specular stage
 #include "cube_sample.h"
-#include "ld.h" // IBL_BRIGHT_ENTRY_FLOATS: the bright-texel list is shared with the specular stage
 #include "sampling.h"
 #include "work_item.h"
 
@@ -67,7 +67,7 @@ IBL_FN vec3 integrateIrradiance(vec3 n, IBL_GLOBAL const float* pyramid, CubePyr
     return v3(r * invSampleCount, g * invSampleCount, b * invSampleCount);
 }
 
-// The bright texels split off the source (kernels/ld.h list layout: centre direction, solid angle,
+// The bright texels split off the source (bright_list.h layout: centre direction, solid angle,
 // excess radiance, face, x, y) integrated exactly: (1 / pi) sum_b B_b max(0, n.d_b) omega_b, the
 // cosine taken at the texel centre (as the brute-force reference does). Returns their E(n) / pi.
 IBL_FN vec3 brightTexelsIrradiance(vec3 n, IBL_GLOBAL const float* bright, uint count) {

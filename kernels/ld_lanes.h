@@ -1,18 +1,24 @@
-// Included by ld.h: integrateLd with a table block's IBL_LD_BLOCK samples in the lanes of float8 vectors
-// (lanes.h), on both backends. The scalar loop ran unvectorized on PoCL at ~80 cycles a sample; with the
-// samples in lanes the frame is per work-item and the direction-to-taps steps are vector operations, on any
-// device (the arithmetic of frameToWorld, cubeCoordFromDirection and cubeBilinearTaps, lane by lane). The
-// texels are not gathered: a bilinear read's left and right taps are 6 consecutive floats, so each lane reads
-// its top and its bottom pair as one vector of 8 and weighs it whole. Twelve gathers of 8 per block were most
-// of the sampled pass on both backends (PoCL's vgatherqps; GCC's scalar loads and inserts).
+// The sampled part of an LD texel (ld.h): integrateLd with a table block's IBL_LD_BLOCK samples in the lanes
+// of float8 vectors (lanes.h), on both backends. The scalar loop ran unvectorized on PoCL at ~80 cycles a
+// sample; with the samples in lanes the frame is per work-item and the direction-to-taps steps are vector
+// operations, on any device (the arithmetic of frameToWorld, cubeCoordFromDirection and cubeBilinearTaps,
+// lane by lane). The texels are not gathered: a bilinear read's left and right taps are 6 consecutive floats,
+// so each lane reads its top and its bottom pair as one vector of 8 and weighs it whole. Twelve gathers of 8
+// per block were most of the sampled pass on both backends (PoCL's vgatherqps; GCC's scalar loads and
+// inserts).
 #ifndef IBL_LD_LANES_H
 #define IBL_LD_LANES_H
 
+#include "cube_sample.h"
 #include "lanes.h"
+#include "ld_table.h"
+#include "sampling.h"
 
 #if IBL_LD_BLOCK != IBL_LANES
 #error "a table block is read as one float8 per component"
 #endif
+
+IBL_BEGIN_NAMESPACE
 
 // cubeBilinearTaps(layout, level, cubeCoordFromDirection((dx, dy, dz))) in each lane: the first float of the
 // top pair of taps, (x0, y0) and (x0 + 1, y0), whose 6 floats are consecutive; of the bottom pair, one row
@@ -72,6 +78,9 @@ IBL_FN float8 tapPairsLane(IBL_GLOBAL const float* pyramid, uint top, uint botto
            vload8(0, pyramid + bottom) * tapPairWeights(w01, w11, k);
 }
 
+// LD for the output direction n: sum of L(l) NoL / sum of NoL over the level's table of sampleCount
+// samples (a whole number of blocks), with `invWeightSum` = 1 / sum of the weights; a table block's samples
+// in the lanes of float8 vectors.
 // A table block at a time; lane k's samples sum into sk, whose RGB are its first 3 floats plus its next 3.
 IBL_FN vec3 integrateLd(vec3 normal, IBL_GLOBAL const float* pyramid, CubePyramidLayout layout,
                         IBL_GLOBAL const float* table, uint sampleCount, float invWeightSum) {
@@ -113,5 +122,7 @@ IBL_FN vec3 integrateLd(vec3 normal, IBL_GLOBAL const float* pyramid, CubePyrami
 #endif
     return v3(red * invWeightSum, green * invWeightSum, blue * invWeightSum);
 }
+
+IBL_END_NAMESPACE
 
 #endif

@@ -10,6 +10,15 @@
 #define IBL_MIP_MAPPING_H
 
 #include "portable.h"
+#ifdef __cplusplus // the names of the mappings, below
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+#endif
 
 IBL_BEGIN_NAMESPACE
 
@@ -80,14 +89,6 @@ IBL_FN uint roughLayerFaceSize(uint baseFaceSize) {
 IBL_END_NAMESPACE
 
 #ifdef __cplusplus
-
-#include <array>
-#include <cctype>
-#include <charconv>
-#include <optional>
-#include <string>
-#include <string_view>
-#include <vector>
 
 namespace ibl {
 

@@ -1,13 +1,16 @@
-// Included by ld.h: narrowFootprintPatchesWeight with IBL_LANES patches of the bright texel in the lanes of
-// float8 vectors (lanes.h). The patches of a sun texel next to an output texel on faces under a quarter-texel
-// lobe (up to 16 x 16 of them, each four lobeTriangleIntegral) were four fifths of the bright pass of a 128
-// px level on PoCL, which ran them scalar. Same arithmetic as cubeFaceDirection, v3normalize,
-// frameFromNormal, frameToLocal, narrowLobeCornersWeight, lobeTriangleIntegral, atanPolynomial and
-// cubePatchSolidAngle, lane by lane.
+// For brightFootprintWeight (bright_entry_weight.h): narrowFootprintPatchesWeight with IBL_LANES patches of
+// the bright texel in the lanes of float8 vectors (lanes.h). The patches of a sun texel next to an output
+// texel on faces under a quarter-texel lobe (up to 16 x 16 of them, each four lobeTriangleIntegral) were four
+// fifths of the bright pass of a 128 px level on PoCL, which ran them scalar. Same arithmetic as
+// cubeFaceDirection, v3normalize, frameFromNormal, frameToLocal, narrowLobeCornersWeight,
+// lobeTriangleIntegral, atanPolynomial and cubePatchSolidAngle, lane by lane.
 #ifndef IBL_NARROW_LOBE_LANES_H
 #define IBL_NARROW_LOBE_LANES_H
 
 #include "lanes.h"
+#include "narrow_lobe.h"
+
+IBL_BEGIN_NAMESPACE
 
 IBL_FN float8 atanPolynomialLanes(float8 x) {
     float8 a = fabs(x);
@@ -70,5 +73,7 @@ IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFac
     }
     return sumLanes(sum);
 }
+
+IBL_END_NAMESPACE
 
 #endif

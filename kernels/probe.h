@@ -16,11 +16,13 @@
 #ifndef IBL_PROBE_H
 #define IBL_PROBE_H
 
+#include "area_lights.h" // part of the runtime (and of probe.glsl); shadePoint does not call it
 #include "brdf.h"
 #include "cube_sample.h"
 #include "mip_mapping.h"
 #include "parallax.h"
 #include "sampling.h"
+#include "shading_point.h"
 
 #ifdef __cplusplus
 IBL_BEGIN_NAMESPACE
@@ -30,27 +32,6 @@ IBL_END_NAMESPACE
 #endif
 
 IBL_BEGIN_NAMESPACE
-
-// Evaluation switches (RuntimeParams.flags).
-#define IBL_RT_SPECULAR (1u << 0)            // specular from the probes
-#define IBL_RT_DIFFUSE (1u << 1)             // diffuse from the SH coefficients
-#define IBL_RT_ENERGY_COMPENSATION (1u << 2) // Filament 4.7.2
-#define IBL_RT_DISNEY_DIFFUSE (1u << 3)      // diffuse times the LUT's Disney term (else Lambert)
-#define IBL_RT_SPECULAR_DOMINANT (1u << 4)   // specularDominantDirection (else the mirror direction)
-#define IBL_RT_DIFFUSE_DOMINANT (1u << 5)    // Listing 23 (else the normal)
-#define IBL_RT_SPECULAR_OCCLUSION (1u << 6)  // Listing 26 from the point's ao
-#define IBL_RT_HORIZON_OCCLUSION (1u << 7)   // Filament 5.6.2.1
-#define IBL_RT_DISTANCE_ROUGHNESS (1u << 8)  // Listing 25 for local probes
-#define IBL_RT_SUN (1u << 9)                 // the sun disk light
-#define IBL_RT_F90_FROM_F0 (1u << 10) // f90 = saturate(50 * 0.33 * (f0.r + f0.g + f0.b)) (Filament 5.6.2)
-#define IBL_RT_SH_OVER_PI (1u << 11)  // the SH evaluates to E / pi (Lambert folded in) instead of E
-#define IBL_RT_SUN_NORMALIZATION (1u << 12) // (alpha / alpha')^2 on the sun's representative-point GGX
-#define IBL_RT_IRRADIANCE_CUBE (1u << 13)   // diffuse from the irradiance cube (E / pi) instead of the SH
-#define IBL_RT_SUN_QUADRATURE (1u << 14)    // sun specular integrated over the disk, not Listing 6's point
-// The distant LD chain's level 0 still holds the sun (the unconvolved source; the extraction's residual
-// from level 1 on): where the lookup reads level 0 with trilinear weight w0, the disk's specular gets 1 - w0,
-// so a mirror shows the sun's own pixels and every roughness counts the sun once.
-#define IBL_RT_SUN_IN_LEVEL0 (1u << 15)
 
 // One LD chain inside a float buffer that may hold several (local probes share one buffer).
 IBL_STRUCT(LdChain) {
@@ -112,18 +93,6 @@ IBL_STRUCT(RuntimeParams) {
     LdChain irradiance;
     // The distant chain's rough layers in the distant buffer (layerCount 0: none).
     RoughLayers distantRoughLayers;
-};
-
-// A shading point. view points from the surface toward the eye (Filament's v); neither vector has to be
-// normalized (a zero normal becomes +Y, a zero view the normal).
-IBL_STRUCT(ShadingPoint) {
-    vec3 position;
-    vec3 normal;
-    vec3 view;
-    vec3 baseColor;
-    float metallic;
-    float perceptualRoughness;
-    float ao;
 };
 
 IBL_STRUCT(ShadeResult) {
@@ -273,15 +242,6 @@ IBL_FN float horizonOcclusion(vec3 r, vec3 n) {
     return horizon * horizon;
 }
 
-// GGX D with 1 - NoH^2 taken as |N x H|^2 (Filament's precise form): near the peak of a lobe as narrow
-// as the sun's, 1 - NoH^2 in fp32 loses all but a few bits to cancellation.
-IBL_FN float D_GGXFromCross(vec3 NxH, float NoH, float alpha) {
-    float a = NoH * alpha;
-    float d = v3dot(NxH, NxH) + a * a; // 0 only for H = -N (NoH saturated to 0): no microfacet there
-    float k = d > 0.0f ? alpha / d : 0.0f;
-    return k * k * IBL_INV_PI;
-}
-
 // Listing 6: the direction toward the point of the sun disk closest to R (R itself inside the disk).
 IBL_FN vec3 sunSpecularDirection(SunDisk sun, vec3 R) {
     vec3 D = sun.direction;
@@ -292,11 +252,6 @@ IBL_FN vec3 sunSpecularDirection(SunDisk sun, vec3 R) {
     // R opposite to D has no closest side: any perpendicular will do.
     vec3 Sn = v3safeNormalize(S, frameFromNormal(D).t);
     return DdotR < d ? v3normalize(v3add(v3scale(D, d), v3scale(Sn, r))) : R;
-}
-
-IBL_FN vec3 fresnelSchlickRgb(vec3 f0, float f90, float LoH) {
-    float fc = pow5(1.0f - LoH);
-    return v3(f0.x + (f90 - f0.x) * fc, f0.y + (f90 - f0.y) * fc, f0.z + (f90 - f0.z) * fc);
 }
 
 // Listing 6's specular: GGX at the representative point L (the disk point closest to R), per unit E_perp
@@ -558,9 +513,5 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER
 }
 
 IBL_END_NAMESPACE
-
-// The area lights build on this header's material and sun helpers; they are part of the runtime (and of
-// probe.glsl) without changing what shadePoint computes.
-#include "area_lights.h"
 
 #endif

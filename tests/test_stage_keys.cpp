@@ -194,10 +194,12 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     std::set<std::string> stagesAndManifest = stages;
     stagesAndManifest.insert("manifest");
     const std::map<std::string, std::set<std::string>> reached = {
-        // The LD kernel: both LD chains, and the irradiance kernel that includes ld.h for its bright texels.
-        // The glTF export re-filters with the LD chain's code; the sun-in-probe check bakes the shipped
-        // probe.
-        {"kernels/ld.h", {"specular-ld", "probe-ld", "irradiance-cube", "gltf-export", "sun-in-probe"}},
+        // The LD kernel: both LD chains. The glTF export re-filters with the LD chain's code; the
+        // sun-in-probe check bakes the shipped probe. The bright-texel list's layout reaches the irradiance
+        // kernel too, which integrates the same list.
+        {"kernels/ld.h", {"specular-ld", "probe-ld", "gltf-export", "sun-in-probe"}},
+        {"kernels/bright_list.h",
+         {"specular-ld", "probe-ld", "irradiance-cube", "gltf-export", "sun-in-probe"}},
         {"kernels/dfg.h", {"dfg-lut", "sun-in-probe"}},
         {"kernels/cube.h", stagesAndManifest}, // the face convention: ingest, every kernel, the cube headers
         {"baker/src/stages/sh_projection.cpp", {"diffuse-sh", "sun-in-probe"}},
@@ -212,7 +214,8 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     }
     EXPECT_EQ(sources.identity(), unchanged); // reverted: every identity is back
 
-    // And through the keys: an LD-kernel edit re-runs the LD stages and what reads them, not the DFG LUT.
+    // And through the keys: an LD-kernel edit re-runs the LD stages and what reads them, not the DFG LUT or
+    // the irradiance cube.
     sources.append("kernels/ld.h", "\n// an edited comment\n");
     const ibl::Plan plan = everyKindPlan();
     const Keys inputs = fakeInputHashes(plan);
@@ -220,8 +223,7 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
         changedIds(ibl::planStageKeys(plan, inputs, "opencl", unchanged),
                    ibl::planStageKeys(plan, inputs, "opencl", sources.identity()));
     // (gltf and preview read the specular chain.)
-    EXPECT_EQ(changed,
-              (std::set<std::string>{"specular", "irradiance", "probe:pavilion", "gltf", "preview"}));
+    EXPECT_EQ(changed, (std::set<std::string>{"specular", "probe:pavilion", "gltf", "preview"}));
 }
 
 // manifest.json is written by every bake that is not up to date; it records its writer's code so that the

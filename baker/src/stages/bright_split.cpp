@@ -1,8 +1,8 @@
 #include "bright_split.h"
 #include "iblbake/core/numeric.h"
 
+#include <bright_list.h>
 #include <cube.h>
-#include <ld.h>
 
 #include <algorithm>
 #include <cmath>

@@ -13,13 +13,13 @@ namespace ibl {
 
 struct BrightTexels {
     std::vector<float> entries;  // IBL_BRIGHT_ENTRY_FLOATS per texel, grouped by cluster
-    std::vector<float> clusters; // IBL_BRIGHT_CLUSTER_FLOATS per cluster (kernels/ld.h)
+    std::vector<float> clusters; // IBL_BRIGHT_CLUSTER_FLOATS per cluster (kernels/bright_list.h)
     std::uint32_t count() const;
     std::uint32_t clusterCount() const;
 };
 
-// The entries' first IBL_BRIGHT_LANE_FLOATS floats component by component (kernels/ld.h, brightLaneStride),
-// the rest of each component's row zeros.
+// The entries' first IBL_BRIGHT_LANE_FLOATS floats component by component (kernels/bright_list.h,
+// brightLaneStride), the rest of each component's row zeros.
 std::vector<float> brightEntryLanes(const BrightTexels& bright);
 
 struct BrightSplit {
