@@ -1,7 +1,6 @@
 #include "batch_options.h"
 
-#include "batch_progress.h"
-
+#include <iblbake/batch_run/batch_progress.h>
 #include <iblbake/core/error.h>
 
 #include <cstdio>

@@ -2,7 +2,6 @@
 #include "input_options.h"
 #include "setting_flags.h"
 
-#include <iblbake/baker/products.h>
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
 
@@ -100,14 +99,6 @@ Error withFlag(const SettingError& error, const CalibrationOptions& calibration)
     // The source's own flag: --scale, --ev100, --illuminance, --sun-illuminance, --sky-luminance.
     return Error(std::string("--") + calibrationSourceName(calibration.settings().source) + ": " +
                  error.what());
-}
-
-void writeSunJson(OutputSet& outputs, const CalibrationOptions& options, const CalibrationRecord& record,
-                  const std::optional<DiskLight>& sun) {
-    if (options.sunJson.empty() || !sun) return;
-    outputs.writeFile(options.sunJson, [&](const std::filesystem::path& temporary) {
-        writeFileBytes(temporary, sunJson(*sun, record) + "\n");
-    });
 }
 
 PreparedEnvironment ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,

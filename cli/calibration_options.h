@@ -1,16 +1,8 @@
 // Calibration options shared by the commands that read an HDRI (calibrate, specular, diffuse): one
 // calibration source, and the optional sun extraction. The preparation itself is the library's
-// (iblbake/baker/environment.h); these turn the options into its settings and its errors into flag wording.
-//
-//   CalibrationOptions calibration;          // in the command's option struct
-//   calibration.addTo(*cmd);                 // when building the subcommand
-//   ...
-//   PreparedEnvironment in = ingestCalibrated(input, calibration, size);  // prepareEnvironment, printed
-//   keyValues = ldChainKeyValues(..., in.record, in.sun);  // products.h
-//   OutputSet outputs;                                        // every output of the command
-//   ... outputs.writeFile(main output, ...) ...
-//   writeSunJson(outputs, calibration, in.record, in.sun);    // with --sun-json
-//   outputs.commit();                                         // all of them, or none
+// (iblbake/baker/environment.h), and so are the flows that write the sun's light with --sun-json
+// (iblbake/baker/product_flows.h, product_writers.h writeSunProduct); these turn the options into its
+// settings and its errors into flag wording.
 #pragma once
 
 #include <iblbake/baker/calibration.h>
@@ -18,8 +10,6 @@
 #include <iblbake/baker/ingest.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/core/error.h>
-#include <iblbake/ktx2/atomic_file.h>
-#include <iblbake/ktx2/output_set.h>
 
 #include <CLI/CLI.hpp>
 
@@ -52,10 +42,6 @@ struct CalibrationOptions {
 // A library error about one setting with the flag that set it in front, e.g. "--sun-illuminance:
 // park.hdr: no sun detected: ..." (`calibration`: the chosen source's flag).
 Error withFlag(const SettingError& error, const CalibrationOptions& calibration);
-
-// With --sun-json and a sun: the light, added to the command's outputs (committed with them).
-void writeSunJson(OutputSet& outputs, const CalibrationOptions& options, const CalibrationRecord& record,
-                  const std::optional<DiskLight>& sun);
 
 struct InputOptions;
 

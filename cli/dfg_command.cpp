@@ -2,9 +2,7 @@
 #include "commands.h"
 #include "common_options.h"
 
-#include <iblbake/baker/dfg_lut.h>
-#include <iblbake/baker/exr_output.h>
-#include <iblbake/baker/products.h>
+#include <iblbake/baker/product_writers.h>
 #include <iblbake/ktx2/atomic_file.h>
 
 #include <chrono>
@@ -46,13 +44,10 @@ Action addDfgCommand(CLI::App& app) {
         double ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-        ExrOutputOptions exr;
-        exr.channels = 3;
-        exr.pixelType = opts->half ? PixelType::Half : PixelType::Float;
-        exr.attributes = dfgLutMetadata("iblbake:", "scanline", opts->settings.sampleCount);
-        exr.attributes.emplace_back("iblbake:version", IBLBAKE_VERSION);
-        exr.attributes.emplace_back("Software", "iblbake " IBLBAKE_VERSION);
-        writeExr(opts->output, lut, exr);
+        OutputSet outputs;
+        writeDfgLutProduct(outputs, lut, opts->settings.sampleCount,
+                           opts->half ? DfgLutFile::ExrHalf : DfgLutFile::ExrFloat, opts->output);
+        outputs.commit();
         BackendOptions::storeBuiltKernels(executor);
         std::printf("wrote %s (%ux%u DFG LUT, %u samples/texel, %s, %.1f ms)\n", opts->output.c_str(),
                     opts->settings.size, opts->settings.size, opts->settings.sampleCount,

@@ -1,28 +1,19 @@
 // iblbake diffuse: HDRI in, L2 SH (radiance and pre-scaled irradiance) out as JSON, optionally a small
-// irradiance cube as KTX2.
+// irradiance cube as KTX2. The flow is the library's (iblbake/baker/product_flows.h bakeDiffuseProducts);
+// this parses, prepares and prints.
 #include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/baker/ingest.h>
-#include <iblbake/baker/irradiance.h>
-#include <iblbake/baker/products.h>
-#include <iblbake/baker/sh.h>
+#include <iblbake/baker/product_flows.h>
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
-#include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
-#include <iblbake/ktx2/ktx2.h>
-#include <iblbake/ktx2/output_set.h>
-
-#include <nlohmann/json.hpp>
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <optional>
 
@@ -46,7 +37,44 @@ struct DiffuseOptions {
     int size = 256;
     BackendOptions backend;
     CalibrationOptions calibration;
+
+    // The job of these options; throws ibl::Error naming the flag of an impossible combination.
+    DiffuseJob job() const;
 };
+
+DiffuseJob DiffuseOptions::job() const {
+    DiffuseJob job;
+    const IrradianceMethod method = parseIrradianceMethod(irradianceMethod);
+    if (size < 1 || size > limits::kMaxFaceSize)
+        throw Error("--size: " + std::to_string(size) + " is not from 1 to " +
+                    std::to_string(limits::kMaxFaceSize));
+    if (!irradianceCube.empty() && method == IrradianceMethod::Sampled && (size & (size - 1)) != 0)
+        throw Error("--size: " + std::to_string(size) +
+                    " is not a power of two (needed by --irradiance-method sampled)");
+    job.window.automatic = window == "auto";
+    if (!job.window.automatic) job.window.window = parseShWindow(window);
+    job.window.parameter = windowParam;
+    if (windowParam && (job.window.automatic || job.window.window == ShWindow::None))
+        throw Error("--window-param: needs --window sloan, hanning or lanczos");
+    job.requestedWindow = window;
+    job.rotateDegrees = input.rotateDegrees;
+    job.document = output;
+    job.sunJson = calibration.sunJson;
+    if (irradianceCube.empty()) return job;
+    if (std::filesystem::absolute(irradianceCube) == std::filesystem::absolute(output))
+        throw Error("--irradiance-cube: " + irradianceCube + " is also the JSON output");
+    IrradianceCubeJob& cube = job.cube.emplace();
+    cube.method = method;
+    cube.settings.faceSize = irradianceSize;
+    cube.settings.quality = parseQuality(quality);
+    cube.settings.samples = samples;
+    cube.formatName = format;
+    parseKtx2Format(format); // before any work
+    cube.clampToFormat = clampToFormat;
+    cube.profile = profile;
+    cube.file = irradianceCube;
+    return job;
+}
 
 } // namespace
 
@@ -98,128 +126,34 @@ Action addDiffuseCommand(CLI::App& app) {
 
     return [o] {
         auto start = std::chrono::steady_clock::now();
-        const bool wantCube = !o->irradianceCube.empty();
-        const IrradianceMethod method = parseIrradianceMethod(o->irradianceMethod);
-        const Ktx2Format format = parseKtx2Format(o->format);
-        if (o->size < 1 || o->size > limits::kMaxFaceSize)
-            throw Error("--size: " + std::to_string(o->size) + " is not from 1 to " +
-                        std::to_string(limits::kMaxFaceSize));
-        if (wantCube && method == IrradianceMethod::Sampled && (o->size & (o->size - 1)) != 0)
-            throw Error("--size: " + std::to_string(o->size) +
-                        " is not a power of two (needed by --irradiance-method sampled)");
-        ShWindowSettings window;
-        window.automatic = o->window == "auto";
-        if (!window.automatic) window.window = parseShWindow(o->window);
-        window.parameter = o->windowParam;
-        if (o->windowParam && (window.automatic || window.window == ShWindow::None))
-            throw Error("--window-param: needs --window sloan, hanning or lanczos");
-        if (wantCube && std::filesystem::absolute(o->irradianceCube) == std::filesystem::absolute(o->output))
-            throw Error("--irradiance-cube: " + o->irradianceCube + " is also the JSON output");
-        // Fail on unwritable outputs before the work; the files appear only when everything succeeded.
-        checkOutputFile(o->output);
-        if (wantCube) checkOutputFile(o->irradianceCube);
-        if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
-        OutputSet outputs;
-
+        DiffuseJob job = o->job();
+        checkDiffuseOutputs(job); // before the work; the files appear only when everything succeeded
         // Only the sampled irradiance cube runs on the backend; the SH are projected on the CPU.
-        const bool needsBackend = wantCube && method == IrradianceMethod::Sampled;
+        const bool needsBackend = job.cube && job.cube->method == IrradianceMethod::Sampled;
         std::future<Executor> pendingExecutor;
         if (needsBackend) pendingExecutor = o->backend.startExecutor();
         const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size);
         const Executor executor = needsBackend ? pendingExecutor.get() : Executor::cpu();
-        const SourceEnvironment& env = input.env;
-        const PreparedEnvironment& calibration = input;
-        const double ingestMs = millisecondsSince(start);
-        const IngestReport& r = env.report;
+        job.ingestMilliseconds = millisecondsSince(start);
 
-        auto shStart = std::chrono::steady_clock::now();
-        DiffuseSH sh = bakeDiffuseSH(env.cube, window);
-        const double shMs = millisecondsSince(shStart);
-        const ShWindowResult& w = sh.window;
-        auto percent = [&](const glm::dvec3& v) { // the worst channel, relative to its mean irradiance
-            double worst = std::numeric_limits<double>::infinity();
-            for (int c = 0; c < 3; ++c)
-                if (w.meanIrradiance[c] > 0.0) worst = std::min(worst, v[c] / w.meanIrradiance[c]);
-            return std::isfinite(worst) ? 100.0 * worst : 0.0;
-        };
-        std::printf("sh      L2 from %d px faces; window %s", env.cube.faceSize, shWindowName(w.window));
-        if (w.window != ShWindow::None)
-            std::printf(" %s=%.6g", w.window == ShWindow::Sloan ? "lambda" : "w", w.parameter);
-        std::printf(" (%s), band factors %.4f %.4f\n", w.searched ? "searched" : "given", w.factors[1],
-                    w.factors[2]);
-        std::printf("        min irradiance before %.6g %.6g %.6g, after %.6g %.6g %.6g "
-                    "(worst channel: %.3f%% -> %.3f%% of its mean)\n",
-                    w.minBefore.x, w.minBefore.y, w.minBefore.z, w.minAfter.x, w.minAfter.y, w.minAfter.z,
-                    percent(w.minBefore), percent(w.minAfter));
-        o->backend.printTiming(executor, "sh-projection", shMs);
-
-        nlohmann::json cubeJson;
-        double cubeMs = 0.0;
-        if (wantCube) {
-            auto cubeStart = std::chrono::steady_clock::now();
-            IrradianceSettings settings;
-            settings.faceSize = o->irradianceSize;
-            settings.quality = parseQuality(o->quality);
-            settings.samples = o->samples;
-            CubeMap cube;
-            std::uint64_t shClamped = 0;
-            if (method == IrradianceMethod::Sampled)
-                cube = bakeIrradianceCube(env.cube, settings, executor);
-            else
-                cube = irradianceCubeFromSH(sh.irradiance, o->irradianceSize, &shClamped);
-            cubeMs = millisecondsSince(cubeStart);
-            const std::string methodText = irradianceMethodText(method, irradianceSamplesFor(settings));
-            Ktx2KeyValues kv = irradianceKeyValues(methodText, r.workingColorSpace,
-                                                   std::filesystem::path(r.file).filename().string(),
-                                                   r.latLongPixels, calibration.record, calibration.sun);
-            kv.emplace_back(kCubeProfileKey, o->profile);
-            CubeMapChain chain;
-            chain.levels.push_back(std::move(cube));
-            const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
-            Ktx2WriteStats stats;
-            outputs.writeFile(o->irradianceCube, [&](const std::filesystem::path& temporary) {
-                stats = writeProductCube(temporary, chain, format, kv, storage);
+        const DiffuseProducts products =
+            bakeDiffuseProducts(input, job, executor, [&](const char* stage, double ms) {
+                o->backend.printTiming(executor, stage, ms);
             });
-            std::printf("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
-                        o->irradianceSize, o->irradianceMethod.c_str(), o->format.c_str(), cubeMs,
-                        (unsigned long long)stats.clampedTexels, (unsigned long long)shClamped);
-            printStorage(o->irradianceCube, o->format, storage);
-            cubeJson = {{"file", o->irradianceCube},
-                        {"faceSize", o->irradianceSize},
-                        {"format", o->format},
-                        {"method", irradianceMethodName(method)},
-                        {"methodDetail", methodText},
-                        {"normalization", kIrradianceNormalization},
-                        {"clampedTexels", stats.clampedTexels},
-                        {"shNegativeTexels", shClamped}};
-            cubeJson.update(productStorageToJson(storage));
-            if (method == IrradianceMethod::Sampled) cubeJson["samples"] = irradianceSamplesFor(settings);
-            o->backend.printTiming(executor, "irradiance-cube", cubeMs);
-        }
-
-        const DiffuseSource source{r.file,
-                                   r.width,
-                                   r.height,
-                                   layoutName(r.layout),
-                                   r.inputColorSpace,
-                                   env.cube.faceSize,
-                                   o->input.rotateDegrees,
-                                   r.latLongPixels};
-        nlohmann::json doc =
-            diffuseDocument(sh, o->window, r.workingColorSpace, source, calibration.record, calibration.sun);
-        doc["timing"] = {{"ingestMs", ingestMs}, {"shMs", shMs}, {"irradianceCubeMs", cubeMs}};
-        if (wantCube) doc["irradianceCube"] = cubeJson;
-
-        outputs.writeFile(o->output, [&](const std::filesystem::path& temporary) {
-            writeFileBytes(temporary, doc.dump(2) + '\n');
-        });
-        writeSunJson(outputs, o->calibration, calibration.record, calibration.sun);
-        outputs.commit();
         BackendOptions::storeBuiltKernels(executor);
-        std::printf("wrote   %s%s%s\n", o->output.c_str(), wantCube ? " and " : "",
-                    wantCube ? o->irradianceCube.c_str() : "");
-        std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n", ingestMs, shMs,
-                    cubeMs, executor.description().c_str(), millisecondsSince(start));
+        std::printf("%s", shWindowText(products.sh.window, input.env.cube.faceSize).c_str());
+        if (products.cube) {
+            std::printf("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
+                        o->irradianceSize, o->irradianceMethod.c_str(), o->format.c_str(),
+                        products.cubeMilliseconds, (unsigned long long)products.cube->stats.clampedTexels,
+                        (unsigned long long)products.shNegativeTexels);
+            printStorage(o->irradianceCube, o->format, products.cube->storage);
+        }
+        std::printf("wrote   %s%s%s\n", o->output.c_str(), job.cube ? " and " : "",
+                    job.cube ? o->irradianceCube.c_str() : "");
+        std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n",
+                    job.ingestMilliseconds, products.shMilliseconds, products.cubeMilliseconds,
+                    executor.description().c_str(), millisecondsSince(start));
         return 0;
     };
 }

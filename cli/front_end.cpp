@@ -8,9 +8,9 @@
 #include "bake_options.h"
 #include "batch_options.h"
 #include "plan_command.h"
-#include "scene_progress.h"
 
 #include <iblbake/bake_state/bake_state.h>
+#include <iblbake/bake_state/console_progress.h>
 #include <iblbake/scene/scene.h>
 
 #include <cerrno>
@@ -42,7 +42,7 @@ std::optional<int> answerUpToDateBake(int argc, char** argv) {
         const ibl::Scene scene = options.loadScene();
         const ibl::UpToDate upToDate = ibl::checkBakeUpToDate(scene, options.bakeOptions());
         if (!upToDate.upToDate) return std::nullopt;
-        ibl::cli::ConsoleProgress progress(ibl::cli::chooseProgressMode(options.quiet, options.json));
+        ibl::ConsoleProgress progress(ibl::chooseProgressMode(options.quiet, options.json));
         ibl::reportUpToDateBake(scene, upToDate, progress, start);
         return 0;
     } catch (...) { // CLI::ParseError, CLI::Success (--help), ibl::Error: the engine reports them
@@ -65,13 +65,10 @@ std::optional<int> answerUpToDateBatch(int argc, char** argv) {
         if (options.force) return std::nullopt;
         manifest = ibl::loadBatchManifest(options.manifest);
         shard = ibl::cli::chooseShard(options);
-        const ibl::BakeOptions bakeOptions = options.bakeOptions();
-        for (const ibl::BatchItem& item : manifest.items) {
-            if (!ibl::inShard(item, shard)) continue;
-            ibl::UpToDate upToDate = ibl::checkBakeUpToDate(ibl::batchItemScene(manifest, item), bakeOptions);
-            if (!upToDate.upToDate) return std::nullopt;
-            known.emplace(item.index, std::move(upToDate));
-        }
+        std::optional<ibl::KnownUpToDate> allUpToDate =
+            ibl::shardUpToDate(manifest, shard, options.bakeOptions());
+        if (!allUpToDate) return std::nullopt;
+        known = std::move(*allUpToDate);
     } catch (...) {
         return std::nullopt;
     }

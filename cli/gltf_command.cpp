@@ -48,27 +48,23 @@ Action addGltfCommand(CLI::App& app) {
 
     return [o] {
         auto start = std::chrono::steady_clock::now();
-        const fs::path dir(o->bakeDir), output(o->output);
-        if (output.extension() != ".gltf") throw Error(o->output + ": the glTF is written as .gltf (JSON)");
-        GltfExportSource source{dir / "specular.ktx2", dir / "diffuse.json", std::nullopt};
-        if (fs::exists(dir / "sun.json")) source.sun = dir / "sun.json";
-        GltfExport gltf;
+        if (fs::path(o->output).extension() != ".gltf")
+            throw Error(o->output + ": the glTF is written as .gltf (JSON)");
+        std::optional<Executor> executor; // only to refilter
+        GltfExported exported;
         try {
-            gltf = readBakeForGltf(source, {o->minFaceSize, o->quality});
+            exported =
+                exportGltf(gltfExportSourceIn(o->bakeDir), {o->minFaceSize, o->quality}, o->output,
+                           [&]() -> const Executor& { return executor.emplace(o->backend.makeExecutor()); });
         } catch (const SettingError& e) {
             throw Error(flaggedMessage(e));
         }
-        std::optional<Executor> executor; // only to refilter
-        if (gltf.refilter) {
-            executor = o->backend.makeExecutor();
-            auto bakeStart = std::chrono::steady_clock::now();
-            refilterForGltf(gltf, *executor);
+        const GltfExport& gltf = exported.gltf;
+        if (gltf.refilter)
             std::printf("refilter %d levels %d..%d px, %s: %.1f ms\n", gltf.refilter->levels,
                         gltf.baseFaceSize, gltf.lowestFaceSize, executor->description().c_str(),
-                        millisecondsSince(bakeStart));
-        }
+                        exported.refilterMilliseconds);
         const GltfIblScene& scene = gltf.scene;
-        writeGltfIbl(output, scene);
         if (executor) BackendOptions::storeBuiltKernels(*executor);
         std::printf("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
                     o->output.c_str(), scene.specular.levels.size(), scene.specular.levels.front().faceSize,

@@ -1,5 +1,7 @@
 #include "input_options.h"
 
+#include <iblbake/core/limits.h>
+
 #include <cstdio>
 
 namespace ibl::cli {
@@ -19,6 +21,25 @@ void InputOptions::addTo(CLI::App& command) {
     addLatLongPixelsOption(command, latLongPixels);
 }
 
+void OneInputOptions::addTo(CLI::App& command, const char* sizeHelp) {
+    command.add_option("input", input, "HDR environment")->required();
+    command.add_option("--size", size, sizeHelp)->check(CLI::Range(0, limits::kMaxFaceSize));
+    command.add_option("--layout", layout, "auto, latlong, exr-cube, hcross, vcross, hstrip, vstrip")
+        ->capture_default_str();
+    command.add_option("--input-colorspace", inputColorSpace,
+                       "input colour space (default: file metadata, else lin_rec709; sRGB for 8-bit files)");
+    addLatLongPixelsOption(command, latLongPixels);
+}
+
+IngestSettings OneInputOptions::settings() const {
+    IngestSettings s;
+    s.layout = parseLayout(layout);
+    s.inputColorSpace = inputColorSpace;
+    s.sourceFaceSize = size;
+    s.latLongPixels = parseLatLongPixels(latLongPixels);
+    return s;
+}
+
 void addLatLongPixelsOption(CLI::App& command, std::string& latLongPixels) {
     command
         .add_option("--latlong-pixels", latLongPixels,
@@ -36,12 +57,6 @@ IngestSettings InputOptions::settings(int sourceFaceSize) const {
     s.sourceFaceSize = sourceFaceSize;
     s.latLongPixels = parseLatLongPixels(latLongPixels);
     return s;
-}
-
-std::string layoutText(const IngestReport& r) {
-    std::string text = layoutName(r.layout);
-    if (r.latLongPixels) text += std::string(" (pixels ") + latLongPixelsName(*r.latLongPixels) + ")";
-    return text;
 }
 
 void printIngestReport(const IngestReport& r) {

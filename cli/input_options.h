@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iblbake/baker/ingest.h>
+#include <iblbake/baker/inspect.h>
 
 #include <CLI/CLI.hpp>
 
@@ -25,11 +26,21 @@ struct InputOptions {
     std::vector<std::filesystem::path> files() const { return {inputs.begin(), inputs.end()}; }
 };
 
-// --latlong-pixels, for the commands that take the input options one by one (calibrate, inspect).
-void addLatLongPixelsOption(CLI::App& command, std::string& latLongPixels);
+// The input of the commands that read one HDRI and measure it (calibrate, inspect): the file, the source
+// cube's face size (0: from the input), layout, input colour space, lat-long pixel placement.
+struct OneInputOptions {
+    std::string input;
+    int size = 0;
+    std::string layout = "auto";
+    std::string inputColorSpace;
+    std::string latLongPixels = "auto";
 
-// The input's layout as the commands print it: "latlong (pixels centre)", "exr-cube".
-std::string layoutText(const IngestReport& report);
+    void addTo(CLI::App& command, const char* sizeHelp);
+    IngestSettings settings() const;
+};
+
+// --latlong-pixels, for the commands that take the input options one by one (preview, OneInputOptions).
+void addLatLongPixelsOption(CLI::App& command, std::string& latLongPixels);
 
 // The two report lines every baking command prints about its input.
 void printIngestReport(const IngestReport& report);

@@ -6,6 +6,7 @@
 #include <iblbake/bake_state/code_identity.h>
 #include <iblbake/baker/process_memory.h>
 #include <iblbake/core/error.h>
+#include <iblbake/core/one_line.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -13,27 +14,7 @@
 #include <new>
 #include <string>
 
-namespace {
-
-// Library messages (OpenImageIO, OpenEXR, an OpenCL build log) may span lines; the CLI's contract is
-// one line per error, so line breaks become "; ".
-std::string oneLine(std::string message) {
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-        message.pop_back();
-    std::string out;
-    for (std::size_t i = 0; i < message.size(); ++i) {
-        if (message[i] != '\n') {
-            out += message[i];
-            continue;
-        }
-        while (i + 1 < message.size() && message[i + 1] == '\n')
-            ++i;
-        out += "; ";
-    }
-    return out;
-}
-
-} // namespace
+namespace {} // namespace
 
 int main(int argc, char** argv) {
     ibl::reuseFreedBlocks();
@@ -73,21 +54,21 @@ int main(int argc, char** argv) {
             if (command->parsed()) return action();
         return 2;
     } catch (const ibl::SettingError& e) { // a library error about a setting: the flag that set it in front
-        std::fprintf(stderr, "iblbake: error: %s\n", oneLine(ibl::cli::flaggedMessage(e)).c_str());
+        std::fprintf(stderr, "iblbake: error: %s\n", ibl::oneLine(ibl::cli::flaggedMessage(e)).c_str());
         return 1;
     } catch (const ibl::Error& e) {
-        std::fprintf(stderr, "iblbake: error: %s\n", oneLine(e.what()).c_str());
+        std::fprintf(stderr, "iblbake: error: %s\n", ibl::oneLine(e.what()).c_str());
         return 1;
     } catch (const std::filesystem::filesystem_error& e) { // a path the user gave: its name and the reason
         std::fprintf(stderr, "iblbake: error: %s: %s\n",
-                     oneLine(ibl::printableForMessage(e.path1().string())).c_str(),
+                     ibl::oneLine(ibl::printableForMessage(e.path1().string())).c_str(),
                      e.code().message().c_str());
         return 1;
     } catch (const std::bad_alloc&) { // the limits (iblbake/core/limits.h) keep inputs from getting here
         std::fprintf(stderr, "iblbake: error: not enough memory\n");
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "iblbake: internal error: %s\n", oneLine(e.what()).c_str());
+        std::fprintf(stderr, "iblbake: internal error: %s\n", ibl::oneLine(e.what()).c_str());
         return 3;
     }
 }

@@ -2,8 +2,8 @@
 #include "bake_options.h"
 #include "commands.h"
 #include "plan_command.h"
-#include "scene_progress.h"
 
+#include <iblbake/bake_state/console_progress.h>
 #include <iblbake/baker/bake_scene.h>
 #include <iblbake/core/error.h>
 #include <iblbake/scene/scene.h>

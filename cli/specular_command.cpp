@@ -1,27 +1,17 @@
-// iblbake specular: HDRI in, prefiltered specular (LD) cube mip chain out as KTX2.
+// iblbake specular: HDRI in, prefiltered specular (LD) cube mip chain out as KTX2. The flow is the
+// library's (iblbake/baker/product_flows.h bakeSpecularProducts); this parses, prepares and prints.
 #include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/baker/exr_output.h>
-#include <iblbake/baker/ingest.h>
-#include <iblbake/baker/preview.h>
-#include <iblbake/baker/products.h>
-#include <iblbake/baker/specular.h>
-#include <iblbake/core/error.h>
+#include <iblbake/baker/product_flows.h>
 #include <iblbake/core/limits.h>
-#include <iblbake/ktx2/atomic_file.h>
 #include <iblbake/ktx2/cube_profile.h>
-#include <iblbake/ktx2/ktx2.h>
-#include <iblbake/ktx2/output_set.h>
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
-#include <optional>
 
 namespace ibl::cli {
 
@@ -46,23 +36,26 @@ struct SpecularOptions {
     CalibrationOptions calibration;
 };
 
-// One EXR per level: the six faces side by side in +X, -X, +Y, -Y, +Z, -Z order (OpenGL orientation).
-void writeDebugExr(const std::filesystem::path& dir, const CubeMapChain& chain, MipMapping mapping) {
-    for (std::size_t m = 0; m < chain.levels.size(); ++m) {
-        const CubeMap& level = chain.levels[m];
-        ImageRGBA strip(6 * level.faceSize, level.faceSize);
-        for (int f = 0; f < 6; ++f)
-            for (int y = 0; y < level.faceSize; ++y)
-                for (int x = 0; x < level.faceSize; ++x)
-                    strip.at(f * level.faceSize + x, y) = level.faces[f].at(x, y);
-        ExrOutputOptions exr;
-        exr.channels = 3;
-        exr.attributes = {{"iblbake:layout", "horizontal strip +X,-X,+Y,-Y,+Z,-Z, OpenGL face orientation"},
-                          {"iblbake:level", std::to_string(m)},
-                          {"iblbake:roughnessMapping", mipMappingName(mapping)},
-                          {"iblbake:roughnessMappingMeaning", mipMappingMeaning(mapping)}};
-        writeExr(dir / ("level_" + std::to_string(m) + ".exr"), strip, exr);
-    }
+// The library's job of these options.
+SpecularJob specularJob(const SpecularOptions& o) {
+    SpecularJob job;
+    job.settings.levels = o.levels;
+    job.settings.quality = parseQuality(o.quality);
+    job.settings.samples = o.samples;
+    job.settings.mapping = parseMipMapping(o.mipMapping);
+    job.settings.lodBias = o.lodBias;
+    job.faceSize = o.size;
+    job.rotateDegrees = o.input.rotateDegrees;
+    job.format = parseKtx2Format(o.format);
+    job.clampToFormat = o.clampToFormat;
+    job.profile = o.profile;
+    job.sunMaxSolidAngle = o.calibration.sunMaxSolidAngle;
+    job.chain = o.output;
+    job.roughLayers = o.roughLayers;
+    job.exrDirectory = o.exrDir;
+    job.preview = o.preview;
+    job.sunJson = o.calibration.sunJson;
+    return job;
 }
 
 } // namespace
@@ -106,103 +99,38 @@ Action addSpecularCommand(CLI::App& app) {
 
     return [o] {
         auto start = std::chrono::steady_clock::now();
-        const Ktx2Format format = parseKtx2Format(o->format);
-        SpecularSettings settings;
-        settings.levels = o->levels;
-        settings.quality = parseQuality(o->quality);
-        settings.samples = o->samples;
-        settings.mapping = parseMipMapping(o->mipMapping);
-        settings.lodBias = o->lodBias;
-        validateSpecularSettings(settings, o->size);
-        // Every output checked before any work: a bad --preview must not fail after -o was written.
-        checkOutputFile(o->output);
-        if (!o->preview.empty()) checkOutputFile(o->preview);
-        if (!o->roughLayers.empty()) checkOutputFile(o->roughLayers);
-        if (!o->exrDir.empty() && std::filesystem::exists(o->exrDir) &&
-            !std::filesystem::is_directory(o->exrDir))
-            throw Error(o->exrDir + ": is not a directory (--exr)");
-        if (!o->exrDir.empty()) // its files, or the directory the command will make
-            checkOutputFile(std::filesystem::is_directory(o->exrDir) ? o->exrDir + "/level_0.exr"
-                                                                     : o->exrDir);
-        if (!o->calibration.sunJson.empty()) checkOutputFile(o->calibration.sunJson);
+        const SpecularJob job = specularJob(*o);
+        validateSpecularSettings(job.settings, o->size);
+        checkSpecularOutputs(job); // every output before any work: a bad --preview must not fail after -o
         std::future<Executor> pendingExecutor = o->backend.startExecutor(standaloneSpecularBackend(
-            parseBackend(o->backend.backend), !o->backend.device.empty(), settings, o->size));
-        // The cube with the sun is kept for level 0 (below).
+            parseBackend(o->backend.backend), !o->backend.device.empty(), job.settings, o->size));
+        // The cube with the sun is kept for level 0.
         PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
         const Executor executor = pendingExecutor.get();
-        const SourceEnvironment& env = input.env;
-        const PreparedEnvironment& calibration = input;
         const double ingestMs = millisecondsSince(start);
-        const IngestReport& r = env.report;
 
-        std::vector<SpecularLevelTiming> timings;
-        auto bakeStart = std::chrono::steady_clock::now();
-        SpecularWithRoughLayers baked;
-        if (o->roughLayers.empty()) // the ingested cube becomes level 0, moved rather than copied
-            baked.chain = bakeSpecular(std::move(input.env.cube), settings, executor, &timings);
-        else
-            baked = bakeSpecularWithRoughLayers(env.cube, settings, executor, &timings);
-        CubeMapChain& chain = baked.chain;
-        const double bakeMs = millisecondsSince(bakeStart);
-        for (const SpecularLevelTiming& t : timings)
-            std::printf("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.level, t.perceptualRoughness,
-                        chain.levels[std::size_t(t.level)].faceSize, t.milliseconds);
-
-        const int levelCount = int(chain.levels.size());
-        LdChainProduct ld;
-        ld.mapping = settings.mapping;
-        ld.levelCount = levelCount;
-        ld.colorSpace = r.workingColorSpace;
-        ld.source = std::filesystem::path(r.file).filename().string();
-        ld.latLongPixels = r.latLongPixels;
-        ld.settings = "quality=" + o->quality + " samples=" + std::to_string(samplesFor(settings)) +
-                      " lodBias=" + std::to_string(settings.lodBias) + " size=" + std::to_string(o->size) +
-                      " rotate=" + std::to_string(o->input.rotateDegrees);
-        ld.sunInLevel0 =
-            calibration.withSun && keepSunInLevel0(chain, *calibration.withSun, format, o->clampToFormat);
-        ld.sunMaxSolidAngle = o->calibration.sunMaxSolidAngle;
-        Ktx2KeyValues kv = ldChainKeyValues(ld, calibration.record, calibration.sun);
-        kv.emplace_back(kCubeProfileKey, o->profile);
-        const ProductStorage storage = chooseProductStorage(chain, format, o->clampToFormat);
-        OutputSet outputs; // all of them or none: a failed --preview leaves no -o
-        Ktx2WriteStats stats;
-        outputs.writeFile(o->output, [&](const std::filesystem::path& temporary) {
-            stats = writeProductCube(temporary, chain, format, kv, storage);
-        });
-        writeSunJson(outputs, o->calibration, calibration.record, calibration.sun);
-        if (!o->exrDir.empty())
-            outputs.writeDirectory(o->exrDir, [&](const std::filesystem::path& temporary) {
-                writeDebugExr(temporary, chain, settings.mapping);
+        const SpecularProducts products =
+            bakeSpecularProducts(std::move(input), job, executor, [&](const char* stage, double ms) {
+                o->backend.printTiming(executor, stage, ms);
             });
-        if (!o->preview.empty())
-            outputs.writeFile(o->preview, [&](const std::filesystem::path& temporary) {
-                writeChainPreview(temporary, chain);
-            });
-        std::optional<ProductStorage> roughStorage;
-        if (!o->roughLayers.empty()) {
-            const std::vector<CubeMap>& layers = baked.roughLayers;
-            roughStorage = chooseProductStorage(CubeMapChain{layers}, format, o->clampToFormat);
-            Ktx2KeyValues roughKv = roughLayerKeyValues(ld, calibration.record, calibration.sun);
-            roughKv.emplace_back(kCubeProfileKey, o->profile);
-            outputs.writeFile(o->roughLayers, [&](const std::filesystem::path& temporary) {
-                writeProductCubeArray(temporary, layers, format, roughKv, *roughStorage);
-            });
-        }
-        outputs.commit();
         BackendOptions::storeBuiltKernels(executor);
-        std::printf("wrote   %s: %d levels, %s, %llu clamped texels, %llu repaired non-finite\n",
-                    o->output.c_str(), levelCount, o->format.c_str(), (unsigned long long)stats.clampedTexels,
-                    (unsigned long long)stats.repairedNonFinite);
-        printStorage(o->output, o->format, storage);
-        if (roughStorage) {
+        for (const SpecularLevelTiming& t : products.timings)
+            std::printf("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.level, t.perceptualRoughness,
+                        products.levelFaceSizes[std::size_t(t.level)], t.milliseconds);
+        const StoredCube& chain = products.written.chain;
+        std::printf("wrote   %s: %zu levels, %s, %llu clamped texels, %llu repaired non-finite\n",
+                    o->output.c_str(), products.levelFaceSizes.size(), o->format.c_str(),
+                    (unsigned long long)chain.stats.clampedTexels,
+                    (unsigned long long)chain.stats.repairedNonFinite);
+        printStorage(o->output, o->format, chain.storage);
+        if (products.written.roughLayers) {
             std::printf("wrote   %s: %u rough layers of %u px (r = %s)\n", o->roughLayers.c_str(),
                         IBL_ROUGH_LAYER_COUNT, roughLayerFaceSize(std::uint32_t(o->size)),
                         roughLayerRoughnessText().c_str());
-            printStorage(o->roughLayers, o->format, *roughStorage);
+            printStorage(o->roughLayers, o->format, products.written.roughLayers->storage);
         }
-        std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs, bakeMs,
-                    executor.description().c_str(), millisecondsSince(start));
-        o->backend.printTiming(executor, "specular", bakeMs);
+        std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs,
+                    products.bakeMilliseconds, executor.description().c_str(), millisecondsSince(start));
         return 0;
     };
 }

@@ -77,11 +77,13 @@ set(IBLBAKE_STAGE_CODE_manifest baker/src/scene/scene_manifest.cpp baker/src/sce
 # dependency chain), the bake's bookkeeping, the Filament SH exporter, batch, accuracy, the dispatch test kernel,
 # the runtime's area-light kernel.
 set(IBLBAKE_CODE_NOT_IN_STAGES
-    baker/src/scene/bake_summary.cpp baker/src/scene/bake_report.cpp baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
+    baker/src/scene/bake_summary.cpp baker/src/scene/bake_report.cpp baker/src/scene/console_progress.cpp
+    baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
     baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
     baker/src/scene/up_to_date.cpp
     baker/src/batch baker/src/accuracy
     baker/src/light_preview # `iblbake preview --lights`: no stage renders it
+    baker/src/flows # the single-product commands' flows: their products' bytes are the writers' (products)
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes

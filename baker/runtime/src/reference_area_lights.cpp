@@ -4,8 +4,6 @@
 #include "iblbake/runtime/runtime_area_lights.h"
 #include "reference_light_surface.h"
 
-#include <tbb/parallel_for.h>
-
 namespace ibl {
 
 std::vector<AreaReference> renderAreaLightReference(const AreaLight& light,
@@ -13,21 +11,14 @@ std::vector<AreaReference> renderAreaLightReference(const AreaLight& light,
                                                     const RuntimeOptions& options,
                                                     const AreaReferenceSettings& settings) {
     using namespace reference;
-    RuntimeOptions material = options;
-    material.energyCompensation = false;
     const LightSurface surface = lightSurface(light);
     const glm::dvec3 radiance = glm::dvec3(light.color) * double(light.luminance);
     const auto uniform = [](uint32_t, uint32_t) { return glm::dvec3(1.0); };
-    std::vector<AreaReference> out(points.size());
-    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
-        const glm::dvec3 p(points[k].position);
-        if (surface.hidden(p)) return;
-        const PointMaterial m(points[k], material, settings.minAlpha, [](double, double) { return 1.0; });
-        const uint32_t n = referenceGridSize(settings, m, surface.angularSize(p));
-        out[k] = richardson(integrateLight(surface, m, p, radiance, n, n, uniform),
-                            integrateLight(surface, m, p, radiance, n / 2, n / 2, uniform));
-    });
-    return out;
+    return referenceAtPoints(
+        surface, points, options, settings, [&](const PointMaterial& m, const glm::dvec3& p, uint32_t n) {
+            return richardson(integrateLight(surface, m, p, radiance, n, n, uniform),
+                              integrateLight(surface, m, p, radiance, n / 2, n / 2, uniform));
+        });
 }
 
 } // namespace ibl

@@ -7,8 +7,12 @@
 #include "iblbake/runtime/runtime_area_lights.h"
 #include "reference_math.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
+#include <span>
+#include <vector>
 
 namespace ibl::reference {
 
@@ -133,6 +137,26 @@ inline AreaReference richardson(const ReferenceResult& fine, const ReferenceResu
     out.value = fine;
     out.diffuseError = glm::abs(fine.diffuse - coarse.diffuse) / 3.0;
     out.specularError = glm::abs(fine.specular - coarse.specular) / 3.0;
+    return out;
+}
+
+// Each point's reference, zero where the point is behind the light: integrate(m, p, n) with the point's
+// material (without energy compensation: the reference is the material's own integral), its position and
+// its grid size (referenceGridSize).
+template <class IntegratePoint>
+std::vector<AreaReference>
+referenceAtPoints(const LightSurface& surface, std::span<const ShadingPoint> points,
+                  const RuntimeOptions& options, const AreaReferenceSettings& settings,
+                  IntegratePoint&& integrate) {
+    RuntimeOptions material = options;
+    material.energyCompensation = false;
+    std::vector<AreaReference> out(points.size());
+    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
+        const glm::dvec3 p(points[k].position);
+        if (surface.hidden(p)) return;
+        const PointMaterial m(points[k], material, settings.minAlpha, [](double, double) { return 1.0; });
+        out[k] = integrate(m, p, referenceGridSize(settings, m, surface.angularSize(p)));
+    });
     return out;
 }
 

@@ -6,8 +6,6 @@
 #include "iblbake/runtime/runtime_light_card.h"
 #include "reference_light_surface.h"
 
-#include <tbb/parallel_for.h>
-
 namespace ibl {
 
 std::vector<AreaReference> renderTexturedLightReference(const AreaLight& light, const ImageRGBA& emission,
@@ -15,34 +13,29 @@ std::vector<AreaReference> renderTexturedLightReference(const AreaLight& light, 
                                                         const RuntimeOptions& options,
                                                         const AreaReferenceSettings& settings) {
     using namespace reference;
-    RuntimeOptions material = options;
-    material.energyCompensation = false;
     LightSurface surface = lightSurface(light);
     surface.shape = IBL_AREA_RECTANGLE;
     const glm::dvec3 radiance = glm::dvec3(light.color) * double(light.luminance);
-    std::vector<AreaReference> out(points.size());
-    tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
-        const glm::dvec3 p(points[k].position);
-        if (surface.hidden(p)) return;
-        const PointMaterial m(points[k], material, settings.minAlpha, [](double, double) { return 1.0; });
-        const uint32_t n = referenceGridSize(settings, m, surface.angularSize(p));
-        // Multiples of twice the texture's size, so that the fine and the coarse grid both align with texels.
-        auto aligned = [&](uint32_t size) {
-            return std::max<uint32_t>(2 * size, (n + 2 * size - 1) / (2 * size) * (2 * size));
-        };
-        const uint32_t nx = aligned(uint32_t(emission.width)), ny = aligned(uint32_t(emission.height));
-        // Cell (i, j) of nx x ny: u = s along the tangent, v = 1 - t (v = 0 at the +bitangent edge).
-        auto texels = [&](uint32_t cellsX, uint32_t cellsY) {
-            return [&emission, cellsX, cellsY](uint32_t i, uint32_t j) {
-                const int x = int(uint64_t(i) * uint64_t(emission.width) / cellsX);
-                const int y = int(uint64_t(cellsY - 1 - j) * uint64_t(emission.height) / cellsY);
-                return glm::dvec3(glm::vec3(emission.at(x, y)));
+    return referenceAtPoints(
+        surface, points, options, settings, [&](const PointMaterial& m, const glm::dvec3& p, uint32_t n) {
+            // Multiples of twice the texture's size, so that the fine and the coarse grid both align with
+            // texels.
+            auto aligned = [&](uint32_t size) {
+                return std::max<uint32_t>(2 * size, (n + 2 * size - 1) / (2 * size) * (2 * size));
             };
-        };
-        out[k] = richardson(integrateLight(surface, m, p, radiance, nx, ny, texels(nx, ny)),
-                            integrateLight(surface, m, p, radiance, nx / 2, ny / 2, texels(nx / 2, ny / 2)));
-    });
-    return out;
+            const uint32_t nx = aligned(uint32_t(emission.width)), ny = aligned(uint32_t(emission.height));
+            // Cell (i, j) of nx x ny: u = s along the tangent, v = 1 - t (v = 0 at the +bitangent edge).
+            auto texels = [&](uint32_t cellsX, uint32_t cellsY) {
+                return [&emission, cellsX, cellsY](uint32_t i, uint32_t j) {
+                    const int x = int(uint64_t(i) * uint64_t(emission.width) / cellsX);
+                    const int y = int(uint64_t(cellsY - 1 - j) * uint64_t(emission.height) / cellsY);
+                    return glm::dvec3(glm::vec3(emission.at(x, y)));
+                };
+            };
+            return richardson(
+                integrateLight(surface, m, p, radiance, nx, ny, texels(nx, ny)),
+                integrateLight(surface, m, p, radiance, nx / 2, ny / 2, texels(nx / 2, ny / 2)));
+        });
 }
 
 } // namespace ibl

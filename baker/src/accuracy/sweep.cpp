@@ -53,12 +53,15 @@ double median(std::vector<double> values) {
     return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-namespace {
-
-void setTimes(MeasuredSetting& s, std::vector<double> times) {
-    s.timesMs = std::move(times);
-    s.timeMs = median(s.timesMs);
+AccuracyStage namedStage(std::string name, std::string title, std::vector<std::string> knobs) {
+    AccuracyStage stage;
+    stage.name = std::move(name);
+    stage.title = std::move(title);
+    stage.knobs = std::move(knobs);
+    return stage;
 }
+
+namespace {
 
 std::string format(const char* pattern, auto... values) {
     char text[512];
@@ -133,10 +136,7 @@ glm::dvec3 sampleLut(const ImageRGBA& lut, double u, double v) {
 } // namespace
 
 AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& executor) {
-    AccuracyStage stage;
-    stage.name = "dfg";
-    stage.title = "DFG / diffuse LUT";
-    stage.knobs = {"size", "samples"};
+    AccuracyStage stage = namedStage("dfg", "DFG / diffuse LUT", {"size", "samples"});
     stage.reference =
         format("Frostbite Listing 18 in fp64 (iblbake/baker/dfg_reference.h), %u samples, at the "
                "centres of a %ux%u grid over (NoV, roughness); each LUT is read bilinearly "
@@ -153,10 +153,9 @@ AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& exe
     bakeDfgLut(DfgSettings{8, 16}, executor); // builds the OpenCL program outside the timed runs
     for (std::uint32_t size : plan.dfgSizes)
         for (std::uint32_t samples : plan.dfgSamples) {
-            DfgSettings settings{size, samples};
-            ImageRGBA lut;
+            const DfgSettings settings{size, samples};
             MeasuredSetting s;
-            setTimes(s, timeRuns(repeats, [&] { lut = bakeDfgLut(settings, executor); }));
+            const ImageRGBA lut = timedBake(s, repeats, [&] { return bakeDfgLut(settings, executor); });
             s.label = format("%u px, %u spp", size, samples);
             s.knobs = {{"size", std::to_string(size)}, {"samples", std::to_string(samples)}};
             if (size == defaults.size && samples == defaults.sampleCount) s.preset = "default";
@@ -182,10 +181,7 @@ AccuracyStage measureDfg(const SweepPlan& plan, int repeats, const Executor& exe
 
 AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int repeats,
                               const Executor& executor) {
-    AccuracyStage stage;
-    stage.name = "specular";
-    stage.title = "Specular LD chain";
-    stage.knobs = {"faceSize", "samples", "lodBias"};
+    AccuracyStage stage = namedStage("specular", "Specular LD chain", {"faceSize", "samples", "lodBias"});
     stage.reference =
         "referenceSpecularLevel: every source texel, solid-angle weighted, fp64, per level; bright texels "
         "over the output texel's footprint where the lobe is under a quarter texel wide";
@@ -212,12 +208,10 @@ AccuracyStage measureSpecular(const SweepPlan& plan, const CubeLoader& load, int
         if (!warmed) bakeSpecular(source, base, executor), warmed = true; // program build, untimed
         for (float bias : plan.specularBiases)
             for (std::uint32_t samples : samplesList) {
-                SpecularSettings settings;
-                settings.samples = samples;
-                settings.lodBias = bias;
-                CubeMapChain chain;
+                const SpecularSettings settings{.samples = samples, .lodBias = bias};
                 MeasuredSetting s;
-                setTimes(s, timeRuns(repeats, [&] { chain = bakeSpecular(source, settings, executor); }));
+                const CubeMapChain chain =
+                    timedBake(s, repeats, [&] { return bakeSpecular(source, settings, executor); });
                 s.label = format("%d px, %u spp, bias %+.1f", size, samples, bias);
                 s.knobs = {{"faceSize", std::to_string(size)},
                            {"samples", std::to_string(samples)},
@@ -259,10 +253,8 @@ std::vector<CubeTexel> texelSubset(int n, int count) {
 AccuracyStage measureSpecularProduction(const SweepPlan& plan, const CubeMap& source, int repeats,
                                         const Executor& executor) {
     const int size = source.faceSize;
-    AccuracyStage stage;
-    stage.name = "specular-production";
-    stage.title = format("Specular LD chain at %d px", size);
-    stage.knobs = {"faceSize", "samples"};
+    AccuracyStage stage = namedStage("specular-production", format("Specular LD chain at %d px", size),
+                                     {"faceSize", "samples"});
     stage.reference =
         format("referenceSpecularTexels (referenceSpecularLevel's integral: the source's bright "
                "texels weighted exactly, the rest by 2 x 2048 stratified GGX samples per texel, more on "
@@ -296,11 +288,10 @@ AccuracyStage measureSpecularProduction(const SweepPlan& plan, const CubeMap& so
     const auto presets = specularPresets();
     bakeSpecular(source, base, executor); // program build, untimed
     for (std::uint32_t samples : withPresets(plan.productionSamples, presets)) {
-        SpecularSettings settings;
-        settings.samples = samples;
-        CubeMapChain chain;
+        const SpecularSettings settings{.samples = samples};
         MeasuredSetting s;
-        setTimes(s, timeRuns(repeats, [&] { chain = bakeSpecular(source, settings, executor); }));
+        const CubeMapChain chain =
+            timedBake(s, repeats, [&] { return bakeSpecular(source, settings, executor); });
         s.label = format("%d px, %u spp", size, samples);
         s.knobs = {{"faceSize", std::to_string(size)}, {"samples", std::to_string(samples)}};
         s.preset = presetOf(samples, presets);
@@ -366,10 +357,7 @@ std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& 
         format("referenceIrradianceCube: every texel of the %d px source, "
                "L max(0, n.l) omega in fp64 at each texel of a %d px cube (E/pi)",
                source.faceSize, n);
-    AccuracyStage sh;
-    sh.name = "sh";
-    sh.title = "SH irradiance (order x window)";
-    sh.knobs = {"order", "window"};
+    AccuracyStage sh = namedStage("sh", "SH irradiance (order x window)", {"order", "window"});
     sh.reference = referenceText;
     sh.errorMetric = std::string(kCubeErrorMetric) + " of the SH irradiance evaluated at the texel centres";
     sh.maxErrorMetric = kCubeMaxMetric;
@@ -387,9 +375,8 @@ std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& 
         cases.push_back({2, {false, w, {}}, shWindowName(w)});
     cases.push_back({2, {}, "auto"});
     for (const ShCase& c : cases) {
-        DiffuseSH result;
         MeasuredSetting s;
-        setTimes(s, timeRuns(repeats, [&] { result = bakeDiffuseSH(source, c.window); }));
+        const DiffuseSH result = timedBake(s, repeats, [&] { return bakeDiffuseSH(source, c.window); });
         s.label = format("L%d, window %s", c.order, c.name.c_str());
         if (c.window.automatic && result.window.window != ShWindow::None)
             s.label += format(" (%s)", shWindowName(result.window.window));
@@ -401,10 +388,7 @@ std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& 
     }
     markParetoFront(sh);
 
-    AccuracyStage cube;
-    cube.name = "irradiance";
-    cube.title = "Irradiance cube (samples)";
-    cube.knobs = {"samples"};
+    AccuracyStage cube = namedStage("irradiance", "Irradiance cube (samples)", {"samples"});
     cube.reference = referenceText;
     cube.errorMetric = kCubeErrorMetric;
     cube.maxErrorMetric = kCubeMaxMetric;
@@ -415,12 +399,10 @@ std::vector<AccuracyStage> measureDiffuse(const SweepPlan& plan, const CubeMap& 
     warm.faceSize = n;
     bakeIrradianceCube(source, warm, executor); // program build, untimed
     for (std::uint32_t samples : withPresets(plan.irradianceSamples, presets)) {
-        IrradianceSettings settings;
-        settings.faceSize = n;
-        settings.samples = samples;
-        CubeMap result;
+        const IrradianceSettings settings{.faceSize = n, .samples = samples};
         MeasuredSetting s;
-        setTimes(s, timeRuns(repeats, [&] { result = bakeIrradianceCube(source, settings, executor); }));
+        const CubeMap result =
+            timedBake(s, repeats, [&] { return bakeIrradianceCube(source, settings, executor); });
         s.label = format("%u spp", samples);
         s.knobs = {{"samples", std::to_string(samples)}};
         s.preset = presetOf(samples, presets);

@@ -4,6 +4,7 @@
 #include "iblbake/accuracy/accuracy.h"
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace ibl {
@@ -25,5 +26,17 @@ void markParetoFront(AccuracyStage& stage);
 // Runs `work` `repeats` times and returns each run's wall time in milliseconds.
 std::vector<double> timeRuns(int repeats, const std::function<void()>& work);
 double median(std::vector<double> values);
+
+// Runs `bake` `repeats` times into s.timesMs (their median into s.timeMs) and returns the last run's result.
+template <class Bake>
+auto timedBake(MeasuredSetting& s, int repeats, Bake&& bake) {
+    decltype(bake()) result;
+    s.timesMs = timeRuns(repeats, [&] { result = bake(); });
+    s.timeMs = median(s.timesMs);
+    return result;
+}
+
+// A stage with its name, title and knobs, for a measuring function to describe further and fill.
+AccuracyStage namedStage(std::string name, std::string title, std::vector<std::string> knobs);
 
 } // namespace ibl

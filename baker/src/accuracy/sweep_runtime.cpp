@@ -37,10 +37,8 @@ std::string roughnessName(float r) {
 AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int repeats,
                              const Executor& executor) {
     const int size = source.faceSize;
-    AccuracyStage stage;
-    stage.name = "runtime";
-    stage.title = "Runtime shading (per roughness)";
-    stage.knobs = {"specularQuality", "sun"};
+    AccuracyStage stage =
+        namedStage("runtime", "Runtime shading (per roughness)", {"specularQuality", "sun"});
     stage.errorMetric = "mean over the roughness columns of the relative mean absolute error: sum |runtime - "
                         "reference| / sum |reference| over a column's points and RGB";
     stage.maxErrorMetric = "worst roughness column's relative mean absolute error";

@@ -171,4 +171,16 @@ BatchSummary runBatch(const BatchManifest& manifest, const Shard& shard, const B
     return BatchRun(manifest, shard, options, bake, observer, known).run();
 }
 
+std::optional<KnownUpToDate> shardUpToDate(const BatchManifest& manifest, const Shard& shard,
+                                           const BakeOptions& options) {
+    KnownUpToDate known;
+    for (const BatchItem& item : manifest.items) {
+        if (!inShard(item, shard)) continue;
+        UpToDate upToDate = checkBakeUpToDate(batchItemScene(manifest, item), options);
+        if (!upToDate.upToDate) return std::nullopt;
+        known.emplace(item.index, std::move(upToDate));
+    }
+    return known;
+}
+
 } // namespace ibl

@@ -3,6 +3,7 @@
 
 #include "../ingest/ingest_internal.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/numeric.h"
 
 #include <tbb/parallel_for.h>
 
@@ -13,12 +14,6 @@
 namespace ibl {
 
 namespace {
-
-std::string number(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.9g", v);
-    return buf;
-}
 
 // The source's value cannot be used on this environment (calibration.h).
 SettingError unusable(const std::string& problem) {
@@ -50,7 +45,7 @@ std::string CalibrationRecord::summary() const {
     std::string text = std::string("calibration ") + calibrationSourceName(source);
     if (source != CalibrationSource::None && source != CalibrationSource::Radiometric) {
         text += ' '; // appended apart: GCC 12 warns (-Wrestrict) on " " + std::string&&
-        text += number(sourceValue);
+        text += floatDecimal(sourceValue);
     }
     char buf[256];
     std::snprintf(buf, sizeof buf, ": factor %.6g, %s %.6g -> %.6g", factor, quantity.c_str(), measuredBefore,
@@ -64,7 +59,7 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
     const bool needsValue = source != CalibrationSource::None && source != CalibrationSource::Radiometric;
     if (needsValue && !std::isfinite(value)) throw unusable("the value must be a finite number");
     if (needsValue && source != CalibrationSource::Ev100 && !(value > 0.0))
-        throw unusable("the value must be positive, got " + number(value));
+        throw unusable("the value must be positive, got " + floatDecimal(value));
 
     CalibrationRecord rec;
     rec.source = source;
@@ -93,7 +88,7 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
         rec.factor = value;
         break;
     case CalibrationSource::Ev100:
-        if (std::fabs(value) > 64.0) throw unusable(number(value) + " is not an EV100 in -64..64");
+        if (std::fabs(value) > 64.0) throw unusable(floatDecimal(value) + " is not an EV100 in -64..64");
         rec.factor = 1.2 * std::exp2(value);
         break;
     case CalibrationSource::Radiometric:
@@ -123,16 +118,17 @@ CalibrationRecord computeCalibration(const SphereTexels& texels, const Calibrati
     }
     }
     if (!std::isfinite(rec.factor) || !(rec.factor > 0.0))
-        throw unusable("the calibration factor " + number(rec.factor) + " is not a positive finite number");
+        throw unusable("the calibration factor " + floatDecimal(rec.factor) +
+                       " is not a positive finite number");
     // A channel is at most its luminance over its weight: the brightest texel scaled must stay a finite fp32
     // value (calibrate --scale 1e308 made nearly every value Inf).
     const double minWeight =
         std::min({settings.luminanceWeights.x, settings.luminanceWeights.y, settings.luminanceWeights.z});
     const double brightestChannel = stats.maxLuminance / minWeight;
     if (minWeight > 0.0 && !(rec.factor * brightestChannel <= double(std::numeric_limits<float>::max())))
-        throw unusable("the calibration factor " + number(rec.factor) + " would take the brightest texel (" +
-                       number(brightestChannel) + ") beyond the largest float, " +
-                       number(std::numeric_limits<float>::max()));
+        throw unusable("the calibration factor " + floatDecimal(rec.factor) +
+                       " would take the brightest texel (" + floatDecimal(brightestChannel) +
+                       ") beyond the largest float, " + floatDecimal(std::numeric_limits<float>::max()));
     rec.measuredAfter = rec.factor * rec.measuredBefore;
     rec.upwardIlluminanceAfter = rec.factor * rec.upwardIlluminanceBefore;
     rec.meanLuminanceAfter = rec.factor * rec.meanLuminanceBefore;
@@ -161,19 +157,19 @@ std::vector<std::pair<std::string, std::string>> calibrationMetadata(const Calib
                                                                      const std::string& prefix) {
     const std::string c = prefix + "calibration.";
     std::vector<std::pair<std::string, std::string>> kv = {
-        {c + "factor", number(r.factor)},
+        {c + "factor", floatDecimal(r.factor)},
         {c + "source", calibrationSourceName(r.source)},
-        {c + "sourceValue", number(r.sourceValue)},
+        {c + "sourceValue", floatDecimal(r.sourceValue)},
         {c + "quantity", r.quantity},
-        {c + "measuredBefore", number(r.measuredBefore)},
-        {c + "measuredAfter", number(r.measuredAfter)},
-        {c + "upwardIlluminanceBefore", number(r.upwardIlluminanceBefore)},
-        {c + "upwardIlluminanceAfter", number(r.upwardIlluminanceAfter)},
-        {c + "meanLuminanceBefore", number(r.meanLuminanceBefore)},
-        {c + "meanLuminanceAfter", number(r.meanLuminanceAfter)}};
+        {c + "measuredBefore", floatDecimal(r.measuredBefore)},
+        {c + "measuredAfter", floatDecimal(r.measuredAfter)},
+        {c + "upwardIlluminanceBefore", floatDecimal(r.upwardIlluminanceBefore)},
+        {c + "upwardIlluminanceAfter", floatDecimal(r.upwardIlluminanceAfter)},
+        {c + "meanLuminanceBefore", floatDecimal(r.meanLuminanceBefore)},
+        {c + "meanLuminanceAfter", floatDecimal(r.meanLuminanceAfter)}};
     if (r.sunMeasured) {
-        kv.emplace_back(c + "sunIlluminanceBefore", number(r.sunIlluminanceBefore));
-        kv.emplace_back(c + "sunIlluminanceAfter", number(r.sunIlluminanceAfter));
+        kv.emplace_back(c + "sunIlluminanceBefore", floatDecimal(r.sunIlluminanceBefore));
+        kv.emplace_back(c + "sunIlluminanceAfter", floatDecimal(r.sunIlluminanceAfter));
     }
     kv.emplace_back(prefix + "units", r.units());
     return kv;

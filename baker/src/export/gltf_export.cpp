@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 
 namespace ibl {
@@ -160,6 +161,26 @@ GltfExport readBakeForGltf(const GltfExportSource& source, const GltfExportSetti
 
 void refilterForGltf(GltfExport& e, const Executor& executor) {
     if (e.refilter) e.scene.specular = bakeSpecular(e.scene.specular.levels.front(), *e.refilter, executor);
+}
+
+GltfExported exportGltf(const GltfExportSource& source, const GltfExportSettings& settings,
+                        const fs::path& output, const std::function<const Executor&()>& executor) {
+    GltfExported exported{readBakeForGltf(source, settings), 0.0};
+    if (exported.gltf.refilter) {
+        const Executor& refilterExecutor = executor();
+        const auto start = std::chrono::steady_clock::now();
+        refilterForGltf(exported.gltf, refilterExecutor);
+        exported.refilterMilliseconds =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+    writeGltfIbl(output, exported.gltf.scene);
+    return exported;
+}
+
+GltfExportSource gltfExportSourceIn(const fs::path& bakeDirectory) {
+    GltfExportSource source{bakeDirectory / "specular.ktx2", bakeDirectory / "diffuse.json", std::nullopt};
+    if (fs::exists(bakeDirectory / "sun.json")) source.sun = bakeDirectory / "sun.json";
+    return source;
 }
 
 } // namespace ibl

@@ -105,6 +105,9 @@ std::string ocioConfigPath();
 // ---- sanitize (sanitize.cpp) ----
 struct RepairCounts {
     std::uint64_t nan = 0, inf = 0, negative = 0;
+    RepairCounts operator+(const RepairCounts& o) const {
+        return {nan + o.nan, inf + o.inf, negative + o.negative};
+    }
 };
 // NaN -> 0, +Inf -> largest finite value of the image (65504 if none), -Inf and negatives -> 0 (RGB only).
 RepairCounts sanitize(ImageRGBA& image);
@@ -117,6 +120,9 @@ float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
 float maxLuminance(const ImageRGBE& image, const glm::dvec3& weights);
 struct AlphaRepairCounts {
     std::uint64_t nan = 0, negative = 0, overOne = 0;
+    AlphaRepairCounts operator+(const AlphaRepairCounts& o) const {
+        return {nan + o.nan, negative + o.negative, overOne + o.overOne};
+    }
 };
 // Alpha (IngestReport::hasAlpha): NaN and negatives -> RGBA 0, over 1 -> 1 (colour kept), per pixel.
 AlphaRepairCounts sanitizeAlpha(ImageRGBA& image);

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace ibl::ingest {
@@ -58,12 +59,7 @@ RepairCounts sanitize(ImageRGBA& image) {
                 }
             return n;
         },
-        [](RepairCounts a, const RepairCounts& b) {
-            a.nan += b.nan;
-            a.inf += b.inf;
-            a.negative += b.negative;
-            return a;
-        });
+        std::plus<RepairCounts>());
 }
 
 // Alpha is a visibility here: iblbake/core/visibility.h repairs it, as the specular stage does.
@@ -81,12 +77,7 @@ AlphaRepairCounts sanitizeAlpha(ImageRGBA& image) {
             }
             return n;
         },
-        [](AlphaRepairCounts a, const AlphaRepairCounts& b) {
-            a.nan += b.nan;
-            a.negative += b.negative;
-            a.overOne += b.overOne;
-            return a;
-        });
+        std::plus<AlphaRepairCounts>());
 }
 
 bool hasAlphaBelowOne(const ImageRGBA& image) {

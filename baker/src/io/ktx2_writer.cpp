@@ -8,6 +8,8 @@
 #include "ktx2_format.h"
 #include "small_float.h"
 
+#include <glm/vec3.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cerrno>
@@ -120,6 +122,12 @@ float sanitize(float v, float lo, float hi, TexelFlags& flags) {
     return v;
 }
 
+// The RGB of a packed unsigned format: each channel sanitized to [0, its largest value].
+glm::vec3 sanitizeRgb(const glm::vec4& texel, const glm::vec3& largest, TexelFlags& flags) {
+    return {sanitize(texel.r, 0.0f, largest.r, flags), sanitize(texel.g, 0.0f, largest.g, flags),
+            sanitize(texel.b, 0.0f, largest.b, flags)};
+}
+
 // Little-endian stores at `out`.
 void storeU16(std::uint8_t* out, std::uint16_t v) {
     out[0] = std::uint8_t(v);
@@ -145,17 +153,14 @@ void encodeTexel(const glm::vec4& texel, Ktx2Format format, std::uint8_t* out, K
             storeU32(out + 4 * c, ktx2::floatBits(sanitize(texel[c], -FLT_MAX, FLT_MAX, flags)));
         break;
     case Ktx2Format::B10G11R11: {
-        const float r = sanitize(texel.r, 0.0f, smallfloat::kFloat11Max, flags);
-        const float g = sanitize(texel.g, 0.0f, smallfloat::kFloat11Max, flags);
-        const float b = sanitize(texel.b, 0.0f, smallfloat::kFloat10Max, flags);
-        storeU32(out, smallfloat::packB10G11R11(r, g, b));
+        const glm::vec3 rgb = sanitizeRgb(
+            texel, {smallfloat::kFloat11Max, smallfloat::kFloat11Max, smallfloat::kFloat10Max}, flags);
+        storeU32(out, smallfloat::packB10G11R11(rgb.r, rgb.g, rgb.b));
         break;
     }
     case Ktx2Format::E5B9G9R9: {
-        const float r = sanitize(texel.r, 0.0f, smallfloat::kRgb9e5Max, flags);
-        const float g = sanitize(texel.g, 0.0f, smallfloat::kRgb9e5Max, flags);
-        const float b = sanitize(texel.b, 0.0f, smallfloat::kRgb9e5Max, flags);
-        storeU32(out, smallfloat::packE5B9G9R9(r, g, b));
+        const glm::vec3 rgb = sanitizeRgb(texel, glm::vec3(smallfloat::kRgb9e5Max), flags);
+        storeU32(out, smallfloat::packE5B9G9R9(rgb.r, rgb.g, rgb.b));
         break;
     }
     }

@@ -1,21 +1,9 @@
 // The light card's document (its KTX2 keys) and the flow of `iblbake lightcard` (iblbake/baker/light_card.h).
 #include "iblbake/baker/light_card.h"
+#include "iblbake/core/numeric.h"
 #include "iblbake/runtime/runtime_light_card.h"
 
-#include <cstdio>
-
 namespace ibl {
-
-namespace {
-
-// Enough digits that the runtime loader reads back the very float the bake used.
-std::string floatText(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.9g", v);
-    return text;
-}
-
-} // namespace
 
 Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& texture) {
     const LightCardLayout& l = card.layout;
@@ -24,19 +12,19 @@ Ktx2KeyValues lightCardKeyValues(const LightCard& card, const LightCardTexture& 
             {"iblbake.cardLayout",
              "2D array; layer 0 level m: specular, the texture pre-integrated over a footprint of radius "
              "rho_m = " +
-                 floatText(IBL_CARD_MAX_FOOTPRINT) +
+                 floatDecimal(IBL_CARD_MAX_FOOTPRINT) +
                  " * 2^(m-L+1) (level 0: rho 0), kernel 1/(1+x^2/(2 rho)^2)^2; layer 1+k level 0: diffuse, "
                  "seen from distance r_k = (k/(K-1))^2 r_max, kernel 1/(1+x^2/r^2)^2; lengths in "
                  "sqrt(light area); u along the tangent, v = 0 at the +bitangent edge; normalized sum T w / "
                  "sum w over the light"},
             {keys::kSpecularLevels, std::to_string(l.levelCount)},
-            {keys::kMaxFootprint, floatText(IBL_CARD_MAX_FOOTPRINT)},
+            {keys::kMaxFootprint, floatDecimal(IBL_CARD_MAX_FOOTPRINT)},
             {keys::kDiffuseLayers, std::to_string(l.diffuseLayers)},
-            {keys::kMaxDistance, floatText(l.maxDistance)},
-            {"iblbake.cardSigma", floatText(IBL_CARD_SIGMA)},
-            {keys::kAspect, floatText(l.aspect)},
+            {keys::kMaxDistance, floatDecimal(l.maxDistance)},
+            {"iblbake.cardSigma", floatDecimal(IBL_CARD_SIGMA)},
+            {keys::kAspect, floatDecimal(l.aspect)},
             {"iblbake.cardNormalization", "mean luminance 1 over the light"},
-            {"iblbake.cardSourceMeanLuminance", floatText(texture.sourceMeanLuminance)},
+            {"iblbake.cardSourceMeanLuminance", floatDecimal(texture.sourceMeanLuminance)},
             {"iblbake.colorSpace", texture.workingColorSpace},
             {"iblbake.inputColorSpace", texture.inputColorSpace}};
 }

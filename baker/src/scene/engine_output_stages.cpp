@@ -18,12 +18,12 @@ void runGltfStage(const StageContext& c) {
     settings.quality = s.value("quality", settings.quality);
     GltfExport gltf;
     try {
-        gltf = readBakeForGltf(source, settings);
+        gltf = exportGltf(source, settings, c.outputDirectory / s.at("file").get<std::string>(),
+                          [&]() -> const Executor& { return *c.executor; })
+                   .gltf;
     } catch (const SettingError& e) {
         throw Error(c.scene.name + ": outputs.gltf.minFaceSize: " + e.what());
     }
-    if (gltf.refilter) refilterForGltf(gltf, *c.executor);
-    writeGltfIbl(c.outputDirectory / s.at("file").get<std::string>(), gltf.scene);
     writeJsonFile(c.outputDirectory / kGltfFacts, {{"levels", gltf.scene.specular.levels.size()},
                                                    {"faceSize", gltf.scene.specular.levels.front().faceSize},
                                                    {"intensity", gltfIblIntensity(gltf.scene.specular)},

@@ -1,6 +1,7 @@
 // The planner (scene_plan.h): what a scene's materials and probes need, and nothing else.
 #include "iblbake/scene/scene_plan.h"
 
+#include "iblbake/core/format_text.h"
 #include "iblbake/core/gltf_names.h"
 
 #include <cmath>
@@ -303,6 +304,32 @@ Plan planScene(const Scene& scene) {
     }
     planEngineOutputs(scene, glossy, lightSource, plan);
     return plan;
+}
+
+std::string planText(const Scene& scene, const Plan& plan) {
+    std::string text;
+    const auto line = [&](const char* pattern, auto... values) { text += formatText(pattern, values...); };
+    line("plan    %s -> %s\n", scene.name.c_str(), scene.outputs.directory.string().c_str());
+    for (const PlanStage& s : plan.stages) {
+        line("run     %-16s %-12s %s\n", s.id.c_str(), s.kind.c_str(), s.reason.c_str());
+        line("          settings %s\n", s.settings.dump().c_str());
+        for (const PlanInput& in : s.inputs)
+            line("          input    %s = %s\n", in.keyPath.c_str(), in.file.string().c_str());
+        if (!s.dependsOn.empty()) {
+            std::string deps;
+            for (const std::string& d : s.dependsOn)
+                deps += (deps.empty() ? "" : ", ") + d;
+            line("          after    %s\n", deps.c_str());
+        }
+        for (const std::string& p : s.products)
+            line("          product  %s\n", p.c_str());
+    }
+    for (const SkippedStage& s : plan.skipped)
+        line("skip    %-16s %-12s %s\n", s.id.c_str(), s.kind.c_str(), s.reason.c_str());
+    for (const std::string& n : plan.notes)
+        line("note    %s\n", n.c_str());
+    line("last    manifest.json (written after every product)\n");
+    return text;
 }
 
 json planToJson(const Plan& plan) {

@@ -7,6 +7,7 @@
 #include "iblbake/baker/ingest.h"
 #include "iblbake/baker/irradiance.h"
 #include "iblbake/baker/light_card.h"
+#include "iblbake/baker/product_writers.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sh.h"
 #include "iblbake/baker/specular.h"
@@ -16,6 +17,7 @@
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
+#include "iblbake/ktx2/output_set.h"
 #include "iblbake/runtime/runtime.h"
 
 #include <nlohmann/json.hpp>
@@ -155,9 +157,10 @@ void runDfg(const StageContext& c) {
     DfgSettings settings;
     settings.size = c.stage.settings.at("size").get<std::uint32_t>();
     settings.sampleCount = c.stage.settings.at("samples").get<std::uint32_t>();
-    ImageRGBA lut = bakeDfgLut(settings, *c.executor);
-    writeKtx2Image(c.outputDirectory / "dfg_lut.ktx2", lut, Ktx2Format::RGBA32F,
-                   dfgLutMetadata("iblbake.", "row", settings.sampleCount));
+    OutputSet outputs;
+    writeDfgLutProduct(outputs, bakeDfgLut(settings, *c.executor), settings.sampleCount, DfgLutFile::Ktx2,
+                       c.outputDirectory / "dfg_lut.ktx2");
+    outputs.commit();
 }
 
 void runEnvironment(const StageContext& c) {
@@ -192,11 +195,13 @@ void runSun(const StageContext& c) {
     } catch (const SettingError& e) {
         throw Error(c.scene.name + ": environment.extractSun: " + e.what());
     }
-    const std::string lightJson = diskLightToJson(light, calibration.at("absolute").get<bool>());
+    OutputSet outputs;
+    const std::string lightJson = writeSunProduct(outputs, light, calibration.at("absolute").get<bool>(),
+                                                  c.outputDirectory / "sun.json");
+    outputs.commit();
     calibration["sunLight"] = json::parse(lightJson);
     writeCube(c.outputDirectory / kCubeFile, cube, "calibrated-environment-without-sun");
     writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
-    writeFileBytes(c.outputDirectory / "sun.json", lightJson + '\n');
 }
 
 // What a detected sun left in the probe costs at runtime (environment.extractSun is false).
@@ -212,13 +217,12 @@ void runSunInProbe(const StageContext& c) {
     writeJsonFile(c.outputDirectory / kSunInProbeFacts, facts);
 }
 
-// Bakes and writes an LD chain (the distant environment's or a local probe's). With `withSun`, level 0 may
-// keep the sun's pixels (specular.h keepSunInLevel0); returns the chain's manifest facts.
-// With `visibility` (a local probe's capture whose alpha is not 1 everywhere), the chain carries it
-// (specular.h bakeSpecularWithVisibility) and the file says so (KTX2 key iblbake.visibility). With
-// `roughLayersFile` (the distant chain when a material reads past r_0), the chain's rough layers too, from
-// the same bake (specular.h bakeSpecularWithRoughLayers), in the chain's format with a storage scale of
-// their own.
+// Bakes and writes an LD chain (the distant environment's or a local probe's) by the product's one writer
+// (product_writers.h writeLdChainProduct); returns the chain's manifest facts. With `withSun`, level 0 may
+// keep the sun's pixels. With `visibility` (a local probe's capture whose alpha is not 1 everywhere), the
+// chain carries it (specular.h bakeSpecularWithVisibility). With `roughLayersFile` (the distant chain when a
+// material reads past r_0), the chain's rough layers too, from the same bake (specular.h
+// bakeSpecularWithRoughLayers).
 LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                              const CachedCalibration& calibration, const std::string& product,
                              const fs::path& file, const CubeMap* withSun = nullptr, bool visibility = false,
@@ -228,8 +232,9 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     settings.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
     settings.quality = parseQuality(s.at("quality").get<std::string>());
     settings.integratedLevels = s.at("integratedLevels").get<int>();
-    const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
-    if (visibility && !ktx2::formatInfo(format).hasAlpha)
+    LdChainWriteSettings write;
+    write.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    if (visibility && !ktx2::formatInfo(write.format).hasAlpha)
         throw SettingError("outputs.ktx2Format", s.at("ktx2Format").get<std::string>() +
                                                      " has no alpha channel for the visibility of " +
                                                      calibration.sourceFile().value_or("the capture") +
@@ -241,29 +246,28 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
         baked = bakeSpecularWithRoughLayers(source, settings, *c.executor);
     else
         baked.chain = bakeSpecular(source, settings, *c.executor);
-    CubeMapChain& chain = baked.chain;
-    LdChainProduct ld;
-    ld.product = product;
-    ld.mapping = settings.mapping;
-    ld.levelCount = int(chain.levels.size());
-    ld.integratedLevels = settings.integratedLevels;
-    ld.colorSpace = calibration.colorSpace();
-    ld.source = calibration.sourceFile();
-    ld.latLongPixels = calibration.latLongPixels();
-    ld.settings = "quality=" + s.at("quality").get<std::string>() +
-                  " samples=" + std::to_string(samplesFor(settings)) +
-                  " roughnessMax=" + s.at("roughnessMax").dump();
-    const bool clampToFormat = s.at("clampToFormat").get<bool>();
-    ld.sunInLevel0 = withSun && keepSunInLevel0(chain, *withSun, format, clampToFormat);
-    if (ld.sunInLevel0 && s.contains("sunMaxSolidAngle"))
-        ld.sunMaxSolidAngle = s.at("sunMaxSolidAngle").get<double>();
-    const ProductStorage storage = chooseProductStorage(chain, format, clampToFormat);
-    Ktx2KeyValues keyValues = ldChainKeyValues(ld, calibration.record, calibration.sun);
-    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
-    if (visibility) keyValues.emplace_back(kVisibilityKey, kVisibilityPremultipliedAlpha);
-    writeProductCube(file, chain, format, keyValues, storage,
-                     visibility ? Ktx2Alpha::Premultiplied : Ktx2Alpha::Straight);
-    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(storage));
+    write.product.product = product;
+    write.product.mapping = settings.mapping;
+    write.product.levelCount = int(baked.chain.levels.size());
+    write.product.integratedLevels = settings.integratedLevels;
+    write.product.colorSpace = calibration.colorSpace();
+    write.product.source = calibration.sourceFile();
+    write.product.latLongPixels = calibration.latLongPixels();
+    write.product.settings = "quality=" + s.at("quality").get<std::string>() +
+                             " samples=" + std::to_string(samplesFor(settings)) +
+                             " roughnessMax=" + s.at("roughnessMax").dump();
+    if (s.contains("sunMaxSolidAngle"))
+        write.product.sunMaxSolidAngle = s.at("sunMaxSolidAngle").get<double>();
+    write.clampToFormat = s.at("clampToFormat").get<bool>();
+    write.profile = s.at("profile").get<std::string>();
+    write.visibility = visibility;
+    write.withSun = withSun;
+    OutputSet outputs;
+    const LdChainWritten written =
+        writeLdChainProduct(outputs, baked, write, calibration.record, calibration.sun, file,
+                            roughLayersFile ? *roughLayersFile : fs::path());
+    outputs.commit();
+    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(written.chain.storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();
     facts.format = s.at("ktx2Format").get<std::string>();
@@ -273,15 +277,10 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     facts.mapping = settings.mapping;
     facts.validRoughnessMax = s.at("roughnessMax").get<double>();
     facts.quality = s.at("quality").get<std::string>();
-    if (withSun) facts.sunInLevel0 = ld.sunInLevel0;
-    if (roughLayersFile) {
-        const std::vector<CubeMap>& layers = baked.roughLayers;
-        const ProductStorage layerStorage = chooseProductStorage(CubeMapChain{layers}, format, clampToFormat);
-        Ktx2KeyValues layerKeyValues = roughLayerKeyValues(ld, calibration.record, calibration.sun);
-        layerKeyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
-        writeProductCubeArray(*roughLayersFile, layers, format, layerKeyValues, layerStorage);
-        facts.roughLayers = {roughLayersFile->filename().string(), layers.front().faceSize, layerStorage};
-    }
+    if (withSun) facts.sunInLevel0 = written.sunInLevel0;
+    if (written.roughLayers)
+        facts.roughLayers = {roughLayersFile->filename().string(), baked.roughLayers.front().faceSize,
+                             written.roughLayers->storage};
     return facts;
 }
 
@@ -317,12 +316,13 @@ void runDiffuse(const StageContext& c) {
         source.latLongPixels = latLongPixelsFromJson(in);
     }
     source.faceSize = cube.faceSize;
-    writeJsonFile(c.outputDirectory / "diffuse.json",
-                  diffuseDocument(bakeDiffuseSH(cube, window), "auto", calibration.colorSpace(), source,
-                                  calibration.record, calibration.sun));
+    OutputSet outputs;
+    writeDiffuseProduct(outputs, bakeDiffuseSH(cube, window), "auto", calibration.colorSpace(), source,
+                        calibration.record, calibration.sun, c.outputDirectory / "diffuse.json");
+    outputs.commit();
 }
 
-// The same cube and key/values as `iblbake diffuse --irradiance-cube` (cli/diffuse_command.cpp).
+// The same writer as `iblbake diffuse --irradiance-cube` (product_flows.h bakeDiffuseProducts).
 void runIrradiance(const StageContext& c) {
     const json& s = c.stage.settings;
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
@@ -331,16 +331,20 @@ void runIrradiance(const StageContext& c) {
     settings.faceSize = s.at("faceSize").get<int>();
     settings.quality = parseQuality(s.at("quality").get<std::string>());
     settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
-    CubeMapChain chain;
-    chain.levels.push_back(bakeIrradianceCube(readCubeFile(from / kCubeFile), settings, *c.executor));
-    const Ktx2Format format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
-    const ProductStorage storage = chooseProductStorage(chain, format, s.at("clampToFormat").get<bool>());
-    Ktx2KeyValues keyValues = irradianceKeyValues(
-        irradianceMethodText(IrradianceMethod::Sampled, settings.samples), calibration.colorSpace(),
-        calibration.sourceFile(), calibration.latLongPixels(), calibration.record, calibration.sun);
-    keyValues.emplace_back(kCubeProfileKey, s.at("profile").get<std::string>());
-    writeProductCube(c.outputDirectory / "irradiance.ktx2", chain, format, keyValues, storage);
-    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(storage));
+    IrradianceCubeWriteSettings write;
+    write.methodText = irradianceMethodText(IrradianceMethod::Sampled, settings.samples);
+    write.colorSpace = calibration.colorSpace();
+    write.source = calibration.sourceFile();
+    write.latLongPixels = calibration.latLongPixels();
+    write.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
+    write.clampToFormat = s.at("clampToFormat").get<bool>();
+    write.profile = s.at("profile").get<std::string>();
+    OutputSet outputs;
+    const StoredCube stored = writeIrradianceCubeProduct(
+        outputs, bakeIrradianceCube(readCubeFile(from / kCubeFile), settings, *c.executor), write,
+        calibration.record, calibration.sun, c.outputDirectory / "irradiance.ktx2");
+    outputs.commit();
+    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(stored.storage));
 }
 
 void runProbe(const StageContext& c) {

@@ -10,6 +10,7 @@
 #include "iblbake/opencl/executor.h"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -39,6 +40,20 @@ GltfExport readBakeForGltf(const GltfExportSource& source, const GltfExportSetti
 
 // Re-filters export.scene.specular when export.refilter is set (else nothing to do).
 void refilterForGltf(GltfExport& gltfExport, const Executor& executor);
+
+// The whole export, of `iblbake gltf` and of the scene's gltf-export stage: readBakeForGltf,
+// refilterForGltf on executor() (asked for only when the chain must be re-filtered), writeGltfIbl to
+// `output` and its images beside it. refilterMilliseconds: the re-filter's wall time (0 without one).
+struct GltfExported {
+    GltfExport gltf;
+    double refilterMilliseconds = 0.0;
+};
+GltfExported exportGltf(const GltfExportSource& source, const GltfExportSettings& settings,
+                        const std::filesystem::path& output,
+                        const std::function<const Executor&()>& executor);
+
+// A bake directory's files: specular.ktx2, diffuse.json, and sun.json when it is there.
+GltfExportSource gltfExportSourceIn(const std::filesystem::path& bakeDirectory);
 
 // diffuse.json's sh.irradiance (A_l k_i L_i): 9 finite RGB triples; throws ibl::Error naming the file and
 // the key path.

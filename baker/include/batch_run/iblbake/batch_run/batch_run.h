@@ -68,6 +68,10 @@ using BatchBakeFunction =
     std::function<BakeSummary(const Scene&, const BakeOptions&, ProgressSink&, const UpToDate& checked)>;
 // Up-to-date checks already made, by item index: taken instead of checking the item again.
 using KnownUpToDate = std::map<std::size_t, UpToDate>;
+// Every item of the shard checked, when all of them are up to date (runBatch then bakes none); nullopt at
+// the first stale one. Throws what batchItemScene and checkBakeUpToDate throw.
+std::optional<KnownUpToDate> shardUpToDate(const BatchManifest& manifest, const Shard& shard,
+                                           const BakeOptions& options);
 
 // What a batch reports as it runs; the defaults do nothing. The item calls come from the worker threads,
 // for several items at once.

@@ -1,9 +1,12 @@
 // Small numeric facts that many library files use, each defined here once: pi and the degree in double,
-// the power-of-two test of face and LUT sizes, and Rec.709 luminance (DESIGN.md "Units").
+// the power-of-two test of face and LUT sizes, Rec.709 luminance, and float-exact decimal text (DESIGN.md
+// "Units").
 #pragma once
 
 #include <bit>
+#include <cstdio>
 #include <numbers>
+#include <string>
 
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -26,6 +29,14 @@ inline float rec709Luminance(const glm::vec4& rgba) {
 
 inline bool isPowerOfTwo(int value) {
     return value > 0 && std::has_single_bit(unsigned(value));
+}
+
+// `value` as text with 9 significant digits: enough that a float read back from it is the very float
+// written (metadata values that a loader parses again, and numbers in messages).
+inline std::string floatDecimal(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", value);
+    return text;
 }
 
 } // namespace ibl

@@ -49,6 +49,9 @@ Plan planScene(const Scene& scene);
 // {"stages": [{id, kind, dependsOn, inputs: [{key, file}], settings, products, reason}], "skipped": [...],
 //  "notes": [...]}
 nlohmann::json planToJson(const Plan& plan);
+// The plan for people (`iblbake plan`): the scene, each stage with its reason, settings, inputs, dependencies
+// and products, the skipped stages, the notes; one line each.
+std::string planText(const Scene& scene, const Plan& plan);
 
 // The last level the roughest material reads in a full chain (mipLevelCount(faceSize) levels): the first
 // level m whose roughness under `mapping` (mip_mapping.h) reaches roughnessMax. Levels past it are not

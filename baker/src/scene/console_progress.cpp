@@ -1,4 +1,4 @@
-#include "scene_progress.h"
+#include "iblbake/bake_state/console_progress.h"
 
 #include <nlohmann/json.hpp>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <unistd.h>
 
-namespace ibl::cli {
+namespace ibl {
 
 ProgressMode chooseProgressMode(bool quiet, bool json) {
     if (json) return ProgressMode::Json;
@@ -118,4 +118,4 @@ void ConsoleProgress::done(const BakeSummary& summary) {
     std::fflush(stdout);
 }
 
-} // namespace ibl::cli
+} // namespace ibl

@@ -1,8 +1,8 @@
-#include "batch_progress.h"
+#include "iblbake/batch_run/batch_progress.h"
 
 #include <cstdio>
 
-namespace ibl::cli {
+namespace ibl {
 
 void BatchProgress::event(const std::string& name, nlohmann::json event) {
     if (mode_ != ProgressMode::Json) return;
@@ -66,4 +66,4 @@ void BatchProgress::done(const BatchSummary& summary) {
     event("done", {{"summary", batchSummaryJson(summary)}});
 }
 
-} // namespace ibl::cli
+} // namespace ibl

@@ -1,19 +1,18 @@
-// Progress of `iblbake batch`: the library's batch observer printing each stage and item as a line or a JSON
-// event naming its item; lines from parallel items never interleave (one mutex). Lines mode prints one line
-// per stage and per item on stderr, --quiet only errors, --json one JSON object per line on stdout
-// (docs/batch.md "Batch").
+// Progress of a batch on the console (`iblbake batch`): the library's batch observer printing each stage and
+// item as a line or a JSON event naming its item; lines from parallel items never interleave (one mutex).
+// Lines mode prints one line per stage and per item on stderr, --quiet only errors, --json one JSON object
+// per line on stdout (docs/batch.md "Batch").
 #pragma once
 
-#include "scene_progress.h"
-
-#include <iblbake/batch_run/batch_run.h>
+#include "iblbake/bake_state/console_progress.h"
+#include "iblbake/batch_run/batch_run.h"
 
 #include <nlohmann/json.hpp>
 
 #include <mutex>
 #include <string>
 
-namespace ibl::cli {
+namespace ibl {
 
 class BatchProgress : public BatchObserver {
   public:
@@ -37,4 +36,4 @@ class BatchProgress : public BatchObserver {
     std::mutex mutex_;
 };
 
-} // namespace ibl::cli
+} // namespace ibl

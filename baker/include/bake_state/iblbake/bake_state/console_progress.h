@@ -1,12 +1,14 @@
-// Progress of `iblbake bake`: a redrawn one-line bar with the stage and an ETA on a terminal, one line per
-// stage otherwise, nothing with --quiet, JSON event lines on stdout with --json.
+// Progress of a scene bake on the console (`iblbake bake`): a redrawn one-line bar with the stage and an ETA
+// on a terminal, one line per stage otherwise, nothing when quiet, JSON event lines on stdout (docs/scenes.md
+// "Progress"); at the end the summary line and the bake's report (BakeSummary::report). Beside the summary it
+// prints (bakeSummaryJson), so that the front end and the engine report a bake the same way.
 #pragma once
 
-#include <iblbake/bake_state/bake_state.h>
+#include "iblbake/bake_state/bake_state.h"
 
 #include <chrono>
 
-namespace ibl::cli {
+namespace ibl {
 
 enum class ProgressMode { Bar, Lines, Quiet, Json };
 
@@ -26,4 +28,4 @@ class ConsoleProgress : public ProgressSink {
     bool barDrawn_ = false;
 };
 
-} // namespace ibl::cli
+} // namespace ibl
