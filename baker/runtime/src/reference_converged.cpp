@@ -372,12 +372,23 @@ AdaptiveReference renderAdaptiveReference(const CubeMap& environment, std::span<
     // What the next round computes for each group: its samples, its grid, or nothing (done).
     std::vector<bool> refineSamples(std::size_t(groupCount), true), refineGrid(std::size_t(groupCount), true);
     int groupsDone = 0;
+    // The time estimate: seconds per point-sample of the rounds so far (a grid round counted as a round of
+    // the group's samples), times the point-samples the groups left need if their estimates keep falling at
+    // the rate of their last doubling (one over the square root of the samples before a second round: on
+    // the park map they fell faster at first, and that guess was up to 3x the time left).
+    double seconds = 0.0, pointSamplesDone = 0.0;
+    std::vector<double> previousEstimate(std::size_t(groupCount), 0.0);
     while (groupsDone < groupCount) {
         const auto roundStart = std::chrono::steady_clock::now();
         std::vector<std::size_t> work; // points of the groups that refine a part
         for (int g = 0; g < groupCount; ++g)
-            if (refineSamples[std::size_t(g)] || refineGrid[std::size_t(g)])
+            if (refineSamples[std::size_t(g)] || refineGrid[std::size_t(g)]) {
                 work.insert(work.end(), members[std::size_t(g)].begin(), members[std::size_t(g)].end());
+                pointSamplesDone += double(members[std::size_t(g)].size()) *
+                                    double(refineSamples[std::size_t(g)] && batches[std::size_t(g)] > 0
+                                               ? out.groupSamples[std::size_t(g)] / 2
+                                               : out.groupSamples[std::size_t(g)]);
+            }
         tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
             const std::size_t k = work[i];
             const std::size_t g = std::size_t(groupOfPoint[k]);
@@ -388,11 +399,10 @@ AdaptiveReference renderAdaptiveReference(const CubeMap& environment, std::span<
                                    batches[g]);
             if (refineGrid[g]) grid[k] = griddedPart(m, e, out.groupStepsPerScale[g]);
         });
-        const double roundSeconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count();
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count();
         for (int g = 0; g < groupCount; ++g)
             if (refineSamples[std::size_t(g)]) ++batches[std::size_t(g)];
-        std::size_t nextWork = 0;
+        double pointSamplesLeft = 0.0;
         for (int g = 0; g < groupCount; ++g) {
             const std::size_t gi = std::size_t(g);
             if (!refineSamples[gi] && !refineGrid[gi]) continue;
@@ -420,13 +430,19 @@ AdaptiveReference renderAdaptiveReference(const CubeMap& environment, std::span<
                 out.groupStepsPerScale[gi] *= 2.0;
                 refineGrid[gi] = true;
             }
-            nextWork += members[gi].size();
+            // Halvings of the estimate per doubling of the samples, measured once there are two rounds.
+            const double rate = previousEstimate[gi] > relative && relative > 0.0
+                                    ? std::clamp(std::log2(previousEstimate[gi] / relative), 0.5, 1.0)
+                                    : 0.5;
+            previousEstimate[gi] = relative;
+            const double needed = std::clamp(std::pow(relative / adaptive.targetError, 1.0 / rate) *
+                                                 double(out.groupSamples[gi] / (refineSamples[gi] ? 2 : 1)),
+                                             double(out.groupSamples[gi]), double(maxSamples));
+            pointSamplesLeft += double(members[gi].size()) *
+                                (needed - double(out.groupSamples[gi] / (refineSamples[gi] ? 2 : 1)));
         }
-        // The next round doubles one part of each group left (a batch of as many samples as all before, or
-        // the grid at twice the steps): about twice this round's time per point.
-        const double secondsLeft =
-            work.empty() ? 0.0 : roundSeconds * 2.0 * double(nextWork) / double(work.size());
-        if (progress) progress(groupsDone, groupCount, secondsLeft);
+        if (progress)
+            progress(groupsDone, groupCount, seconds / std::max(pointSamplesDone, 1.0) * pointSamplesLeft);
     }
     ConvergedReference& r = out.reference;
     r.brightTexels = e.brightTexels;

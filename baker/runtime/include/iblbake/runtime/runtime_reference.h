@@ -123,7 +123,9 @@ ConvergedReference renderConvergedReference(const CubeMap& environment, std::spa
 // rotations (up to settings.samples x 16), or the grid's steps (up to 4 x settings.stepsPerScale). The
 // estimate is the fixed-effort one's (the half difference of all samples, the grid against its half), of
 // the effort each group stopped at (groupSamples, groupStepsPerScale). `progress` (may be empty) is called
-// after each round with the groups done and the seconds left by the rounds so far.
+// after each round with the groups done and an estimate of the seconds left: the rounds' time per
+// point-sample times the samples the groups left need if their estimates fall as one over the square root
+// of their samples.
 struct AdaptiveReferenceSettings {
     double targetError = 0.005; // per group, relative (luminance)
     std::uint32_t firstSamples = 64;
