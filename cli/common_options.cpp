@@ -18,7 +18,7 @@ Executor BackendOptions::makeExecutor() const {
 }
 
 Executor BackendOptions::makeExecutor(Backend chosen) const {
-    Executor executor = Executor::create(chosen, device, std::cerr);
+    Executor executor = Executor::create(jobBackend(chosen, device), device, std::cerr);
     // A program loaded from its binary skips the compiler and PoCL's own cache look-up, which runs clang's
     // preprocessor over the source (docs/conventions.md "Kernels, backends and kernel binaries").
     if (executor.usesOpenCL())

@@ -42,7 +42,7 @@ set(IBLBAKE_CODE_ld_chain # the split-sum LD chain: kernel, CPU loops, pyramid, 
 # computation throw. "manifest" is no stage: manifest.json is written by every bake that is not up to date,
 # and records this identity so that the up-to-date check does not keep one written by other code.
 set(IBLBAKE_STAGE_KINDS dfg-lut environment sun-extract sun-in-probe specular-ld diffuse-sh irradiance-cube probe-ld
-    gltf-export material-preview light-card manifest)
+    gltf-export preview-reference material-preview light-card manifest)
 set(IBLBAKE_STAGE_CODE_dfg-lut stage_runner kernel_host kernels/dfg.cl baker/src/stages/dfg_lut.cpp
     baker/src/stages/host_clones.h)
 set(IBLBAKE_STAGE_CODE_environment stage_runner ingest)
@@ -64,6 +64,9 @@ set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
 set(IBLBAKE_STAGE_CODE_gltf-export stage_runner kernel_host ld_chain baker/src/scene/engine_output_stages.cpp
     baker/src/export baker/src/calibration baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp
     baker/src/io/encoded_image.cpp)
+# The preview's converged reference (issue 46): the balls' points and the adaptive reference, no backend.
+set(IBLBAKE_STAGE_CODE_preview-reference stage_runner baker/src/scene/engine_output_stages.cpp
+    baker/src/preview/material_preview.cpp baker/src/preview/preview_grid.cpp baker/runtime/src)
 set(IBLBAKE_STAGE_CODE_material-preview stage_runner kernel_host baker/src/scene/engine_output_stages.cpp
     baker/src/preview baker/runtime/src kernels/runtime.cl baker/src/io/preview.cpp baker/src/io/exr_output.cpp
     baker/src/io/encoded_image.cpp baker/oiio_module)

@@ -154,6 +154,62 @@ TEST(ConvergedReference, EstimateBoundsErrorWithASun) {
     }
 }
 
+// The adaptive reference (issue 46) on a small sky with a sun of four texels and a textured ground, the
+// balls grouped by roughness and metal, against the same integral at 16x the samples and 4x the grid steps
+// of the fixed effort (the every-texel brute force, renderReference, was no judge here: 0.6-1.0% off itself
+// between 32,768 and 65,536 samples per strategy on this sun), within that long run's own estimate: every
+// group's actual error is under the 0.5% target, and the error it states is its size (at least half of it:
+// the half difference of two sample sets estimates the error's expected size, it is no strict bound; here
+// one group stated 0.050% for an actual 0.087%).
+TEST(ConvergedReference, AdaptiveReferenceMeetsItsTargetAndStatesItsError) {
+    const int n = 32;
+    CubeMap cube(n);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::vec3 d = glm::normalize(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n));
+                const float sky = d.y > 0 ? 1.0f + 2.0f * d.y : 0.3f + 0.1f * float(x % 3);
+                cube.faces[f].at(x, y) = glm::vec4(sky, sky * 0.9f, sky * 0.8f, 1.0f);
+            }
+    for (int y = 12; y < 14; ++y)
+        for (int x = 20; x < 22; ++x)
+            cube.faces[2].at(x, y) = glm::vec4(20000.0f, 19000.0f, 17000.0f, 1.0f); // +Y, off the zenith
+    const RuntimeOptions options;
+    std::vector<ShadingPoint> points;
+    std::vector<int> group;
+    const std::vector<float> roughness = {0.0f, 0.1f, 0.2f, 0.5f, 1.0f};
+    for (std::size_t g = 0; g < 2 * roughness.size(); ++g)
+        for (ShadingPoint p : spherePoints(roughness[g / 2], float(g % 2), 8)) {
+            p.normal = glm::vec3(p.normal.x, p.normal.z, -p.normal.y); // seen from above: the sun reflected
+            p.view = glm::vec3(0, 1, 0);
+            points.push_back(p);
+            group.push_back(int(g));
+        }
+    const AdaptiveReference adaptive = renderAdaptiveReference(cube, points, group, options, {}, {});
+    ConvergedReferenceSettings high;
+    high.samples = 16384;
+    high.stepsPerScale = 32.0;
+    const ConvergedReference truth = renderConvergedReference(cube, points, options, high);
+    for (std::size_t g = 0; g < adaptive.groupErrorEstimate.size(); ++g) {
+        std::vector<glm::dvec3> got, want;
+        double truthEstimate = 0.0, sum = 0.0;
+        for (std::size_t k = 0; k < points.size(); ++k)
+            if (group[k] == int(g)) {
+                got.push_back(adaptive.reference.results[k].total());
+                want.push_back(truth.results[k].total());
+                truthEstimate += lum(truth.errorEstimate[k]), sum += lum(truth.results[k].total());
+            }
+        const double actual = columnError(got, want), stated = adaptive.groupErrorEstimate[g];
+        std::printf("group r = %.1f %s: %u samples, %g steps, stated %.3f%%, actual %.3f%% (long run's own "
+                    "estimate %.3f%%)\n",
+                    roughness[g / 2], g % 2 ? "metal" : "dielectric", adaptive.groupSamples[g],
+                    adaptive.groupStepsPerScale[g], 100 * stated, 100 * actual, 100 * truthEstimate / sum);
+        EXPECT_LE(stated, 5e-3) << g;
+        EXPECT_LE(actual, 5e-3 + truthEstimate / sum) << g;
+        EXPECT_GE(stated, 0.5 * (actual - truthEstimate / sum)) << g;
+    }
+}
+
 // The fast LD reference at chosen texels against the every-texel brute force on a sky with a sun: the
 // difference stays within its estimate, which is small.
 TEST(ConvergedReference, FastLdAgreesWithTheBruteForceWithinItsEstimate) {

@@ -825,6 +825,39 @@ TEST(SceneBake, IrradianceCubeWhenAskedIsPlannedBakedAndLoaded) {
     EXPECT_GT(differsFromSh, 0); // the cube, not the SH, lit the loaded set
 }
 
+// The status of stage `id` in a bake's summary ("ran", "cached"), or "" when it was not planned.
+std::string statusOf(const JsonRun& r, const std::string& id) {
+    for (const json& stage : r.summary.value("stages", json::array()))
+        if (stage["id"] == id) return stage["status"];
+    return "";
+}
+
+// The preview's reference is cached by a key of its own (issue 46): a bake with the same environment and
+// balls takes it from the cache (a new roughness range re-runs the chain and the preview, not the
+// reference), a new environment renders it again; while it renders, the bake says it waits on it.
+TEST(SceneBake, PreviewReferenceIsCachedApartFromTheBakeItJudges) {
+    SceneDir d("scene_preview_reference");
+    d.scene["materials"] = {{"roughness", {{"min", 0.05}, {"max", 0.8}}}};
+    d.scene["outputs"]["preview"] = {{"sphereSize", 8}};
+    const JsonRun first = bakeJson(d.write());
+    ASSERT_EQ(first.run.exitCode, 0) << first.run.err;
+    EXPECT_EQ(statusOf(first, "preview-reference"), "ran");
+    EXPECT_NE(first.run.out.find(R"("event":"stage-waiting")"), std::string::npos) << first.run.out;
+    EXPECT_NE(first.run.out.find(R"("on":"reference")"), std::string::npos) << first.run.out;
+
+    d.scene["materials"]["roughness"]["max"] = 0.6;
+    const JsonRun rougher = bakeJson(d.write());
+    ASSERT_EQ(rougher.run.exitCode, 0) << rougher.run.err;
+    EXPECT_EQ(statusOf(rougher, "preview-reference"), "cached");
+    EXPECT_EQ(statusOf(rougher, "specular"), "ran");
+    EXPECT_EQ(statusOf(rougher, "preview"), "ran");
+
+    d.scene["environment"]["file"] = "a.hdr";
+    const JsonRun otherEnvironment = bakeJson(d.write());
+    ASSERT_EQ(otherEnvironment.run.exitCode, 0) << otherEnvironment.run.err;
+    EXPECT_EQ(statusOf(otherEnvironment, "preview-reference"), "ran");
+}
+
 // outputs.gltf and outputs.preview: planned only when asked, made by the flows of `iblbake gltf` and
 // `iblbake preview`, listed in the manifest with every file they write, in the bake's report, and up to
 // date on a re-run (answered by the front end, with the same report).

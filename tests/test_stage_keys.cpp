@@ -106,6 +106,40 @@ TEST(StageKeys, ChangedCodeReachesItsStagesAndEverythingDownstreamOnly) {
     }
 }
 
+// The preview's reference has a key of its own (issue 46): the calibrated environment and the balls decide
+// it, so a new roughness range or new LD settings re-run the chain and the preview, not the reference; a
+// changed environment or ball size re-runs it.
+TEST(StageKeys, PreviewReferenceKeyFollowsTheEnvironmentAndTheBallsOnly) {
+    const fs::path scenes = fs::path(IBLBAKE_SOURCE_DIR) / "data" / "scenes";
+    std::ifstream in(scenes / "park.json");
+    const nlohmann::json park = nlohmann::json::parse(in);
+    const auto keysOf = [&](const nlohmann::json& scene, const std::string& environmentContent) {
+        const ibl::Plan plan = ibl::planScene(ibl::parseScene(scene.dump(), "park.json", scenes));
+        Keys inputs = fakeInputHashes(plan);
+        for (const ibl::PlanStage& stage : plan.stages)
+            if (stage.id == "environment") inputs[stage.inputs.at(0).file.string()] = environmentContent;
+        return ibl::planStageKeys(plan, inputs, "cpu");
+    };
+    const Keys before = keysOf(park, "park");
+    ASSERT_TRUE(before.count("preview-reference"));
+    EXPECT_EQ(keysOf(park, "park"), before);
+
+    nlohmann::json rougher = park;
+    rougher["materials"]["roughness"]["max"] = 0.6;
+    EXPECT_EQ(changedIds(before, keysOf(rougher, "park")),
+              (std::set<std::string>{"specular", "probe:pavilion", "gltf", "preview"}));
+    nlohmann::json draft = park;
+    draft["outputs"]["quality"] = "draft";
+    const std::set<std::string> draftChanged = changedIds(before, keysOf(draft, "park"));
+    EXPECT_TRUE(draftChanged.count("specular") && draftChanged.count("preview"));
+    EXPECT_FALSE(draftChanged.count("preview-reference"));
+
+    EXPECT_TRUE(changedIds(before, keysOf(park, "another environment")).count("preview-reference"));
+    nlohmann::json smallerBalls = park;
+    smallerBalls["outputs"]["preview"] = {{"sphereSize", 32}};
+    EXPECT_TRUE(changedIds(before, keysOf(smallerBalls, "park")).count("preview-reference"));
+}
+
 TEST(StageKeys, KindWithoutCodeIdentityIsAnError) {
     const ibl::Plan plan = everyKindPlan();
     ibl::StageCodeIdentity code = ibl::builtInStageCodeIdentity();
@@ -188,9 +222,10 @@ TEST(StageCodeIdentity, SourceTextReachesTheKindsThatUseIt) {
     const ibl::StageCodeIdentity unchanged = sources.identity();
     EXPECT_EQ(unchanged, ibl::builtInStageCodeIdentity());
 
-    const std::set<std::string> stages = {
-        "dfg-lut",         "environment", "sun-extract", "sun-in-probe",     "specular-ld", "diffuse-sh",
-        "irradiance-cube", "probe-ld",    "gltf-export", "material-preview", "light-card"};
+    const std::set<std::string> stages = {"dfg-lut",          "environment", "sun-extract",
+                                          "sun-in-probe",     "specular-ld", "diffuse-sh",
+                                          "irradiance-cube",  "probe-ld",    "gltf-export",
+                                          "material-preview", "light-card",  "preview-reference"};
     std::set<std::string> stagesAndManifest = stages;
     stagesAndManifest.insert("manifest");
     const std::map<std::string, std::set<std::string>> reached = {

@@ -7,8 +7,13 @@
 #include <iblbake/baker/exr_output.h>
 #include <iblbake/baker/preview.h>
 #include <iblbake/baker/specular.h>
+#include <iblbake/opencl/executor.h>
 
 #include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
 
 namespace fs = std::filesystem;
 
@@ -95,6 +100,40 @@ TEST(StartUp, SmallStandaloneChainLoadsNoOpenClDriverUnlessAsked) {
     EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::Auto, true, production, 64), Backend::Auto)
         << "a named device";
     EXPECT_EQ(ibl::standaloneSpecularBackend(Backend::OpenCL, false, production, 64), Backend::OpenCL);
+    fs::remove_all(dir);
+}
+
+// What `auto` runs for a job (executor.h jobBackend, issue 46): the CPU backend where every OpenCL device is
+// a CPU, OpenCL where a GPU is found or a device is named; an explicit backend is kept. A scene bake under
+// auto on this machine runs on the CPU backend when its devices are CPUs, and on OpenCL when asked.
+TEST(StartUp, AutoRunsTheCpuLanesWhereEveryOpenClDeviceIsACpu) {
+    using ibl::Backend;
+    ibl::ocl::DeviceInfo cpu, gpu;
+    cpu.deviceType = "CPU";
+    gpu.deviceType = "GPU";
+    EXPECT_EQ(ibl::jobBackend(Backend::Auto, false, {cpu}), Backend::Cpu);
+    EXPECT_EQ(ibl::jobBackend(Backend::Auto, false, {cpu, gpu}), Backend::Auto) << "a GPU is preferred";
+    EXPECT_EQ(ibl::jobBackend(Backend::Auto, true, {cpu}), Backend::Auto) << "a named device";
+    EXPECT_EQ(ibl::jobBackend(Backend::Auto, false, {}), Backend::Auto) << "no device: the warned fallback";
+    EXPECT_EQ(ibl::jobBackend(Backend::OpenCL, false, {cpu}), Backend::OpenCL);
+    EXPECT_EQ(ibl::jobBackend(Backend::Cpu, false, {gpu}), Backend::Cpu);
+
+    const fs::path dir = ibl::test::freshTempDir("start_up_auto_scene");
+    const nlohmann::json scene = {
+        {"environment", {{"file", kSampleHdri}}},
+        {"outputs", {{"directory", (dir / "out").string()}, {"quality", "draft"}, {"faceSize", 16}}}};
+    std::ofstream(dir / "scene.json") << scene.dump();
+    const auto backendOf = [&](const std::string& flags) {
+        const CliRun r = runCli("bake " + (dir / "scene.json").string() + " --json --force" + flags);
+        EXPECT_EQ(r.exitCode, 0) << r.err;
+        const std::string done = r.out.substr(r.out.rfind("{\"event\":\"done\""));
+        return nlohmann::json::parse(done)["summary"]["backend"].get<std::string>();
+    };
+    const std::vector<ibl::ocl::DeviceInfo> devices = ibl::ocl::listDevices();
+    if (devices.empty()) GTEST_SKIP() << "no OpenCL device";
+    EXPECT_EQ(backendOf(""),
+              ibl::jobBackend(Backend::Auto, false, devices) == Backend::Cpu ? "cpu" : "opencl");
+    EXPECT_EQ(backendOf(" --backend opencl"), "opencl");
     fs::remove_all(dir);
 }
 

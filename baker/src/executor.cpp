@@ -1,6 +1,8 @@
 #include "iblbake/opencl/executor.h"
 #include "iblbake/core/error.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <ostream>
 #include <utility>
 
@@ -16,6 +18,22 @@ Executor Executor::create(Backend requested, const std::string& device, std::ost
         warnings << "iblbake: warning: " << e.what() << "; running on the CPU backend\n";
         return cpu();
     }
+}
+
+Backend jobBackend(Backend requested, bool deviceNamed, const std::vector<ocl::DeviceInfo>& devices) {
+    if (requested != Backend::Auto || deviceNamed || devices.empty()) return requested;
+    const bool gpu = std::any_of(devices.begin(), devices.end(),
+                                 [](const ocl::DeviceInfo& d) { return d.deviceType == "GPU"; });
+    const bool allCpus = std::all_of(devices.begin(), devices.end(),
+                                     [](const ocl::DeviceInfo& d) { return d.deviceType == "CPU"; });
+    return !gpu && allCpus ? Backend::Cpu : Backend::Auto;
+}
+
+Backend jobBackend(Backend requested, const std::string& device) {
+    if (requested != Backend::Auto) return requested;
+    const char* environment = std::getenv("IBLBAKE_CL_DEVICE");
+    const bool deviceNamed = !device.empty() || (environment && *environment);
+    return deviceNamed ? requested : jobBackend(requested, false, ocl::listDevices());
 }
 
 void CpuDispatchTimings::record(const char* kernel, double milliseconds) {

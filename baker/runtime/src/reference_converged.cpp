@@ -18,6 +18,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
@@ -266,6 +267,59 @@ class AlbedoTables {
 
 } // namespace
 
+namespace {
+
+// A point's sampled or gridded part: its value and its estimated error (per channel).
+struct Part {
+    glm::dvec3 diffuse{0.0}, specular{0.0}, error{0.0};
+    glm::dvec3 total() const { return diffuse + specular; }
+};
+
+// Two independent halves of the samples (different rotations): their half difference has the size of the
+// mean's sampling error.
+Part sampledPart(const PointMaterial& m, const SplitEnvironment& e, std::uint32_t samples) {
+    const Integral first = sampled(m, e, samples / 2, {0.0, 0.0});
+    const Integral second = sampled(m, e, samples / 2, {0.61803398875, 0.41421356237});
+    return {0.5 * (first.diffuse + second.diffuse), 0.5 * (first.specular + second.specular),
+            glm::abs(0.5 * (second.total() - first.total()))};
+}
+
+// The grid at two steps: the midpoint rule's error falls 4x per halved step, so the difference bounds it.
+Part griddedPart(const PointMaterial& m, const SplitEnvironment& e, double stepsPerScale) {
+    const Integral grid = gridded(m, e, stepsPerScale);
+    return {grid.diffuse, grid.specular,
+            glm::abs(grid.total() - gridded(m, e, stepsPerScale / 2.0).total()) + grid.singleStepBound};
+}
+
+// The sampled part in batches that add up (renderAdaptiveReference): each batch brings two halves of fresh
+// rotations, and the sums over all batches so far give the mean and the half difference of all samples.
+struct SampledSums {
+    Integral a, b;             // sums of sample weights x values of each half over the batches
+    std::uint32_t perHalf = 0; // samples per half over the batches
+    void add(const PointMaterial& m, const SplitEnvironment& e, std::uint32_t batchPerHalf,
+             std::uint32_t batch) {
+        // Batch j's rotations: the R2 sequence (Roberts 2018) for the first half, the fixed-effort's offset
+        // from it for the second, so that batch 0 is the fixed effort's sample set.
+        const glm::dvec2 shift =
+            glm::fract(double(batch) * glm::dvec2(0.7548776662466927, 0.5698402909980532));
+        const Integral first = sampled(m, e, batchPerHalf, shift);
+        const Integral second =
+            sampled(m, e, batchPerHalf, glm::fract(shift + glm::dvec2(0.61803398875, 0.41421356237)));
+        a.diffuse += double(batchPerHalf) * first.diffuse,
+            a.specular += double(batchPerHalf) * first.specular;
+        b.diffuse += double(batchPerHalf) * second.diffuse,
+            b.specular += double(batchPerHalf) * second.specular;
+        perHalf += batchPerHalf;
+    }
+    Part part() const {
+        const double n = 2.0 * double(perHalf);
+        return {(a.diffuse + b.diffuse) / n, (a.specular + b.specular) / n,
+                glm::abs(a.total() - b.total()) / n};
+    }
+};
+
+} // namespace
+
 ConvergedReference renderConvergedReference(const CubeMap& environment, std::span<const ShadingPoint> points,
                                             const RuntimeOptions& options,
                                             const ConvergedReferenceSettings& settings) {
@@ -278,16 +332,127 @@ ConvergedReference renderConvergedReference(const CubeMap& environment, std::spa
     out.errorEstimate.resize(points.size());
     tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t k) {
         const PointMaterial m(points[k], options, settings.minAlpha, albedo);
-        // Two independent halves of the samples (different rotations), and the grid at two steps.
-        const Integral first = sampled(m, e, settings.samples / 2, {0.0, 0.0});
-        const Integral second = sampled(m, e, settings.samples / 2, {0.61803398875, 0.41421356237});
-        const Integral grid = gridded(m, e, settings.stepsPerScale);
-        out.results[k] = {0.5 * (first.diffuse + second.diffuse) + grid.diffuse,
-                          0.5 * (first.specular + second.specular) + grid.specular};
-        out.errorEstimate[k] = glm::abs(0.5 * (second.total() - first.total())) +
-                               glm::abs(grid.total() - gridded(m, e, settings.stepsPerScale / 2.0).total()) +
-                               grid.singleStepBound;
+        const Part sampledRest = sampledPart(m, e, settings.samples);
+        const Part grid = griddedPart(m, e, settings.stepsPerScale);
+        out.results[k] = {sampledRest.diffuse + grid.diffuse, sampledRest.specular + grid.specular};
+        out.errorEstimate[k] = sampledRest.error + grid.error;
     });
+    return out;
+}
+
+AdaptiveReference renderAdaptiveReference(const CubeMap& environment, std::span<const ShadingPoint> points,
+                                          std::span<const int> groupOfPoint, const RuntimeOptions& options,
+                                          const ConvergedReferenceSettings& settings,
+                                          const AdaptiveReferenceSettings& adaptive,
+                                          const ReferenceProgress& progress) {
+    if (adaptive.firstSamples < 4) throw Error("converged reference: fewer than 4 samples per strategy");
+    if (groupOfPoint.size() != points.size())
+        throw Error("converged reference: " + std::to_string(groupOfPoint.size()) + " group ids for " +
+                    std::to_string(points.size()) + " points");
+    int groupCount = 0;
+    for (int g : groupOfPoint) {
+        if (g < 0) throw Error("converged reference: a negative group id");
+        groupCount = std::max(groupCount, g + 1);
+    }
+    const SplitEnvironment e = splitEnvironment(environment, settings);
+    const AlbedoTables albedo(points, settings.minAlpha, settings.albedoSamples);
+    std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(groupCount));
+    for (std::size_t k = 0; k < points.size(); ++k)
+        members[std::size_t(groupOfPoint[k])].push_back(k);
+
+    const std::uint32_t maxSamples = std::max(adaptive.firstSamples, settings.samples * 16);
+    const double maxSteps = 4.0 * settings.stepsPerScale;
+    AdaptiveReference out;
+    out.groupSamples.assign(std::size_t(groupCount), adaptive.firstSamples);
+    out.groupStepsPerScale.assign(std::size_t(groupCount), settings.stepsPerScale);
+    out.groupErrorEstimate.assign(std::size_t(groupCount), 0.0);
+    std::vector<SampledSums> sampledRest(points.size());
+    std::vector<Part> grid(points.size());
+    std::vector<std::uint32_t> batches(std::size_t(groupCount), 0); // per group: batches taken
+    // What the next round computes for each group: its samples, its grid, or nothing (done).
+    std::vector<bool> refineSamples(std::size_t(groupCount), true), refineGrid(std::size_t(groupCount), true);
+    int groupsDone = 0;
+    // The time estimate: seconds per point-sample of the rounds so far (a grid round counted as a round of
+    // the group's samples), times the point-samples the groups left need if their estimates keep falling at
+    // the rate of their last doubling (one over the square root of the samples before a second round: on
+    // the park map they fell faster at first, and that guess was up to 3x the time left).
+    double seconds = 0.0, pointSamplesDone = 0.0;
+    std::vector<double> previousEstimate(std::size_t(groupCount), 0.0);
+    while (groupsDone < groupCount) {
+        const auto roundStart = std::chrono::steady_clock::now();
+        std::vector<std::size_t> work; // points of the groups that refine a part
+        for (int g = 0; g < groupCount; ++g)
+            if (refineSamples[std::size_t(g)] || refineGrid[std::size_t(g)]) {
+                work.insert(work.end(), members[std::size_t(g)].begin(), members[std::size_t(g)].end());
+                pointSamplesDone += double(members[std::size_t(g)].size()) *
+                                    double(refineSamples[std::size_t(g)] && batches[std::size_t(g)] > 0
+                                               ? out.groupSamples[std::size_t(g)] / 2
+                                               : out.groupSamples[std::size_t(g)]);
+            }
+        tbb::parallel_for(std::size_t(0), work.size(), [&](std::size_t i) {
+            const std::size_t k = work[i];
+            const std::size_t g = std::size_t(groupOfPoint[k]);
+            const PointMaterial m(points[k], options, settings.minAlpha, albedo);
+            // The first batch has the group's first samples; each later one as many as all before it.
+            if (refineSamples[g])
+                sampledRest[k].add(m, e, std::max(out.groupSamples[g] / 2 - sampledRest[k].perHalf, 1u),
+                                   batches[g]);
+            if (refineGrid[g]) grid[k] = griddedPart(m, e, out.groupStepsPerScale[g]);
+        });
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - roundStart).count();
+        for (int g = 0; g < groupCount; ++g)
+            if (refineSamples[std::size_t(g)]) ++batches[std::size_t(g)];
+        double pointSamplesLeft = 0.0;
+        for (int g = 0; g < groupCount; ++g) {
+            const std::size_t gi = std::size_t(g);
+            if (!refineSamples[gi] && !refineGrid[gi]) continue;
+            double sampledError = 0.0, gridError = 0.0, sum = 0.0;
+            for (std::size_t k : members[gi]) {
+                const Part rest = sampledRest[k].part();
+                sampledError += luminance(rest.error);
+                gridError += luminance(grid[k].error);
+                sum += luminance(rest.total() + grid[k].total());
+            }
+            const double relative = (sampledError + gridError) / std::max(sum, 1e-300);
+            out.groupErrorEstimate[gi] = relative;
+            const bool canSample = out.groupSamples[gi] < maxSamples,
+                       canGrid = out.groupStepsPerScale[gi] < maxSteps;
+            refineSamples[gi] = refineGrid[gi] = false;
+            if (relative <= adaptive.targetError || (!canSample && !canGrid)) {
+                ++groupsDone;
+                continue;
+            }
+            // The larger part is refined: halving the smaller one could not bring the sum under the target.
+            if (canSample && (sampledError >= gridError || !canGrid)) {
+                out.groupSamples[gi] *= 2;
+                refineSamples[gi] = true;
+            } else {
+                out.groupStepsPerScale[gi] *= 2.0;
+                refineGrid[gi] = true;
+            }
+            // Halvings of the estimate per doubling of the samples, measured once there are two rounds.
+            const double rate = previousEstimate[gi] > relative && relative > 0.0
+                                    ? std::clamp(std::log2(previousEstimate[gi] / relative), 0.5, 1.0)
+                                    : 0.5;
+            previousEstimate[gi] = relative;
+            const double needed = std::clamp(std::pow(relative / adaptive.targetError, 1.0 / rate) *
+                                                 double(out.groupSamples[gi] / (refineSamples[gi] ? 2 : 1)),
+                                             double(out.groupSamples[gi]), double(maxSamples));
+            pointSamplesLeft += double(members[gi].size()) *
+                                (needed - double(out.groupSamples[gi] / (refineSamples[gi] ? 2 : 1)));
+        }
+        if (progress)
+            progress(groupsDone, groupCount, seconds / std::max(pointSamplesDone, 1.0) * pointSamplesLeft);
+    }
+    ConvergedReference& r = out.reference;
+    r.brightTexels = e.brightTexels;
+    r.results.resize(points.size());
+    r.errorEstimate.resize(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        const Part rest = sampledRest[k].part();
+        r.results[k] = {rest.diffuse + grid[k].diffuse, rest.specular + grid[k].specular};
+        r.errorEstimate[k] = rest.error + grid[k].error;
+    }
     return out;
 }
 

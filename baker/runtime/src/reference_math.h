@@ -70,6 +70,12 @@ inline glm::dvec3 sampleVisibleNormal(const glm::dvec3& v, double alpha, glm::dv
     return glm::normalize(glm::dvec3(alpha * nh.x, alpha * nh.y, std::max(1e-12, nh.z)));
 }
 
+// x^5 by multiplications: std::pow(x, 5.0) is a library call, three of them per BRDF evaluation.
+inline double pow5(double x) {
+    const double x2 = x * x;
+    return x2 * x2 * x;
+}
+
 inline double luminance(const glm::dvec3& c) {
     return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
 }
@@ -143,7 +149,7 @@ struct PointMaterial {
         double NoH = std::max(glm::dot(N, h), 0.0), LoH = std::clamp(glm::dot(l, h), 0.0, 1.0);
         specularOut = glm::dvec3(0.0), diffuseOut = glm::dvec3(0.0);
         if (specular) {
-            double fc = std::pow(1.0 - LoH, 5.0);
+            double fc = pow5(1.0 - LoH);
             glm::dvec3 F = f0 + (f90 - f0) * fc;
             specularOut = F * compensation * (ggxD(NoH, a2) * smithVisibility(NoV, NoL, a2) * NoL);
         }
@@ -152,8 +158,8 @@ struct PointMaterial {
             if (disney) {
                 const double energyBias = 0.5 * r, energyFactor = 1.0 + (1.0 / 1.51 - 1.0) * r;
                 double fd90 = energyBias + 2.0 * LoH * LoH * r;
-                double lightScatter = 1.0 + (fd90 - 1.0) * std::pow(1.0 - NoL, 5.0);
-                double viewScatter = 1.0 + (fd90 - 1.0) * std::pow(1.0 - NoV, 5.0);
+                double lightScatter = 1.0 + (fd90 - 1.0) * pow5(1.0 - NoL);
+                double viewScatter = 1.0 + (fd90 - 1.0) * pow5(1.0 - NoV);
                 fd = lightScatter * viewScatter * energyFactor;
             }
             diffuseOut = diffuseColor * (fd / kPi * NoL);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdlib>
 #include <iterator>
 #include <limits>
@@ -147,39 +148,60 @@ cl::Program& Context::program(const std::string& file, const std::string& option
     auto it = programs_.find(key);
     if (it != programs_.end()) return it->second;
     const std::string source = assembleProgramSource(file), buildOptions = baseOptions_ + " " + options;
-    if (binaryDirectory_.empty()) {
+    if (binaryDirectories_.empty()) {
         ++builds_.fromSource;
         return programs_.emplace(key, buildProgram(file, source, buildOptions)).first->second;
     }
     const std::string binaryKey = programBinaryKey(device_, buildOptions, source);
-    if (const std::optional<ProgramBinary> binary = readProgramBinary(binaryDirectory_, binaryKey)) try {
-            cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
-            program.build({device_}, buildOptions.c_str());
-            ++builds_.fromBinary;
-            return programs_.emplace(key, program).first->second;
-        } catch (const cl::Error&) { // the driver refused it (another build of the driver): rebuild
-        }
+    std::vector<std::filesystem::path> lacking;
+    for (const std::filesystem::path& directory : binaryDirectories_) {
+        if (const std::optional<ProgramBinary> binary = readProgramBinary(directory, binaryKey)) try {
+                cl::Program program(context_, {device_}, cl::Program::Binaries{*binary});
+                program.build({device_}, buildOptions.c_str());
+                ++builds_.fromBinary;
+                if (!lacking.empty()) unstoredBinaries_[binaryKey] = {*binary, lacking};
+                return programs_.emplace(key, program).first->second;
+            } catch (const cl::Error&) { // the driver refused it (another build of the driver): rebuild
+            }
+        lacking.push_back(directory);
+    }
+    const auto compileStart = std::chrono::steady_clock::now();
+    if (compileObserver_)
+        compileObserver_(file, compiledBytes_ > 0.0 ? compileSeconds_ / compiledBytes_ * double(source.size())
+                                                    : -1.0);
     cl::Program program = buildProgram(file, source, buildOptions);
     ++builds_.fromSource;
+    compiledBytes_ += double(source.size());
+    compileSeconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - compileStart).count();
     try {
         const std::vector<ProgramBinary> binaries = program.getInfo<CL_PROGRAM_BINARIES>();
         if (binaries.size() == 1 && !binaries.front().empty())
-            unstoredBinaries_[binaryKey] = binaries.front();
+            unstoredBinaries_[binaryKey] = {binaries.front(), binaryDirectories_};
     } catch (const cl::Error&) { // a driver without binaries: nothing to keep
     }
     return programs_.emplace(key, program).first->second;
 }
 
 void Context::useProgramBinaries(std::filesystem::path directory) {
+    useProgramBinaries(std::vector<std::filesystem::path>{std::move(directory)});
+}
+
+void Context::useProgramBinaries(std::vector<std::filesystem::path> directories) {
     std::lock_guard lock(mutex_);
-    binaryDirectory_ = std::move(directory);
+    binaryDirectories_ = std::move(directories);
 }
 
 void Context::storeProgramBinaries() {
     std::lock_guard lock(mutex_);
-    for (const auto& [binaryKey, binary] : unstoredBinaries_)
-        writeProgramBinary(binaryDirectory_, binaryKey, binary);
+    for (const auto& [binaryKey, unstored] : unstoredBinaries_)
+        for (const std::filesystem::path& directory : unstored.directories)
+            writeProgramBinary(directory, binaryKey, unstored.binary);
     unstoredBinaries_.clear();
+}
+
+void Context::setCompileObserver(std::function<void(const std::string& file, double seconds)> observer) {
+    std::lock_guard lock(mutex_);
+    compileObserver_ = std::move(observer);
 }
 
 Context::ProgramBuilds Context::programBuilds() const {

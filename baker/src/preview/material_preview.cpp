@@ -4,11 +4,17 @@
 #include "iblbake/core/numeric.h"
 
 #include "iblbake/baker/exr_output.h"
+#include "iblbake/baker/products.h"
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/runtime/runtime_reference.h"
 #include "preview_grid.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace ibl {
 
@@ -33,18 +39,116 @@ glm::vec3 previewErrorColor(float relativeError) {
     return glm::mix(glm::vec3(1.0f, 1.0f, 0.1f), glm::vec3(1.0f, 0.05f, 0.05f), (t - 0.5f) / 0.5f);
 }
 
+namespace {
+
+// The balls: dielectric (row 0) and metal (row 1), perceptual roughness c / 10 in column c.
+std::vector<ShadingPoint> materialBallPoints(int size, std::vector<int>& owner) {
+    return previewBallPoints(size, kPreviewColumns, kRows, owner, [](ShadingPoint& p, int row, int column) {
+        p.baseColor = row == 0 ? glm::vec3(0.8f) : glm::vec3(0.95f, 0.93f, 0.88f);
+        p.metallic = row == 0 ? 0.0f : 1.0f;
+        p.perceptualRoughness = float(column) / float(kPreviewColumns - 1);
+    });
+}
+
+constexpr char kReferenceMagic[8] = {'I', 'B', 'L', 'R', 'E', 'F', '1', '\n'};
+
+} // namespace
+
+std::vector<ShadingPoint> materialPreviewPoints(int sphereSize, std::vector<int>& ballOfPoint) {
+    std::vector<int> owner;
+    std::vector<ShadingPoint> points = materialBallPoints(sphereSize, owner);
+    ballOfPoint.assign(points.size(), 0);
+    const std::size_t width = std::size_t(kPreviewColumns * sphereSize);
+    for (std::size_t i = 0; i < owner.size(); ++i)
+        if (owner[i] >= 0)
+            ballOfPoint[std::size_t(owner[i])] =
+                int(i / width) / sphereSize * kPreviewColumns + int(i % width) / sphereSize;
+    return points;
+}
+
+PreviewReference renderPreviewReference(const CubeMap& environment, const RuntimeOptions& options,
+                                        const MaterialPreviewSettings& settings,
+                                        const ReferenceProgress& progress) {
+    std::vector<int> column;
+    const std::vector<ShadingPoint> points = materialPreviewPoints(settings.sphereSize, column);
+    for (int& c : column)
+        c %= kPreviewColumns;
+    AdaptiveReferenceSettings adaptive;
+    adaptive.targetError = settings.referenceTargetError;
+    const AdaptiveReference r =
+        renderAdaptiveReference(environment, points, column, options, {}, adaptive, progress);
+    PreviewReference out;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+        out.value.push_back(glm::vec3(r.reference.results[k].total()));
+        out.errorEstimate.push_back(glm::vec3(r.reference.errorEstimate[k]));
+    }
+    out.brightTexels = r.reference.brightTexels;
+    out.columnSamples = r.groupSamples;
+    out.columnErrorEstimate = r.groupErrorEstimate;
+    return out;
+}
+
+void writePreviewReference(const std::filesystem::path& binary, const std::filesystem::path& facts,
+                           const PreviewReference& reference) {
+    const std::uint32_t count = std::uint32_t(reference.value.size());
+    std::string bytes(kReferenceMagic, sizeof kReferenceMagic);
+    bytes.append(reinterpret_cast<const char*>(&count), sizeof count);
+    for (const std::vector<glm::vec3>* values : {&reference.value, &reference.errorEstimate})
+        bytes.append(reinterpret_cast<const char*>(values->data()), values->size() * sizeof(glm::vec3));
+    writeFileBytes(binary, bytes);
+    const nlohmann::json document = {{"brightTexels", reference.brightTexels},
+                                     {"columnSamples", reference.columnSamples},
+                                     {"columnErrorEstimate", reference.columnErrorEstimate}};
+    writeFileBytes(facts, document.dump(2) + '\n');
+}
+
+PreviewReference readPreviewReference(const std::filesystem::path& binary, const std::filesystem::path& facts,
+                                      int sphereSize) {
+    std::vector<int> owner;
+    const std::size_t count = materialBallPoints(sphereSize, owner).size();
+    const std::string bytes = readText(binary);
+    std::uint32_t stored = 0;
+    if (bytes.size() >= sizeof kReferenceMagic + sizeof stored)
+        std::memcpy(&stored, bytes.data() + sizeof kReferenceMagic, sizeof stored);
+    if (bytes.compare(0, sizeof kReferenceMagic, kReferenceMagic, sizeof kReferenceMagic) != 0 ||
+        stored != count ||
+        bytes.size() != sizeof kReferenceMagic + sizeof stored + 2 * count * sizeof(glm::vec3))
+        throw Error(binary.string() + ": not a preview reference of " + std::to_string(count) + " points");
+    PreviewReference out;
+    out.value.resize(count);
+    out.errorEstimate.resize(count);
+    const char* data = bytes.data() + sizeof kReferenceMagic + sizeof stored;
+    std::memcpy(out.value.data(), data, count * sizeof(glm::vec3));
+    std::memcpy(out.errorEstimate.data(), data + count * sizeof(glm::vec3), count * sizeof(glm::vec3));
+    try {
+        const nlohmann::json document = nlohmann::json::parse(readText(facts));
+        out.brightTexels = document.at("brightTexels").get<std::size_t>();
+        out.columnSamples = document.at("columnSamples").get<std::vector<std::uint32_t>>();
+        out.columnErrorEstimate = document.at("columnErrorEstimate").get<std::vector<double>>();
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(facts.string() + ": " + e.what());
+    }
+    return out;
+}
+
 MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
                                       const CubeMap* referenceCube, const Executor& executor,
                                       const MaterialPreviewSettings& settings,
                                       const std::filesystem::path& png, const std::filesystem::path& exr) {
+    if (!referenceCube)
+        return renderMaterialPreview(set, options, static_cast<const PreviewReference*>(nullptr), executor,
+                                     settings, png, exr);
+    const PreviewReference reference = renderPreviewReference(*referenceCube, options, settings);
+    return renderMaterialPreview(set, options, &reference, executor, settings, png, exr);
+}
+
+MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
+                                      const PreviewReference* previewReference, const Executor& executor,
+                                      const MaterialPreviewSettings& settings,
+                                      const std::filesystem::path& png, const std::filesystem::path& exr) {
     const int size = settings.sphereSize;
     std::vector<int> owner;
-    const std::vector<ShadingPoint> points =
-        previewBallPoints(size, kPreviewColumns, kRows, owner, [](ShadingPoint& p, int row, int column) {
-            p.baseColor = row == 0 ? glm::vec3(0.8f) : glm::vec3(0.95f, 0.93f, 0.88f);
-            p.metallic = row == 0 ? 0.0f : 1.0f;
-            p.perceptualRoughness = float(column) / float(kPreviewColumns - 1);
-        });
+    const std::vector<ShadingPoint> points = materialBallPoints(size, owner);
     std::vector<glm::vec4> shaded;
     if (executor.usesOpenCL()) {
         OpenCLProbeEvaluator evaluator(executor.cl(), set);
@@ -54,15 +158,13 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
     }
     std::vector<glm::vec3> reference, check; // check: the reference's error estimate
     MaterialPreview out;
-    if (referenceCube) {
-        ConvergedReferenceSettings rs;
-        rs.samples = settings.referenceSamples;
-        const ConvergedReference converged = renderConvergedReference(*referenceCube, points, options, rs);
-        for (std::size_t k = 0; k < points.size(); ++k) {
-            reference.push_back(glm::vec3(converged.results[k].total()));
-            check.push_back(glm::vec3(converged.errorEstimate[k]));
-        }
-        out.referenceBrightTexels = converged.brightTexels;
+    if (previewReference) {
+        if (previewReference->value.size() != points.size())
+            throw Error("material preview: a reference of " + std::to_string(previewReference->value.size()) +
+                        " points for " + std::to_string(points.size()));
+        reference = previewReference->value;
+        check = previewReference->errorEstimate;
+        out.referenceBrightTexels = previewReference->brightTexels;
     }
 
     // The panels: runtime | reference | error (each kPreviewColumns x kRows balls).

@@ -108,7 +108,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         if (needsBackend(plan)) {
             std::ostringstream dropped;
             executor =
-                Executor::create(options.backend, options.device,
+                Executor::create(jobBackend(options.backend, options.device), options.device,
                                  options.warnings ? *options.warnings : static_cast<std::ostream&>(dropped));
             summary.backend = backendName(executor->backend());
         }
@@ -126,9 +126,14 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         outputs.createDirectories(cacheDirectory, scene.name + ": cache");
         const StageCache cache(cacheDirectory);
         // Compiled kernels beside the entries (docs/conventions.md "Kernels, backends and kernel binaries"):
-        // a node with a warm cache compiles none.
-        const fs::path programBinaries = cache.directory() / "kernels";
-        if (executor && executor->usesOpenCL()) executor->cl().useProgramBinaries(programBinaries);
+        // a node with a warm cache compiles none; and in the user's cache, so that a new bake on this machine
+        // compiles none either.
+        if (executor && executor->usesOpenCL()) {
+            std::vector<fs::path> programBinaries{cache.directory() / "kernels"};
+            if (const std::optional<fs::path> user = ocl::userProgramBinaryDirectory())
+                programBinaries.push_back(*user);
+            executor->cl().useProgramBinaries(std::move(programBinaries));
+        }
 
         std::map<std::string, fs::path> entries;
         std::vector<StagedEntry> ran;
@@ -145,6 +150,16 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             } else {
                 StagedEntry& staged = ran.emplace_back(cache.staging(result.key));
                 StageContext context{scene, stage, {}, executor ? &*executor : nullptr, staged.directory()};
+                context.waiting = [&](const std::string& what, const std::string& detail,
+                                      double secondsLeft) {
+                    progress.stageWaiting(result, what, detail, secondsLeft);
+                };
+                if (executor && executor->usesOpenCL())
+                    executor->cl().setCompileObserver([&](const std::string& file, double seconds) {
+                        progress.stageWaiting(result, "compile",
+                                              "kernels/" + file + ", first use on this device and driver",
+                                              seconds);
+                    });
                 for (const std::string& dependency : stage.dependsOn)
                     context.dependencies[dependency] = entries.at(dependency);
                 try {

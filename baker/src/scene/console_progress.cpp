@@ -34,9 +34,10 @@ void ConsoleProgress::stageStart(const StageResult& stage, int index, int count)
             index > 0 ? " ETA " + std::to_string(int(elapsed / index * (count - index) + 0.5)) + " s" : "";
         constexpr int kWidth = 20;
         const int filled = kWidth * index / count;
-        std::fprintf(stderr, "\r\033[K[%s%s] %d/%d %s%s", std::string(std::size_t(filled), '#').c_str(),
-                     std::string(std::size_t(kWidth - filled), '.').c_str(), index, count, stage.id.c_str(),
-                     eta.c_str());
+        barLine_ = "[" + std::string(std::size_t(filled), '#') +
+                   std::string(std::size_t(kWidth - filled), '.') + "] " + std::to_string(index) + "/" +
+                   std::to_string(count) + " " + stage.id;
+        std::fprintf(stderr, "\r\033[K%s%s", barLine_.c_str(), eta.c_str());
         std::fflush(stderr);
         barDrawn_ = true;
     }
@@ -55,6 +56,36 @@ void ConsoleProgress::stageEnd(const StageResult& stage, int index, int count) {
     } else if (mode_ == ProgressMode::Lines) {
         std::fprintf(stderr, "[%d/%d] %-20s %-7s %.2f s\n", index + 1, count, stage.id.c_str(),
                      stageStatusName(stage.status), stage.seconds);
+    }
+}
+
+namespace {
+
+// "about 4 s more", or "" without an estimate.
+std::string secondsLeftText(double secondsLeft) {
+    if (secondsLeft < 0.0) return "";
+    char text[48];
+    std::snprintf(text, sizeof text, ", about %.0f s more", std::max(1.0, std::ceil(secondsLeft)));
+    return text;
+}
+
+} // namespace
+
+void ConsoleProgress::stageWaiting(const StageResult& stage, const std::string& what,
+                                   const std::string& detail, double secondsLeft) {
+    if (mode_ == ProgressMode::Json) {
+        nlohmann::json event = {
+            {"event", "stage-waiting"}, {"stage", stage.id}, {"on", what}, {"detail", detail}};
+        if (secondsLeft >= 0.0) event["secondsLeft"] = secondsLeft;
+        std::printf("%s\n", event.dump().c_str());
+        std::fflush(stdout);
+    } else if (mode_ == ProgressMode::Bar) {
+        std::fprintf(stderr, "\r\033[K%s: %s (%s%s)", barLine_.c_str(), what.c_str(), detail.c_str(),
+                     secondsLeftText(secondsLeft).c_str());
+        std::fflush(stderr);
+    } else if (mode_ == ProgressMode::Lines) {
+        std::fprintf(stderr, "      %-20s waiting on %s: %s%s\n", stage.id.c_str(), what.c_str(),
+                     detail.c_str(), secondsLeftText(secondsLeft).c_str());
     }
 }
 

@@ -30,6 +30,38 @@ void runGltfStage(const StageContext& c) {
                                                    {"sun", gltf.scene.sun.has_value()}});
 }
 
+namespace {
+
+RuntimeOptions previewOptions(const json& s) {
+    RuntimeOptions options;
+    options.energyCompensation = s.at("energyCompensation").get<bool>();
+    options.diffuseModel = s.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
+    return options;
+}
+
+} // namespace
+
+void runPreviewReferenceStage(const StageContext& c) {
+    const json& s = c.stage.settings;
+    // The full calibrated environment (before any sun extraction), at the bake's face size.
+    const CubeMap environment = readCubeFile(c.dependencies.at("environment") / kCubeFile);
+    MaterialPreviewSettings settings;
+    settings.sphereSize = s.at("sphereSize").get<int>();
+    settings.referenceTargetError = s.at("targetError").get<double>();
+    if (c.waiting)
+        c.waiting("reference", "first round of " + std::to_string(kPreviewColumns) + " roughness columns",
+                  -1.0);
+    const PreviewReference reference = renderPreviewReference(
+        environment, previewOptions(s), settings, [&](int done, int columns, double secondsLeft) {
+            if (c.waiting && done < columns)
+                c.waiting("reference",
+                          std::to_string(done) + " of " + std::to_string(columns) + " columns converged",
+                          secondsLeft);
+        });
+    writePreviewReference(c.outputDirectory / kPreviewReferenceFile,
+                          c.outputDirectory / kPreviewReferenceFacts, reference);
+}
+
 void runPreviewStage(const StageContext& c) {
     const json& s = c.stage.settings;
     const auto entry = [&](const char* id) { return c.dependencies.at(id); };
@@ -44,17 +76,15 @@ void runPreviewStage(const StageContext& c) {
     if (std::filesystem::exists(entry("specular") / kRoughLayersFile))
         files.roughLayers = entry("specular") / kRoughLayersFile;
     const ProbeSet set = loadPreviewProbeSet(files);
-    RuntimeOptions options;
-    options.energyCompensation = s.at("energyCompensation").get<bool>();
-    options.diffuseModel = s.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
-    // The full calibrated environment (before any sun extraction), at the bake's face size.
-    const CubeMap reference = readCubeFile(entry("environment") / kCubeFile);
     MaterialPreviewSettings settings;
     settings.sphereSize = s.at("sphereSize").get<int>();
     settings.exposureEV = s.at("exposure").get<float>();
-    const MaterialPreview preview = renderMaterialPreview(set, options, &reference, *c.executor, settings,
-                                                          c.outputDirectory / c.stage.products.at(0),
-                                                          c.outputDirectory / c.stage.products.at(1));
+    const PreviewReference reference =
+        readPreviewReference(entry("preview-reference") / kPreviewReferenceFile,
+                             entry("preview-reference") / kPreviewReferenceFacts, settings.sphereSize);
+    const MaterialPreview preview = renderMaterialPreview(
+        set, previewOptions(s), &reference, *c.executor, settings, c.outputDirectory / c.stage.products.at(0),
+        c.outputDirectory / c.stage.products.at(1));
     writeJsonFile(
         c.outputDirectory / kPreviewFacts,
         {{"width", preview.width},

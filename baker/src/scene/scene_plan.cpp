@@ -17,6 +17,10 @@ unsigned dfgSamples(const std::string& quality) {
     return quality == "draft" ? 256u : quality == "reference" ? 4096u : 1024u;
 }
 
+// Each preview ball's reference is rendered until its own estimated error is under this (the default of
+// material_preview.h MaterialPreviewSettings::referenceTargetError).
+constexpr double kPreviewReferenceTargetError = 0.005;
+
 json calibrationJson(const SceneCalibrationChoice& c) {
     json out = {{"source", sceneCalibrationName(c.source)}};
     if (c.source != SceneCalibration::None && c.source != SceneCalibration::Radiometric)
@@ -48,10 +52,37 @@ json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
             {"profile", o.profile}};
 }
 
+// What the preview's balls are (outputs.preview is set): their size and material model.
+json previewBallSettings(const Scene& scene) {
+    const SceneMaterials& m = scene.materials;
+    return {{"sphereSize", scene.outputs.preview->sphereSize},
+            {"diffuseModel", m.diffuseModel == SceneDiffuseModel::Disney ? "disney" : "lambert"},
+            {"energyCompensation", m.energyCompensation}};
+}
+
 // outputs.gltf and outputs.preview: made from the products above, after them, only when the scene asks.
 void planEngineOutputs(const Scene& scene, bool glossy, const std::string& lightSource, Plan& plan) {
     const SceneOutputs& o = scene.outputs;
     const bool sun = scene.environment.extractSun;
+    const bool preview = o.preview && glossy;
+    if (preview) {
+        // The converged reference of the full calibrated environment (the environment stage's cube, the sun
+        // still in it): a stage of its own, so that a bake whose environment and balls are unchanged (new
+        // roughness range, new LD settings) does not render it again (issue 46).
+        PlanStage reference{"preview-reference",
+                            "preview-reference",
+                            {"environment"},
+                            {},
+                            previewBallSettings(scene),
+                            {},
+                            false,
+                            ""};
+        reference.settings["targetError"] = kPreviewReferenceTargetError;
+        reference.reason =
+            "outputs.preview: the converged reference of the preview's balls, each roughness column until its "
+            "own estimated error is under 0.5%";
+        plan.stages.push_back(std::move(reference));
+    }
     if (!o.gltf) {
         plan.skipped.push_back({"gltf", "gltf-export", "outputs.gltf is not set"});
     } else if (!glossy || o.faceSize < 2) {
@@ -80,7 +111,7 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
         plan.stages.push_back(std::move(s));
     }
 
-    if (!o.preview || !glossy) {
+    if (!preview) {
         plan.skipped.push_back({"preview", "material-preview",
                                 !o.preview
                                     ? "outputs.preview is not set"
@@ -88,20 +119,15 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
                                       "and no material uses specular"});
         return;
     }
-    // The runtime's lighting (every distant product it reads) against the brute-force render of the full
-    // calibrated environment (the environment stage's cube, the sun still in it).
-    PlanStage s{"preview", "material-preview", {}, {}, {}, {}, true, ""};
+    // The runtime's lighting (every distant product it reads) against that reference.
+    PlanStage s{"preview", "material-preview", {"preview-reference"}, {}, {}, {}, true, ""};
     for (const PlanStage& p : plan.stages)
-        if (p.id == "dfg" || p.id == "specular" || p.id == "diffuse" || p.id == "sun" ||
-            p.id == "irradiance" || p.id == "environment")
+        if (p.id == "dfg" || p.id == "specular" || p.id == "diffuse" || p.id == "sun" || p.id == "irradiance")
             s.dependsOn.push_back(p.id);
     const std::filesystem::path file(o.preview->file);
     s.products = {file.string(), std::filesystem::path(file).replace_extension(".exr").string()};
-    const SceneMaterials& m = scene.materials;
-    s.settings = {{"sphereSize", o.preview->sphereSize},
-                  {"exposure", o.preview->exposure},
-                  {"diffuseModel", m.diffuseModel == SceneDiffuseModel::Disney ? "disney" : "lambert"},
-                  {"energyCompensation", m.energyCompensation}};
+    s.settings = previewBallSettings(scene);
+    s.settings["exposure"] = o.preview->exposure;
     s.reason = "outputs.preview: material balls lit by the bake through the runtime beside the brute-force "
                "reference, labelled, with the per-roughness error";
     if (lightSource == "sun") s.reason += " (the sun as the runtime's disk light)";

@@ -434,6 +434,7 @@ void runStage(const StageContext& c) {
     if (kind == "probe-ld") return runProbe(c);
     if (kind == "irradiance-cube") return runIrradiance(c);
     if (kind == "gltf-export") return runGltfStage(c);
+    if (kind == "preview-reference") return runPreviewReferenceStage(c);
     if (kind == "material-preview") return runPreviewStage(c);
     if (kind == "light-card") return runLightCard(c);
     throw Error("scene: unknown stage kind '" + kind + "'");

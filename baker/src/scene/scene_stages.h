@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -21,6 +22,9 @@ struct StageContext {
     std::map<std::string, std::filesystem::path> dependencies; // stage id -> its cache entry
     const Executor* executor = nullptr;                        // set when stage.usesBackend
     std::filesystem::path outputDirectory;                     // the staging directory
+    // Reports what the stage waits on (ProgressSink::stageWaiting's what, detail and seconds left); may be
+    // empty.
+    std::function<void(const std::string&, const std::string&, double)> waiting = {};
 };
 
 // Throws ibl::Error with a one-line message (naming the scene key path for input problems).
@@ -52,6 +56,9 @@ inline constexpr const char* kStorageFile = "storage.json";
 // height, roughness, error: {dielectric, metal, both}}.
 inline constexpr const char* kGltfFacts = "gltf_facts.json";
 inline constexpr const char* kPreviewFacts = "preview_facts.json";
+// The preview-reference stage's entry: the balls' reference (material_preview.h writePreviewReference).
+inline constexpr const char* kPreviewReferenceFile = "reference.bin";
+inline constexpr const char* kPreviewReferenceFacts = "reference_facts.json";
 
 // Beside the sun-in-probe check: {detected, and with a sun: warning, roughness, keptError,
 // extractedError} (sun_in_probe.h), which the manifest's warnings read.
@@ -59,6 +66,7 @@ inline constexpr const char* kSunInProbeFacts = "sun_in_probe.json";
 
 // The stages of outputs.gltf and outputs.preview (engine_output_stages.cpp).
 void runGltfStage(const StageContext& context);
+void runPreviewReferenceStage(const StageContext& context);
 void runPreviewStage(const StageContext& context);
 
 // Level 0 of a cube KTX2 of a cache entry; throws ibl::Error naming the file.

@@ -95,6 +95,11 @@ class ProgressSink {
     virtual ~ProgressSink() = default;
     virtual void stageStart(const StageResult& stage, int index, int count) {}
     virtual void stageEnd(const StageResult& stage, int index, int count) {}
+    // A running stage waits on something slow: `what` is "compile" (an OpenCL program built from source,
+    // `detail` its file) or "reference" (the preview's converged reference, `detail` its progress), about
+    // `secondsLeft` more by the stage's own estimate (negative: no estimate yet).
+    virtual void stageWaiting(const StageResult& stage, const std::string& what, const std::string& detail,
+                              double secondsLeft) {}
     virtual void done(const BakeSummary& summary) {}
 };
 

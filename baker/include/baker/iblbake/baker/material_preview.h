@@ -9,6 +9,7 @@
 #include "iblbake/core/cubemap.h"
 #include "iblbake/opencl/executor.h"
 #include "iblbake/runtime/runtime.h"
+#include "iblbake/runtime/runtime_reference.h"
 
 #include <filesystem>
 #include <optional>
@@ -55,10 +56,34 @@ CubeMap previewReferenceCube(const std::filesystem::path& file, double calibrati
 struct MaterialPreviewSettings {
     int sphereSize = 96;     // pixels per ball
     float exposureEV = 0.0f; // exposure compensation in stops
-    // The converged reference (runtime_reference.h renderConvergedReference): stratified samples per
-    // strategy over the environment's dim rest (its bright texels are integrated deterministically).
-    std::uint32_t referenceSamples = 1024;
+    // The converged reference (runtime_reference.h renderAdaptiveReference): each roughness column at the
+    // least effort whose own estimated error (relative, luminance, both rows) is at most this.
+    double referenceTargetError = 0.005;
 };
+
+// The converged reference of the preview's balls (renderAdaptiveReference, one group per roughness column:
+// both balls of a column, as the preview reports its error), per point of materialPreviewPoints' order: its
+// value and estimated error. It depends on the environment, the options and the ball size only, so a scene
+// caches it apart from the bake it judges (issue 46).
+struct PreviewReference {
+    std::vector<glm::vec3> value, errorEstimate;
+    std::size_t brightTexels = 0;
+    std::vector<std::uint32_t> columnSamples; // per column: samples per strategy it stopped at
+    std::vector<double> columnErrorEstimate;  // per column: its estimate, relative
+};
+// The balls' shading points (dielectric row 0, metal row 1, perceptual roughness c / 10 in column c) and
+// each one's ball (row x kPreviewColumns + column).
+std::vector<ShadingPoint> materialPreviewPoints(int sphereSize, std::vector<int>& ballOfPoint);
+PreviewReference renderPreviewReference(const CubeMap& environment, const RuntimeOptions& options,
+                                        const MaterialPreviewSettings& settings,
+                                        const ReferenceProgress& progress = {});
+// As a binary file of little-endian floats (a point count, then value and estimate per point) beside a
+// JSON document of the rest; read back checked against the ball size's point count. Throw ibl::Error
+// naming the file.
+void writePreviewReference(const std::filesystem::path& binary, const std::filesystem::path& facts,
+                           const PreviewReference& reference);
+PreviewReference readPreviewReference(const std::filesystem::path& binary, const std::filesystem::path& facts,
+                                      int sphereSize);
 
 struct MaterialPreview {
     std::vector<float> roughness; // per column
@@ -103,6 +128,11 @@ glm::vec3 previewErrorColor(float relativeError);
 // Throws ibl::Error naming the file; the labels need DejaVu Sans (Debian fonts-dejavu-core).
 MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
                                       const CubeMap* reference, const Executor& executor,
+                                      const MaterialPreviewSettings& settings,
+                                      const std::filesystem::path& png, const std::filesystem::path& exr);
+// The same with the reference already rendered (renderPreviewReference of the same settings), or nullptr.
+MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
+                                      const PreviewReference* reference, const Executor& executor,
                                       const MaterialPreviewSettings& settings,
                                       const std::filesystem::path& png, const std::filesystem::path& exr);
 

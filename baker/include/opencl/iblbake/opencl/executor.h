@@ -48,4 +48,13 @@ class Executor {
     std::shared_ptr<CpuDispatchTimings> cpuTimings_;
 };
 
+// What `auto` runs for a whole job (a command, a scene bake; issue 46): OpenCL when a device is named
+// (`deviceNamed`: --device or $IBLBAKE_CL_DEVICE) or a GPU is among `devices`; the CPU backend when every
+// device is a CPU (PoCL), since it runs the same lane code compiled ahead of time while OpenCL first pays
+// its set-up and compiler (the park scene on PoCL: 18 s of first-use compiles for a 1.5 s bake); Auto
+// (OpenCL, else the CPU with a warning) when there is no device. Any other request is kept.
+Backend jobBackend(Backend requested, bool deviceNamed, const std::vector<ocl::DeviceInfo>& devices);
+// The same for this machine: lists the devices only for Auto without a named device.
+Backend jobBackend(Backend requested, const std::string& device);
+
 } // namespace ibl

@@ -80,10 +80,18 @@ class Context {
     // driver, options and source is found and builds; otherwise it is built from source and its binary held
     // for storeProgramBinaries().
     void useProgramBinaries(std::filesystem::path directory);
+    // The same with several directories (a bake's cache and the user's, userProgramBinaryDirectory): a
+    // binary is loaded from the first that holds it, and stored into every one that lacks it, so that a
+    // kernel is compiled once per machine and driver, not once per bake (issue 46).
+    void useProgramBinaries(std::vector<std::filesystem::path> directories);
     // Writes the binaries built from source since useProgramBinaries (called once a command's outputs are
-    // complete, so a failed command adds nothing to a cache). A directory that cannot be written is skipped:
-    // it costs only compile time.
+    // complete, so a failed command adds nothing to a cache), and those loaded from one directory into the
+    // others. A directory that cannot be written is skipped: it costs only compile time.
     void storeProgramBinaries();
+    // Called before a program is built from source (not loaded from a binary) with its file and an estimate
+    // of the seconds it takes (negative before the first build from source: this process's compile rate per
+    // byte of source times the program's size), so that a caller can say what it waits on (issue 46).
+    void setCompileObserver(std::function<void(const std::string& file, double seconds)> observer);
     struct ProgramBuilds {
         int fromSource = 0, fromBinary = 0;
     };
@@ -126,9 +134,16 @@ class Context {
     cl::CommandQueue queue_;
     mutable std::mutex mutex_;
     std::map<std::string, cl::Program> programs_;
-    std::filesystem::path binaryDirectory_;
-    std::map<std::string, std::vector<unsigned char>> unstoredBinaries_; // by binary key
+    std::vector<std::filesystem::path> binaryDirectories_;
+    // By binary key, with the directories that lack it (every one for a binary built from source).
+    struct UnstoredBinary {
+        std::vector<unsigned char> binary;
+        std::vector<std::filesystem::path> directories;
+    };
+    std::map<std::string, UnstoredBinary> unstoredBinaries_;
     ProgramBuilds builds_;
+    std::function<void(const std::string&, double)> compileObserver_;
+    double compiledBytes_ = 0.0, compileSeconds_ = 0.0; // of the builds from source so far
     std::vector<DispatchTiming> timings_;
     struct PendingDispatch {
         std::string kernel;

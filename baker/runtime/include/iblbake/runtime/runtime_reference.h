@@ -6,6 +6,7 @@
 
 #include "iblbake/runtime/runtime.h"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -113,6 +114,34 @@ struct ConvergedReference {
 ConvergedReference renderConvergedReference(const CubeMap& environment, std::span<const ShadingPoint> points,
                                             const RuntimeOptions& options,
                                             const ConvergedReferenceSettings& settings = {});
+
+// The converged reference of points in groups (the preview's roughness columns: `groupOfPoint`, one id in
+// [0, groups) per point), each group at the least effort that meets `targetError` (issue 46): a group
+// starts at `firstSamples` per strategy and the grid of `settings`, and while the sum of its points'
+// errorEstimate luminance exceeds targetError times the sum of their results' luminance, the part whose
+// estimate is larger is refined: the samples doubled by a batch of as many as all before under fresh
+// rotations (up to settings.samples x 16), or the grid's steps (up to 4 x settings.stepsPerScale). The
+// estimate is the fixed-effort one's (the half difference of all samples, the grid against its half), of
+// the effort each group stopped at (groupSamples, groupStepsPerScale). `progress` (may be empty) is called
+// after each round with the groups done and an estimate of the seconds left: the rounds' time per
+// point-sample times the samples the groups left need if their estimates fall as one over the square root
+// of their samples.
+struct AdaptiveReferenceSettings {
+    double targetError = 0.005; // per group, relative (luminance)
+    std::uint32_t firstSamples = 64;
+};
+struct AdaptiveReference {
+    ConvergedReference reference;
+    std::vector<std::uint32_t> groupSamples;
+    std::vector<double> groupStepsPerScale;
+    std::vector<double> groupErrorEstimate; // relative, as compared with targetError
+};
+using ReferenceProgress = std::function<void(int groupsDone, int groups, double secondsLeft)>;
+AdaptiveReference renderAdaptiveReference(const CubeMap& environment, std::span<const ShadingPoint> points,
+                                          std::span<const int> groupOfPoint, const RuntimeOptions& options,
+                                          const ConvergedReferenceSettings& settings,
+                                          const AdaptiveReferenceSettings& adaptive,
+                                          const ReferenceProgress& progress = {});
 
 // E(NoV, alpha) = integral D V <n.l> dl for f0 = f90 = 1 (single scattering), by visible-normal sampling.
 double directionalAlbedo(double NoV, double alpha, std::uint32_t samples);
