@@ -1,6 +1,6 @@
 // BRDF terms of the Frostbite/Filament standard material (Frostbite 2014 section 3.1, Filament 4.4-4.6).
 // Roughness naming: `perceptualRoughness` is what artists set (Frostbite's linearRoughness);
-// `alpha` = perceptualRoughness^2 is the GGX parameter (DESIGN.md, Roughness).
+// `alpha` = perceptualRoughness^2 is the GGX parameter (docs/conventions.md, Roughness).
 #ifndef IBL_BRDF_H
 #define IBL_BRDF_H
 

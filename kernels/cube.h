@@ -1,7 +1,7 @@
-// Cube-map and lat-long addressing (DESIGN.md "Conventions"). Faces are in KTX2/Vulkan/OpenGL order
-// +X, -X, +Y, -Y, +Z, -Z with the OpenGL orientation; within a face, s runs along a row and t down the
-// rows (t = 0 is the first row in memory), texel (i, j) of an N-texel face has its centre at
-// s = (i + 0.5) / N, t = (j + 0.5) / N.
+// Cube-map and lat-long addressing (docs/conventions.md "Directions and cube faces", "Lat-long mapping and
+// pixel placement"). Faces are in KTX2/Vulkan/OpenGL order +X, -X, +Y, -Y, +Z, -Z with the OpenGL
+// orientation; within a face, s runs along a row and t down the rows (t = 0 is the first row in memory),
+// texel (i, j) of an N-texel face has its centre at s = (i + 0.5) / N, t = (j + 0.5) / N.
 #ifndef IBL_CUBE_H
 #define IBL_CUBE_H
 

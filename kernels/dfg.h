@@ -1,4 +1,5 @@
-// DFG / diffuse LUT texel integration (Frostbite 2014, Listing 18 and eq. 55-58; layout in DESIGN.md).
+// DFG / diffuse LUT texel integration (Frostbite 2014, Listing 18 and eq. 55-58; layout in
+// docs/conventions.md).
 #ifndef IBL_DFG_H
 #define IBL_DFG_H
 
@@ -29,7 +30,7 @@ IBL_FN float4 dfgSampleEntry(uint i, uint sampleCount) {
     return make_float4(specular.x, specular.y, diffuse.x, diffuse.y);
 }
 
-// LUT axes (DESIGN.md): x <-> NoV = (x + 0.5) / N, y <-> perceptual roughness (y + 0.5) / N.
+// LUT axes (docs/conventions.md): x <-> NoV = (x + 0.5) / N, y <-> perceptual roughness (y + 0.5) / N.
 IBL_FN float dfgTexelCenter(uint i, uint size) {
     return ((float)i + 0.5f) / (float)size;
 }

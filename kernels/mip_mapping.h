@@ -1,5 +1,5 @@
-// The roughness <-> mip-level mapping of an LD chain (DESIGN.md "LD mip <-> roughness"), one source for the
-// baker, the runtime and the kernels. Level 0 is the unconvolved source; level m of L holds
+// The roughness <-> mip-level mapping of an LD chain (docs/conventions.md "Roughness and the LD chain"), one
+// source for the baker, the runtime and the kernels. Level 0 is the unconvolved source; level m of L holds
 //   frostbite  r_m = (m / (L - 1))^2, so lod(r) = sqrt(r) (L - 1)   (Frostbite eq. 63, the default)
 //   linear     r_m = m / (L - 1),     so lod(r) = r (L - 1)
 // with r the perceptual roughness. A chain has at most floor(log2(base face size)) + 1 levels (down to 1x1).

@@ -8,7 +8,8 @@
 //   along them (F.2's "invTransform ... without scaling"). A box has half extents along the axes, a sphere
 //   its radius in extent.x (its axes only orient the capture offset).
 // - The capture point is proxy.center + captureOffset given along the proxy's axes (F.2's localOffset).
-// - The probe's cube is in world orientation (the DESIGN.md frame, not the box's frame): the corrected
+// - The probe's cube is in world orientation (the docs/conventions.md frame, not the box's frame): the
+// corrected
 //   direction is turned back to world axes before the lookup.
 // - A volume with a radius or half extent that is not > 0 (zero size, negative, NaN) is invalid: a probe
 //   with an invalid proxy or influence volume has weight 0 everywhere, and nothing is divided by its size.

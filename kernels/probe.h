@@ -1,5 +1,6 @@
-// Runtime probe sampling: shading a point with the baked products (DESIGN.md "Runtime probe-sampling
-// library"). One source for the C++ runtime (CPU evaluation) and the OpenCL kernel (runtime.cl).
+// Runtime probe sampling: shading a point with the baked products (docs/conventions.md "Runtime
+// probe-sampling library"). One source for the C++ runtime (CPU evaluation) and the OpenCL kernel
+// (runtime.cl).
 //   distant probe  LD cube chain sampled trilinearly (cubeSampleLod, the bake's bordered pyramid) at the
 //                  LOD of the chain's roughness mapping; DFG LUT bilinear; Listing 24 / Filament evaluateIBL
 //   energy         Filament 4.7.2 compensation 1 + f0 (1 / r - 1), r = DFG1 + DFG2
@@ -11,8 +12,8 @@
 //                  with the distant probe by the alpha rule of Frostbite 4.9.5; alpha = influence weight
 //                  x the probe's texel visibility (4.9.1.2) where the probe has one
 //   sun            disk light of Listing 6: punctual for diffuse, representative point for specular
-// Roughness naming (DESIGN.md): `perceptualRoughness` r is what artists set, `alpha` = r^2. Frostbite's
-// listings call r "linearRoughness" and alpha "roughness"; Listings 22, 23 and 26 take alpha.
+// Roughness naming (docs/conventions.md): `perceptualRoughness` r is what artists set, `alpha` = r^2.
+// Frostbite's listings call r "linearRoughness" and alpha "roughness"; Listings 22, 23 and 26 take alpha.
 #ifndef IBL_PROBE_H
 #define IBL_PROBE_H
 
@@ -49,7 +50,8 @@ IBL_STRUCT(RoughLayers) {
     uint32_t dataOffset;
 };
 
-// Pre-scaled SH L2 irradiance (DESIGN.md order, 9 RGB coefficients, coefficient i's RGB at 3i..3i+2).
+// Pre-scaled SH L2 irradiance (docs/conventions.md order, 9 RGB coefficients, coefficient i's RGB at
+// 3i..3i+2).
 IBL_STRUCT(ShIrradiance) {
     float c[27];
 };
@@ -141,8 +143,8 @@ IBL_FN vec3 sampleLdWithLayers(IBL_FLOAT_BUFFER data, LdChain ld, RoughLayers la
     return v3madd(sampleLd(data, ld, d, perceptualRoughness), 1.0f - w, v3scale(rough, w));
 }
 
-// Bilinear DFG LUT (DESIGN.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped to the
-// texel centres (so NoV < 0.5 / N reads the first column, as Listing 24's max(NdotV, 0.5 / size)).
+// Bilinear DFG LUT (docs/conventions.md layout: x <-> NoV = (x + 0.5) / N, y <-> r = (y + 0.5) / N), clamped
+// to the texel centres (so NoV < 0.5 / N reads the first column, as Listing 24's max(NdotV, 0.5 / size)).
 // Returns (DFG1, DFG2, Disney).
 IBL_FN vec3 dfgLookup(IBL_FLOAT_BUFFER lut, uint size, float NoV, float perceptualRoughness) {
     float n = IBL_FLOAT(size);

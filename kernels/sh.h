@@ -1,4 +1,4 @@
-// Real spherical harmonics up to L2 (9 coefficients per channel), DESIGN.md "SH": order
+// Real spherical harmonics up to L2 (9 coefficients per channel), docs/conventions.md "SH": order
 // (l,m) = (0,0), (1,-1), (1,0), (1,1), (2,-2), (2,-1), (2,0), (2,1), (2,2), standard (orthonormal)
 // normalization, Y_i(d) = k_i p_i(d) for a unit direction d with the polynomials
 //   p = 1, y, z, x, xy, yz, 3z^2 - 1, xz, x^2 - y^2

@@ -151,8 +151,8 @@ TEST(EnvironmentGeometry, LatLongPixelsAreExact) {
         for (LatLongPixels placement : {LatLongPixels::Centre, LatLongPixels::OpenExr})
             expectExactGeometry(SphereTexels(im, placement));
     }
-    // Pixel (x, y) looks along the DESIGN.md direction of its centre in the placement's grid (pixel centres
-    // (x+0.5)/W; OpenEXR's x/(W-1)), except at the poles where its cell's centroid is off the pole.
+    // Pixel (x, y) looks along the docs/conventions.md direction of its centre in the placement's grid (pixel
+    // centres (x+0.5)/W; OpenEXR's x/(W-1)), except at the poles where its cell's centroid is off the pole.
     const ImageRGBA im(64, 32);
     const SphereTexels centre(im, LatLongPixels::Centre), openExr(im, LatLongPixels::OpenExr);
     EXPECT_GT(

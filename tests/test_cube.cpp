@@ -1,4 +1,4 @@
-// Cube and lat-long addressing (kernels/cube.h) against the conventions of DESIGN.md.
+// Cube and lat-long addressing (kernels/cube.h) against the conventions of docs/conventions.md.
 #include <cube.h>
 
 #include <gtest/gtest.h>

@@ -20,8 +20,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// A lat-long of L(w) = 1 + w.y (DESIGN.md mapping: row y at latitude pi (0.5 - v), v its centre in the
-// pixel-centre placement that ingest reads a file without OpenEXR's envmap attribute with), as float EXR.
+// A lat-long of L(w) = 1 + w.y (docs/conventions.md mapping: row y at latitude pi (0.5 - v), v its centre in
+// the pixel-centre placement that ingest reads a file without OpenEXR's envmap attribute with), as float EXR.
 void writeLinearSky(const fs::path& path) {
     const int width = 256, height = 128;
     std::vector<float> pixels;

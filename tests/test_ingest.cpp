@@ -799,8 +799,8 @@ TEST(IngestShared, OrientationFilesIngestToTheSameCube) {
 }
 
 // Each of the six axis figures in the orientation maps has its origin on an axis and arms that point
-// toward the positive world axes. Checked in the lat-long file itself through DESIGN.md's mapping (+X at
-// u = 0.25, zenith on the first scanline, ...), then in the ingested cubes of both files.
+// toward the positive world axes. Checked in the lat-long file itself through docs/conventions.md's mapping
+// (+X at u = 0.25, zenith on the first scanline, ...), then in the ingested cubes of both files.
 TEST(IngestShared, OrientationLabelsLandWhereDesignSays) {
     const fs::path ll = kShared / "orientation/OrientationLatLong.exr",
                    cubeFile = kShared / "orientation/OrientationCube.exr";

@@ -1,7 +1,8 @@
-// Lat-long pixel placement (DESIGN.md "Lat-long (equirect) mapping", latlong_pixels.h): a Poly Haven map
-// ingests as pixel centres, checked against an integration over its pixels written here independently of
-// the baker; a file carrying OpenEXR's envmap attribute keeps OpenEXR's placement; the override works both
-// ways; the placement is recorded in the products of a bake and bad values name their flag or scene key.
+// Lat-long pixel placement (docs/conventions.md "Lat-long mapping and pixel placement", latlong_pixels.h): a
+// Poly Haven map ingests as pixel centres, checked against an integration over its pixels written here
+// independently of the baker; a file carrying OpenEXR's envmap attribute keeps OpenEXR's placement; the
+// override works both ways; the placement is recorded in the products of a bake and bad values name their
+// flag or scene key.
 #include "cli_runner.h"
 #include "scene_test_support.h"
 
@@ -62,9 +63,9 @@ Pixels readRgb(const fs::path& file) {
 
 // ---- the independent pixel-centre integration (not the baker's code) ----
 // Pixel (x, y) of a W x H lat-long covers u in [x/W, (x+1)/W], v in [y/H, (y+1)/H]; it looks along its
-// centre u = (x+0.5)/W, v = (y+0.5)/H; longitude = (0.5 - u) 2 pi, latitude = (0.5 - v) pi (DESIGN.md:
-// longitude = atan2(d.x, d.z), latitude = asin(d.y)); its solid angle is exactly
-// (2 pi / W) (cos(pi y / H) - cos(pi (y+1) / H)) (the colatitude of its top and bottom edges).
+// centre u = (x+0.5)/W, v = (y+0.5)/H; longitude = (0.5 - u) 2 pi, latitude = (0.5 - v) pi
+// (docs/conventions.md: longitude = atan2(d.x, d.z), latitude = asin(d.y)); its solid angle is exactly (2 pi
+// / W) (cos(pi y / H) - cos(pi (y+1) / H)) (the colatitude of its top and bottom edges).
 double centrePixelSolidAngle(int y, int w, int h) {
     return 2.0 * kPi / w * (std::cos(kPi * y / h) - std::cos(kPi * (y + 1) / h));
 }
@@ -75,7 +76,7 @@ glm::dvec3 centrePixelDirection(int x, int y, int w, int h) {
             std::cos(latitude) * std::cos(longitude)};
 }
 
-// Real L2 SH, standard normalization, DESIGN.md order.
+// Real L2 SH, standard normalization, docs/conventions.md order.
 std::array<double, 9> shBasis(const glm::dvec3& d) {
     const double x = d.x, y = d.y, z = d.z;
     return {0.28209479177387814,

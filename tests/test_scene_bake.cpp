@@ -644,10 +644,10 @@ TEST(SceneBake, QuietPrintsNothing) {
 
 // With the sun extracted, level 0 of the specular chain keeps the sun's pixels when the format holds them
 // (keepSunInLevel0, as `iblbake specular --extract-sun`): rgba32f does; rgba16f does too, stored with a
-// storage scale (DESIGN.md "Float storage": a sun calibrated to 100,000 lux is ~1e9 cd/m2, half floats end at
-// 65,504), which the manifest records and the loader divides out. Only with outputs.clampToFormat (or
-// `bake --clamp-to-format`) does rgba16f keep the residual, and the summary reports the energy clamped.
-// Manifest, KTX2 keys and loader agree.
+// storage scale (docs/conventions.md "Float storage and the storage scale": a sun calibrated to 100,000 lux
+// is ~1e9 cd/m2, half floats end at 65,504), which the manifest records and the loader divides out. Only with
+// outputs.clampToFormat (or `bake --clamp-to-format`) does rgba16f keep the residual, and the summary reports
+// the energy clamped. Manifest, KTX2 keys and loader agree.
 TEST(SceneBake, ExtractedSunStaysInLevel0WhenTheFormatHoldsIt) {
     SceneDir d("scene_sun_level0");
     d.scene["environment"] = {

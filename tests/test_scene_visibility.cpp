@@ -50,7 +50,7 @@ glm::vec3 outside(glm::vec3 d) {
     return glm::vec3(0.3f, 0.5f, 1.0f) * (0.6f + 0.4f * std::max(d.y, 0.0f)) + glm::vec3(0.2f * d.z + 0.2f);
 }
 
-// DESIGN.md lat-long mapping, pixel centres: u = 0.5 - longitude / (2 pi), v = 0.5 - latitude / pi.
+// docs/conventions.md lat-long mapping, pixel centres: u = 0.5 - longitude / (2 pi), v = 0.5 - latitude / pi.
 glm::vec3 latLongDirection(double u, double v) {
     const double lon = (0.5 - u) * 2.0 * std::numbers::pi, lat = (0.5 - v) * std::numbers::pi;
     return glm::vec3(std::cos(lat) * std::sin(lon), std::sin(lat), std::cos(lat) * std::cos(lon));

@@ -25,7 +25,7 @@ using namespace ibl::test;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The basis written out with the constants of DESIGN.md / the issue, in fp64.
+// The basis written out with the constants of docs/conventions.md / the issue, in fp64.
 std::array<double, 9> basisByHand(const glm::dvec3& d) {
     const double k00 = 0.5 / std::sqrt(kPi), k1 = std::sqrt(3.0 / (4.0 * kPi)),
                  k2 = std::sqrt(15.0 / (4.0 * kPi)), k20 = std::sqrt(5.0 / (16.0 * kPi)),

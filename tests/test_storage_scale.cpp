@@ -1,6 +1,6 @@
-// Float storage (DESIGN.md "Float storage", issue 13 item 4): a product whose values exceed its format is
-// stored times a recorded power of two (KTX2 "iblbake.storageScale") that every reader divides out; clamping
-// happens only on request and reports the energy lost.
+// Float storage (docs/conventions.md "Float storage and the storage scale", issue 13 item 4): a product whose
+// values exceed its format is stored times a recorded power of two (KTX2 "iblbake.storageScale") that every
+// reader divides out; clamping happens only on request and reports the energy lost.
 #include "cli_runner.h"
 #include "runtime_test_support.h"
 #include "test_support.h"

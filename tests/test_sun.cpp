@@ -294,8 +294,8 @@ struct Peak {
     glm::dvec3 direction;
 };
 
-// The brightest pixel of a lat-long file, read here with OIIO, and its direction: the DESIGN.md mapping of
-// its centre in the placement's grid (latlong_pixels.h; SOURCES.md's notes use pixel centres).
+// The brightest pixel of a lat-long file, read here with OIIO, and its direction: the docs/conventions.md
+// mapping of its centre in the placement's grid (latlong_pixels.h; SOURCES.md's notes use pixel centres).
 Peak brightestPixel(const fs::path& file, LatLongPixels placement) {
     auto in = OIIO::ImageInput::open(file.string());
     EXPECT_TRUE(in) << OIIO::geterror();

@@ -1,5 +1,5 @@
 // Shared pieces of the consumer pages (babylon_gltf.mjs, three_cube.mjs): a static HTTP server on
-// 127.0.0.1 (no network), headless Chromium through puppeteer-core, OpenGL cube addressing (DESIGN.md,
+// 127.0.0.1 (no network), headless Chromium through puppeteer-core, OpenGL cube addressing (docs/conventions.md,
 // kernels/cube.h), our KTX2 cube read with ktx-parse, and PNG artifacts.
 import { createServer } from 'node:http';
 import { readFileSync, statSync, writeFileSync } from 'node:fs';
@@ -162,7 +162,7 @@ function halfToFloat(h) {
 }
 
 // A cube KTX2 of ours (RGBA16F or RGBA32F) as { size, levels: [[6 Float32Array RGBA]], keyValues, storageScale },
-// the texels in radiance: stored RGB / iblbake.storageScale (DESIGN.md "Float storage"; absent means 1).
+// the texels in radiance: stored RGB / iblbake.storageScale (docs/conventions.md "Float storage and the storage scale"; absent means 1).
 export function readKtx2Cube(file) {
   const ktx = read(new Uint8Array(readFileSync(file)));
   if (ktx.faceCount !== 6) throw new Error(`${file}: not a cube (${ktx.faceCount} faces)`);
@@ -190,7 +190,7 @@ export function readKtx2Cube(file) {
   return { size: ktx.pixelWidth, levels, keyValues, storageScale };
 }
 
-// Our SH irradiance E(n) from diffuse.json's pre-scaled `sh.irradiance` c_i = A_l k_i L_i (DESIGN.md
+// Our SH irradiance E(n) from diffuse.json's pre-scaled `sh.irradiance` c_i = A_l k_i L_i (docs/conventions.md
 // order): E(n) = sum_i c_i p_i(n) with p = 1, y, z, x, xy, yz, 3z^2 - 1, xz, x^2 - y^2.
 export function ourIrradiance(prescaled, [x, y, z]) {
   const p = [1, y, z, x, x * y, y * z, 3 * z * z - 1, x * z, x * x - y * y];

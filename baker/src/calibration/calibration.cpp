@@ -191,7 +191,8 @@ std::vector<std::pair<std::string, std::string>> readCalibrationMetadata(const s
 
 glm::dvec3 workingLuminanceWeights(const std::string& workingColorSpace) {
     const glm::dvec3 w = ingest::luminanceWeights(workingColorSpace); // also checks the space
-    // lin_rec709: the customary 4-digit weights (DESIGN.md, SOURCES.md), within 1e-4 of the matrix row.
+    // lin_rec709: the customary 4-digit weights (docs/conventions.md, SOURCES.md), within 1e-4 of the matrix
+    // row.
     return ingest::colorSpaceName(workingColorSpace) == ingest::colorSpaceName("lin_rec709")
                ? kRec709Luminance
                : w;

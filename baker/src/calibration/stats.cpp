@@ -39,7 +39,7 @@ struct LatLongCell {
 };
 
 LatLongCell latLongCell(int x, int y, int w, int h, LatLongPixels placement) {
-    // u grows as longitude falls: phi = (0.5 - u) 2 pi (DESIGN.md).
+    // u grows as longitude falls: phi = (0.5 - u) 2 pi (docs/conventions.md).
     const double phiA = (0.5 - latLongPixelEdge(placement, x, w)) * 2.0 * kPi,
                  phiB = (0.5 - latLongPixelEdge(placement, x + 1, w)) * 2.0 * kPi;
     const double zTop = y <= 0 ? 1.0 : std::cos(kPi * latLongPixelEdge(placement, y, h));

@@ -357,7 +357,7 @@ void texelNodes(const LatLongGrid& grid, const FaceFrame& frame, const Square& s
             phiMax = std::max(phiMax, phi);
         }
     }
-    // Source u of a target longitude, not wrapped: u = 0.5 - (phi - rotate) / (2 pi) (DESIGN.md).
+    // Source u of a target longitude, not wrapped: u = 0.5 - (phi - rotate) / (2 pi) (docs/conventions.md).
     auto uOf = [&](double phi) { return 0.5 - (phi - rotate) / kTwoPi; };
     auto phiOf = [&](double u) { return (0.5 - u) * kTwoPi + rotate; };
     // Pixel column edges inside the range, in every period of u it spans (the seam u = 0 is one of them).

@@ -1,5 +1,5 @@
-// Repair of pixel values that must not reach the bake (DESIGN.md "Failure behaviour": NaN/Inf/negative
-// pixels are repaired and counted, never propagated).
+// Repair of pixel values that must not reach the bake (docs/conventions.md "Units and calibration":
+// NaN/Inf/negative pixels are repaired and counted, never propagated).
 #include "ingest_internal.h"
 
 #include "iblbake/core/visibility.h"

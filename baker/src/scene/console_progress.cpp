@@ -141,8 +141,8 @@ void ConsoleProgress::done(const BakeSummary& summary) {
                     summary.stages.size(), summary.ran(), summary.cached(), summary.skipped.size(),
                     summary.seconds, summary.backend.c_str(), summary.manifest.string().c_str());
         printReport(summary);
-        // Products stored scaled or clamped on request (DESIGN.md "Float storage"); unscaled ones say
-        // nothing.
+        // Products stored scaled or clamped on request (docs/conventions.md "Float storage and the storage
+        // scale"); unscaled ones say nothing.
         for (const StoredProduct& p : summary.storage)
             if (p.clamped || p.storageScale != 1.0) std::printf("storage %s\n", storageLine(p).c_str());
     }

@@ -37,8 +37,8 @@ struct StageResult {
     std::vector<std::string> products;
 };
 
-// How a KTX2 product was stored (DESIGN.md "Float storage"), as manifest.json records it (products.h
-// productStorageToJson).
+// How a KTX2 product was stored (docs/conventions.md "Float storage and the storage scale"), as manifest.json
+// records it (products.h productStorageToJson).
 struct StoredProduct {
     std::string file;                      // in the output directory
     std::string format;                    // rgba16f, rgba32f, b10g11r11, e5b9g9r9

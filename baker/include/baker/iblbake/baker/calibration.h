@@ -1,6 +1,6 @@
-// Calibration to absolute luminance (DESIGN.md "Units": after calibration, pixel values are luminance in
-// cd/m2; the factor and its source are recorded). Captures usually hold relative luminance (Frostbite
-// 4.9.1); one multiplier, found from one known quantity, makes them absolute.
+// Calibration to absolute luminance (docs/conventions.md "Units and calibration": after calibration, pixel
+// values are luminance in cd/m2; the factor and its source are recorded). Captures usually hold relative
+// luminance (Frostbite 4.9.1); one multiplier, found from one known quantity, makes them absolute.
 //
 // Sources (exactly one):
 //   scale K          factor = K.

@@ -1,4 +1,5 @@
-// The DFG / diffuse LUT stage (DESIGN.md "DFG LUT"): environment-independent, baked once per settings.
+// The DFG / diffuse LUT stage (docs/conventions.md "DFG LUT layout"): environment-independent, baked once per
+// settings.
 #pragma once
 
 #include "iblbake/core/image.h"

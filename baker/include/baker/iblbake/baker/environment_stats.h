@@ -1,9 +1,10 @@
-// Photometric statistics of an environment (DESIGN.md "Units"): what `iblbake inspect` prints and what
-// calibration measures. Everything is integrated over the sphere with exact per-texel solid angles, on
-// either the source cube (the ingested SourceEnvironment) or a lat-long image's own pixel grid.
+// Photometric statistics of an environment (docs/conventions.md "Units and calibration"): what `iblbake
+// inspect` prints and what calibration measures. Everything is integrated over the sphere with exact
+// per-texel solid angles, on either the source cube (the ingested SourceEnvironment) or a lat-long image's
+// own pixel grid.
 //
 // Luminance is Y = w . RGB with the working space's luminance weights (Rec.709 / lin_rec709 by default:
-// 0.2126 R + 0.7152 G + 0.0722 B). Directions follow DESIGN.md: right-handed, +Y up.
+// 0.2126 R + 0.7152 G + 0.0722 B). Directions follow docs/conventions.md: right-handed, +Y up.
 #pragma once
 
 #include "iblbake/baker/latlong_pixels.h"
@@ -119,7 +120,8 @@ EnvironmentStats computeEnvironmentStats(const CubeMap& cube,
 // 3.6 ms of CPU instead of 7.0 ms (bench: cubeTotals, cubeStatistics, idle), and no 3 MB array first touched.
 EnvironmentTotals computeEnvironmentTotals(const SphereTexels& texels,
                                            const glm::dvec3& luminanceWeights = kRec709Luminance);
-// `latlong` is an equirect image in the DESIGN.md mapping, measured on its own pixel grid (`placement`).
+// `latlong` is an equirect image in the docs/conventions.md mapping, measured on its own pixel grid
+// (`placement`).
 EnvironmentStats computeLatLongStats(const ImageRGBA& latlong, LatLongPixels placement,
                                      const glm::dvec3& luminanceWeights = kRec709Luminance);
 

@@ -4,7 +4,7 @@
 // Conventions written (docs/engines.md "glTF 2.0 and Babylon.js"). Where the extension's text is unclear or
 // disagrees with Babylon.js (9.28, the loader it was written for), the file follows Babylon, checked by
 // numbers in headless Chromium (tests/js/babylon_gltf.mjs):
-// - Frame: glTF's (right-handed, +Y up) is DESIGN.md's, so `rotation` is the identity [0, 0, 0, 1].
+// - Frame: glTF's (right-handed, +Y up) is docs/conventions.md's, so `rotation` is the identity [0, 0, 0, 1].
 // - specularImages[m][f]: level m of N holds perceptual roughness m / (N - 1) ("the various mip levels
 //   evenly map to roughness values from 0 to 1"); faces +X, -X, +Y, -Y, +Z, -Z. Babylon uploads each
 //   image with its rows in the opposite order and, in its default left-handed scene, shows cube
@@ -14,7 +14,8 @@
 //   brightness multiplier, applied by loaders to images and coefficients alike) is chosen so that the
 //   brightest exported channel encodes to RGBD's maximum 255: intensity x decoded = the bake's value
 //   (the stored texel over the KTX2's storage scale).
-// - irradianceCoefficients: 9 x [r, g, b] in DESIGN.md order, s_i E_i / intensity with E_i = A_l L_i, the
+// - irradianceCoefficients: 9 x [r, g, b] in docs/conventions.md order, s_i E_i / intensity with E_i = A_l
+// L_i, the
 //   SH coefficients of the irradiance E(n) = sum E_i Y_i(n) (our basis, no Condon-Shortley phase), and
 //   s_i = -1 for i = 1 (y), 4 (xy), 5 (yz), +1 otherwise: Babylon reads them in its basis (Condon-Shortley
 //   signs on i = 1, 3, 5, 7) at the normal in its left-handed frame (x -> -x flips i = 3, 4, 7). From our

@@ -1,5 +1,6 @@
 // Ingest: from HDR file(s) on disk to a sanitized, linear, working-space source cube map
-// (DESIGN.md "Data flow": OIIO -> float image -> OCIO -> working linear RGB -> sanitize -> source cube).
+// (docs/architecture.md "From HDRI to engine": OIIO -> float image -> OCIO -> working linear RGB -> sanitize
+// -> source cube).
 #pragma once
 
 #include "iblbake/baker/latlong_pixels.h"
@@ -29,7 +30,8 @@ namespace ibl {
 // where it has to be turned upside down (its last row touches -Y's last row).
 enum class EnvLayout {
     Auto,
-    LatLong,         // equirect, DESIGN.md lat-long mapping (OpenEXR LatLongMap), pixels by latlong_pixels.h
+    LatLong,         // equirect, docs/conventions.md lat-long mapping (OpenEXR LatLongMap), pixels by
+                     // latlong_pixels.h
     ExrCube,         // OpenEXR envmap=cube: 6 faces stacked vertically, ImfEnvmap CubeMap convention
     HorizontalCross, // 4:3, see above
     VerticalCross,   // 3:4, see above

@@ -1,5 +1,5 @@
-// Lat-long pixel placement (DESIGN.md "Lat-long (equirect) mapping"): where pixel (x, y) of a W x H
-// lat-long sits in (u, v). The one definition every part of the baker that maps lat-long pixels to
+// Lat-long pixel placement (docs/conventions.md "Lat-long mapping and pixel placement"): where pixel (x, y)
+// of a W x H lat-long sits in (u, v). The one definition every part of the baker that maps lat-long pixels to
 // directions uses (the ingest's resampling, SphereTexels' lat-long cells, hence calibration, statistics and
 // sun detection on lat-long pixels, and the tests' helpers).
 //   - Centre: pixel (x, y) covers [x, x+1) x [y, y+1) of the W x H grid, centred at u = (x+0.5)/W,

@@ -1,8 +1,8 @@
-// The flows of the single-product commands (DESIGN.md "Where things live"): from a prepared environment
-// (environment.h prepareEnvironment: ingest, calibration, sun extraction) through the bake, the storage and
-// the documents to the files, all of them or none (OutputSet). `iblbake specular` and `iblbake diffuse` fill
-// these jobs from their options and print what comes back; the documents are written by the same writers
-// as the scene stages' (product_writers.h).
+// The flows of the single-product commands (docs/architecture.md "Where things live"): from a prepared
+// environment (environment.h prepareEnvironment: ingest, calibration, sun extraction) through the bake, the
+// storage and the documents to the files, all of them or none (OutputSet). `iblbake specular` and `iblbake
+// diffuse` fill these jobs from their options and print what comes back; the documents are written by the
+// same writers as the scene stages' (product_writers.h).
 #pragma once
 
 #include "iblbake/baker/environment.h"

@@ -1,4 +1,4 @@
-// One writer per product (DESIGN.md "Where things live"): each builds its product's document (KTX2
+// One writer per product (docs/architecture.md "Where things live"): each builds its product's document (KTX2
 // key/values, JSON, OpenEXR attributes) from typed values and writes it into an OutputSet, so that the
 // single-product commands (`iblbake specular`, `diffuse`, `dfg`, `calibrate`) and the scene stages write
 // the same bytes. They know nothing of the command line: paths and settings come in, what was stored comes

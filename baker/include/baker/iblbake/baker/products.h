@@ -106,7 +106,8 @@ Ktx2KeyValues irradianceKeyValues(const std::string& methodText, const std::stri
                                   const CalibrationRecord& record, const std::optional<DiskLight>& sun);
 
 // ---------------------------------------------------------------------------------------------------
-// Float storage (DESIGN.md "Float storage"; the key and its readers: iblbake/ktx2/storage_scale.h)
+// Float storage (docs/conventions.md "Float storage and the storage scale"; the key and its readers:
+// iblbake/ktx2/storage_scale.h)
 
 // How a product cube goes into its format: times a storage scale so that nothing clamps (the default), or
 // clamped to the format's range when the user asked for that, with the energy the clamp loses.

@@ -1,7 +1,7 @@
-// Diffuse lighting as L2 spherical harmonics (DESIGN.md "SH"; kernels/sh.h has the basis): projection of
-// a source cube, clamped-cosine convolution, Filament's pre-scaling, and deringing windows.
+// Diffuse lighting as L2 spherical harmonics (docs/conventions.md "SH"; kernels/sh.h has the basis):
+// projection of a source cube, clamped-cosine convolution, Filament's pre-scaling, and deringing windows.
 //
-// Conventions of the coefficient sets (9 RGB coefficients each, DESIGN.md order):
+// Conventions of the coefficient sets (9 RGB coefficients each, docs/conventions.md order):
 //   radiance          L_i = integral L(w) Y_i(w) dw                                (standard normalization)
 //   irradiance        A_l k_i L_i: Filament's irradianceSH(n) = sum_i c_i p_i(n) returns the irradiance
 //                     E(n) = integral L(w) max(0, n.w) dw, in the input's units times sr
@@ -21,7 +21,7 @@
 
 namespace ibl {
 
-// 9 RGB coefficients in DESIGN.md order, fp64.
+// 9 RGB coefficients in docs/conventions.md order, fp64.
 using ShRgb = std::array<glm::dvec3, 9>;
 
 // Exact solid angle of texel (x, y) of an n-texel cube face, evaluated in fp64 (kernels/cube.h's

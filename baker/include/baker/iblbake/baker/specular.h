@@ -1,5 +1,6 @@
-// The specular LD chain (DESIGN.md "LD mip <-> roughness"): level 0 is the unconvolved source, level m
-// holds the GGX pre-integration (N = V = R) for the perceptual roughness the mip mapping gives it.
+// The specular LD chain (docs/conventions.md "Roughness and the LD chain"): level 0 is the unconvolved
+// source, level m holds the GGX pre-integration (N = V = R) for the perceptual roughness the mip mapping
+// gives it.
 #pragma once
 
 #include "iblbake/core/cube_pyramid.h"

@@ -44,7 +44,7 @@ namespace ibl {
 
 // A distant disk light (Frostbite 4.6): what the renderer adds back for the extracted sun.
 struct DiskLight {
-    glm::dvec3 direction{0.0, 1.0, 0.0}; // unit, toward the light, DESIGN.md frame (+Y up)
+    glm::dvec3 direction{0.0, 1.0, 0.0}; // unit, toward the light, docs/conventions.md frame (+Y up)
     // Radians: the disk equivalent to the measured energy (diskLightFromExcess). Capture blur and the
     // texel size inflate it: 0.4-0.5 degrees on the 1k maps, where the sun's is 0.27 (footnote 28); a
     // renderer wanting the true sun can override it without changing E_perp.
@@ -56,8 +56,8 @@ struct DiskLight {
     double solidAngle = 0.0;  // steradians of the texel region it was measured over (not of the disk)
 
     double elevationDegrees() const; // asin(direction.y)
-    // Longitude of the DESIGN.md lat-long mapping: atan2(x, z), 0 at +Z, +90 at +X; the lat-long pixel
-    // column is u = 0.5 - azimuth / 360.
+    // Longitude of the docs/conventions.md lat-long mapping: atan2(x, z), 0 at +Z, +90 at +X; the lat-long
+    // pixel column is u = 0.5 - azimuth / 360.
     double azimuthDegrees() const;
     double angularRadiusDegrees() const;
     double diskSolidAngle() const; // 2 pi (1 - cos angularRadius)

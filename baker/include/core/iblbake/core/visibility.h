@@ -1,5 +1,5 @@
-// The repair rule of a premultiplied colour + visibility texel (DESIGN.md, visibility convention), one
-// definition for ingest, the specular stage and the runtime's probe loader: a visibility in [0, 1] is
+// The repair rule of a premultiplied colour + visibility texel (docs/conventions.md, visibility convention),
+// one definition for ingest, the specular stage and the runtime's probe loader: a visibility in [0, 1] is
 // kept; above 1 it is 1 (the colour kept); NaN or negative is a transparent texel, RGBA 0, since colour
 // premultiplied by a visibility without meaning has no meaning to keep.
 #pragma once

@@ -1,6 +1,6 @@
 // Target profiles of the cube KTX2 products (`--profile` of `iblbake specular` / `diffuse`, the scene's
 // outputs.profile), recorded in every cube as the key iblbake.profile and in the scene manifest.
-// - standard: DESIGN.md's cube (OpenGL faces and face orientation in a right-handed, +Y-up frame).
+// - standard: docs/conventions.md's cube (OpenGL faces and face orientation in a right-handed, +Y-up frame).
 // - three: what three.js r187's cube-texture path shows right. three samples a CubeTexture that is not
 //   a render target at (-x, y, z) of the world direction (flipEnvMap = -1 in scene.background's box,
 //   PMREMGenerator.fromCubemap and MeshStandardMaterial.envMap), so the stored cube is ours mirrored in

@@ -1,8 +1,8 @@
-// The storage scale of a product file (DESIGN.md "Float storage"; Frostbite 2014 section 5.2, whose
-// pre-exposure stores lighting times a known factor so that it fits a 16-bit float target): a product
-// whose values exceed its format's range is stored times a recorded power of two, and every reader divides
-// it out again. KTX2 key "iblbake.storageScale": stored RGB = radiance x storageScale (alpha is stored as
-// is); absent in files of older iblbake, which means 1.
+// The storage scale of a product file (docs/conventions.md "Float storage and the storage scale"; Frostbite
+// 2014 section 5.2, whose pre-exposure stores lighting times a known factor so that it fits a 16-bit float
+// target): a product whose values exceed its format's range is stored times a recorded power of two, and
+// every reader divides it out again. KTX2 key "iblbake.storageScale": stored RGB = radiance x storageScale
+// (alpha is stored as is); absent in files of older iblbake, which means 1.
 #pragma once
 
 #include "iblbake/ktx2/ktx2.h"

@@ -122,7 +122,7 @@ struct SceneOutputs {
     bool irradianceCube = false;
     int irradianceFaceSize = 32; // power of two
     // Clamp the KTX2 products to their format's range instead of storing them with a storage scale
-    // (DESIGN.md "Float storage"); the energy lost is reported.
+    // (docs/conventions.md "Float storage and the storage scale"); the energy lost is reported.
     bool clampToFormat = false;
     std::optional<SceneGltfOutput> gltf;       // only when asked (true or an object)
     std::optional<ScenePreviewOutput> preview; // only when asked (true or an object)

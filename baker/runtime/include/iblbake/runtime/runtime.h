@@ -1,6 +1,6 @@
-// The runtime probe-sampling module (DESIGN.md "Runtime probe-sampling library"): a set of baked probes
-// and the evaluation of shading points against it on the CPU (TBB) or through OpenCL. The shading math
-// is kernels/probe.h and kernels/parallax.h, shared by both paths. Links neither OpenImageIO nor
+// The runtime probe-sampling module (docs/architecture.md; its conventions in docs/conventions.md): a set of
+// baked probes and the evaluation of shading points against it on the CPU (TBB) or through OpenCL. The
+// shading math is kernels/probe.h and kernels/parallax.h, shared by both paths. Links neither OpenImageIO nor
 // OpenColorIO: engines and tools can use it without the baker.
 //
 // Radiance out = diffuse + specular of the standard material (Filament 4.8: f0 = 0.04 (1 - metallic) +
@@ -70,7 +70,7 @@ enum class ChainAlpha {
 LdPyramid ldPyramidFromChain(const CubeMapChain& chain, MipMapping mapping = MipMapping::Frostbite,
                              ChainAlpha alpha = ChainAlpha::Ignore);
 
-// The DFG LUT, 3 floats per texel (DFG1, DFG2, Disney), DESIGN.md layout.
+// The DFG LUT, 3 floats per texel (DFG1, DFG2, Disney), docs/conventions.md layout.
 struct DfgTable {
     std::uint32_t size = 0;
     std::vector<float> data;
@@ -78,15 +78,16 @@ struct DfgTable {
 // From bakeDfgLut's image (square; R, G, B used). Throws ibl::Error for an empty or non-square image.
 DfgTable dfgTableFromImage(const ImageRGBA& lut);
 
-// Pre-scaled SH L2 irradiance coefficients, DESIGN.md order: Filament's irradianceSH(n) = sum c_i p_i(n)
-// returns the irradiance E(n), or E(n) / pi when overPi (cmgen's convention, Lambert's 1/pi folded in).
+// Pre-scaled SH L2 irradiance coefficients, docs/conventions.md order: Filament's irradianceSH(n) = sum c_i
+// p_i(n) returns the irradiance E(n), or E(n) / pi when overPi (cmgen's convention, Lambert's 1/pi folded
+// in).
 struct ShCoefficients {
     std::array<glm::vec3, 9> c{};
     bool overPi = false;
 };
 
-// From any 9 RGB coefficients in DESIGN.md order, e.g. the baker's DiffuseSH::irradiance (overPi = false) or
-// DiffuseSH::irradianceOverPi (overPi = true).
+// From any 9 RGB coefficients in docs/conventions.md order, e.g. the baker's DiffuseSH::irradiance (overPi =
+// false) or DiffuseSH::irradianceOverPi (overPi = true).
 template <class Rgb9>
 ShCoefficients shCoefficientsFrom(const Rgb9& coefficients, bool overPi) {
     ShCoefficients sh;
