@@ -26,6 +26,19 @@ CubeMap uniformCube(int n, float value) {
 }
 
 // Points on a sphere facing +Z of perceptual roughness r: a grid x grid camera image (NoV >= 0.15).
+// A sky brightening toward the zenith over a ground textured in stripes three texels wide.
+CubeMap skyOverTexturedGround(int n) {
+    CubeMap cube(n);
+    for (int f = 0; f < 6; ++f)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const glm::vec3 d = glm::normalize(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n));
+                const float sky = d.y > 0 ? 1.0f + 2.0f * d.y : 0.3f + 0.1f * float(x % 3);
+                cube.faces[f].at(x, y) = glm::vec4(sky, sky * 0.9f, sky * 0.8f, 1.0f);
+            }
+    return cube;
+}
+
 std::vector<ShadingPoint> spherePoints(float r, float metallic, int grid) {
     std::vector<ShadingPoint> points;
     for (int j = 0; j < grid; ++j)
@@ -162,15 +175,7 @@ TEST(ConvergedReference, EstimateBoundsErrorWithASun) {
 // the half difference of two sample sets estimates the error's expected size, it is no strict bound; here
 // one group stated 0.050% for an actual 0.087%).
 TEST(ConvergedReference, AdaptiveReferenceMeetsItsTargetAndStatesItsError) {
-    const int n = 32;
-    CubeMap cube(n);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const glm::vec3 d = glm::normalize(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n));
-                const float sky = d.y > 0 ? 1.0f + 2.0f * d.y : 0.3f + 0.1f * float(x % 3);
-                cube.faces[f].at(x, y) = glm::vec4(sky, sky * 0.9f, sky * 0.8f, 1.0f);
-            }
+    CubeMap cube = skyOverTexturedGround(32);
     for (int y = 12; y < 14; ++y)
         for (int x = 20; x < 22; ++x)
             cube.faces[2].at(x, y) = glm::vec4(20000.0f, 19000.0f, 17000.0f, 1.0f); // +Y, off the zenith
@@ -213,16 +218,7 @@ TEST(ConvergedReference, AdaptiveReferenceMeetsItsTargetAndStatesItsError) {
 // The fast LD reference at chosen texels against the every-texel brute force on a sky with a sun: the
 // difference stays within its estimate, which is small.
 TEST(ConvergedReference, FastLdAgreesWithTheBruteForceWithinItsEstimate) {
-    const int n = 32;
-    CubeMap cube(n);
-    for (int f = 0; f < 6; ++f)
-        for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) {
-                const glm::vec3 d = glm::normalize(cubeFaceDirection(f, (x + 0.5f) / n, (y + 0.5f) / n));
-                const float sky =
-                    d.y > 0 ? 1.0f + 2.0f * d.y : 0.3f + 0.1f * float(x % 3); // a textured ground
-                cube.faces[f].at(x, y) = glm::vec4(sky, sky * 0.9f, sky * 0.8f, 1.0f);
-            }
+    CubeMap cube = skyOverTexturedGround(32);
     cube.faces[0].at(10, 12) = glm::vec4(30000.0f, 28000.0f, 25000.0f, 1.0f); // a one-texel sun on +X
     for (float r : {0.05f, 0.2f, 0.5f, 0.9f}) {
         const int size = 7; // texel centres off the source texels' corners
