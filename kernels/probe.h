@@ -1,6 +1,6 @@
-// Runtime probe sampling: shading a point with the baked products (docs/conventions.md "Runtime
-// probe-sampling library"). One source for the C++ runtime (CPU evaluation) and the OpenCL kernel
-// (runtime.cl).
+// Runtime probe sampling: shading a point with the baked products (docs/conventions.md "The runtime's
+// lookup direction", baker/runtime/README.md). One source for the C++ runtime (CPU evaluation) and the
+// OpenCL kernel (runtime.cl).
 //   distant probe  LD cube chain sampled trilinearly (cubeSampleLod, the bake's bordered pyramid) at the
 //                  LOD of the chain's roughness mapping; DFG LUT bilinear; Listing 24 / Filament evaluateIBL
 //   energy         Filament 4.7.2 compensation 1 + f0 (1 / r - 1), r = DFG1 + DFG2

@@ -1,8 +1,8 @@
 // Environment preparation: the one sequence from HDR file(s) to what the bakes start from
-// (docs/conventions.md "Data flow"): ingest (read, repair, colour conversion to the working space, source
-// cube), calibration to absolute luminance (calibration.h: factor, then scaling), and the sun taken out as a
-// disk light (sun.h). The CLI's baking commands and `iblbake calibrate`, a scene's environment, sun and probe
-// stages and the accuracy sweep all prepare their environment here.
+// (docs/architecture.md "From HDRI to engine"): ingest (read, repair, colour conversion to the working space,
+// source cube), calibration to absolute luminance (calibration.h: factor, then scaling), and the sun taken
+// out as a disk light (sun.h). The CLI's baking commands and `iblbake calibrate`, a scene's environment, sun
+// and probe stages and the accuracy sweep all prepare their environment here.
 #pragma once
 
 #include "iblbake/baker/calibration.h"

@@ -1,6 +1,6 @@
 // Small numeric facts that many library files use, each defined here once: pi and the degree in double,
 // the power-of-two test of face and LUT sizes, Rec.709 luminance, and float-exact decimal text
-// (docs/conventions.md "Units").
+// (docs/conventions.md "Units and calibration").
 #pragma once
 
 #include <bit>
