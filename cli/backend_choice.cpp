@@ -3,7 +3,9 @@
 namespace ibl::cli {
 
 void addBackendAndDevice(CLI::App& command, std::string& backend, std::string& device) {
-    command.add_option("--backend", backend, "auto (OpenCL on a GPU or a named device, else the CPU lanes), opencl or cpu")
+    command
+        .add_option("--backend", backend,
+                    "auto (OpenCL on a GPU or a named device, else the CPU lanes), opencl or cpu")
         ->check(CLI::IsMember({"auto", "opencl", "cpu"}));
     command.add_option(
         "--device", device,

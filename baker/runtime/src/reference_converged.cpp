@@ -305,10 +305,10 @@ struct SampledSums {
         const Integral first = sampled(m, e, batchPerHalf, shift);
         const Integral second =
             sampled(m, e, batchPerHalf, glm::fract(shift + glm::dvec2(0.61803398875, 0.41421356237)));
-        a.diffuse += double(batchPerHalf) * first.diffuse,
-            a.specular += double(batchPerHalf) * first.specular;
-        b.diffuse += double(batchPerHalf) * second.diffuse,
-            b.specular += double(batchPerHalf) * second.specular;
+        a.diffuse += double(batchPerHalf) * first.diffuse;
+        a.specular += double(batchPerHalf) * first.specular;
+        b.diffuse += double(batchPerHalf) * second.diffuse;
+        b.specular += double(batchPerHalf) * second.specular;
         perHalf += batchPerHalf;
     }
     Part part() const {

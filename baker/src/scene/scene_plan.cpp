@@ -78,9 +78,8 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
                             false,
                             ""};
         reference.settings["targetError"] = kPreviewReferenceTargetError;
-        reference.reason =
-            "outputs.preview: the converged reference of the preview's balls, each roughness column until its "
-            "own estimated error is under 0.5%";
+        reference.reason = "outputs.preview: the converged reference of the preview's balls, each roughness "
+                           "column until its own estimated error is under 0.5%";
         plan.stages.push_back(std::move(reference));
     }
     if (!o.gltf) {
