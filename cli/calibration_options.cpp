@@ -119,4 +119,30 @@ PreparedEnvironment ingestCalibrated(const InputOptions& input, const Calibratio
     return prepared;
 }
 
+EnvironmentJob environmentJob(const InputOptions& input, const CalibrationOptions& calibration,
+                              int sourceFaceSize) {
+    EnvironmentJob job;
+    job.files = input.files();
+    job.layout = input.layout;
+    job.inputColorSpace = input.inputColorSpace;
+    job.workingColorSpace = input.workingColorSpace;
+    job.rotateDegrees = input.rotateDegrees;
+    job.latLongPixels = input.latLongPixels;
+    job.calibration = calibration.settings();
+    job.faceSize = sourceFaceSize;
+    job.extractSun = calibration.extractSun;
+    job.sunMaxSolidAngle = calibration.sunMaxSolidAngle;
+    job.sunJson = calibration.sunJson;
+    return job;
+}
+
+ProductRun runCalibrated(const ProductPlan& plan, const CalibrationOptions& calibration,
+                         const std::function<const Executor*()>& executor) {
+    try {
+        return runProductPlan(plan, executor);
+    } catch (const SettingError& e) {
+        throw withFlag(e, calibration);
+    }
+}
+
 } // namespace ibl::cli

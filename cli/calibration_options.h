@@ -8,11 +8,13 @@
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/environment.h>
 #include <iblbake/baker/ingest.h>
+#include <iblbake/baker/product_plans.h>
 #include <iblbake/baker/sun.h>
 #include <iblbake/core/error.h>
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,6 +46,14 @@ struct CalibrationOptions {
 Error withFlag(const SettingError& error, const CalibrationOptions& calibration);
 
 struct InputOptions;
+
+// The environment a baking command reads (product_plans.h EnvironmentJob), at `sourceFaceSize`.
+EnvironmentJob environmentJob(const InputOptions& input, const CalibrationOptions& calibration,
+                              int sourceFaceSize);
+
+// runProductPlan, a calibration error named by its source's flag (withFlag).
+ProductRun runCalibrated(const ProductPlan& plan, const CalibrationOptions& calibration,
+                         const std::function<const Executor*()>& executor);
 
 // prepareEnvironment of the input at `sourceFaceSize` with these options (errors withFlag), and prints the
 // input report, the calibration and the extracted sun. keepCubeWithSun: as environmentSettings'.

@@ -1,13 +1,13 @@
-// iblbake dfg: bakes the DFG / diffuse LUT to OpenEXR.
+// iblbake dfg: bakes the DFG / diffuse LUT to OpenEXR: the plan of a scene's dfg-lut stage with the
+// command's settings (iblbake/baker/product_plans.h dfgPlan), run by the scene's stage runner.
 #include "commands.h"
 #include "common_options.h"
 
-#include <iblbake/baker/product_writers.h>
-#include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/baker/product_plans.h>
 
-#include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 namespace ibl::cli {
 
@@ -36,23 +36,19 @@ Action addDfgCommand(CLI::App& app) {
     opts->backend.addTo(*cmd);
 
     return [opts] {
-        checkOutputFile(opts->output); // before the work
-        Executor executor = opts->backend.makeExecutor(
-            standaloneDfgBackend(parseBackend(opts->backend.backend), !opts->backend.device.empty()));
-        auto start = std::chrono::steady_clock::now();
-        ImageRGBA lut = bakeDfgLut(opts->settings, executor);
-        double ms =
-            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-
-        OutputSet outputs;
-        writeDfgLutProduct(outputs, lut, opts->settings.sampleCount,
-                           opts->half ? DfgLutFile::ExrHalf : DfgLutFile::ExrFloat, opts->output);
-        outputs.commit();
-        BackendOptions::storeBuiltKernels(executor);
+        const Backend backend =
+            standaloneDfgBackend(parseBackend(opts->backend.backend), !opts->backend.device.empty());
+        std::optional<Executor> executor;
+        const ProductRun run =
+            runProductPlan(dfgPlan(opts->settings, opts->half ? DfgLutFile::ExrHalf : DfgLutFile::ExrFloat,
+                                   opts->output, backendName(backend)),
+                           [&] { return &executor.emplace(opts->backend.makeExecutor(backend)); });
+        BackendOptions::storeBuiltKernels(*executor);
+        const double ms = 1000.0 * run.stageSeconds("dfg");
         std::printf("wrote %s (%ux%u DFG LUT, %u samples/texel, %s, %.1f ms)\n", opts->output.c_str(),
                     opts->settings.size, opts->settings.size, opts->settings.sampleCount,
-                    executor.description().c_str(), ms);
-        opts->backend.printTiming(executor, "dfg", ms);
+                    executor->description().c_str(), ms);
+        opts->backend.printTiming(*executor, "dfg", ms);
         return 0;
     };
 }

@@ -141,16 +141,7 @@ Action addDiffuseCommand(CLI::App& app) {
                 o->backend.printTiming(executor, stage, ms);
             });
         BackendOptions::storeBuiltKernels(executor);
-        std::printf("%s", shWindowText(products.sh.window, input.env.cube.faceSize).c_str());
-        if (products.cube) {
-            std::printf("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
-                        o->irradianceSize, o->irradianceMethod.c_str(), o->format.c_str(),
-                        products.cubeMilliseconds, (unsigned long long)products.cube->stats.clampedTexels,
-                        (unsigned long long)products.shNegativeTexels);
-            printStorage(o->irradianceCube, o->format, products.cube->storage);
-        }
-        std::printf("wrote   %s%s%s\n", o->output.c_str(), job.cube ? " and " : "",
-                    job.cube ? o->irradianceCube.c_str() : "");
+        std::printf("%s", diffuseProductsText(job, products, input.env.cube.faceSize).c_str());
         std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n",
                     job.ingestMilliseconds, products.shMilliseconds, products.cubeMilliseconds,
                     executor.description().c_str(), millisecondsSince(start));

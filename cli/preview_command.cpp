@@ -45,14 +45,7 @@ int previewLights(PreviewOptions& o) {
     BackendOptions::storeBuiltKernels(executor);
     std::printf("wrote   %s (%d x %d) and %s (%s)\n", o.output.c_str(), preview.width, preview.height,
                 exrPath.c_str(), executor.description().c_str());
-    std::printf("error   relative mean per roughness column (luminance), the brute force's own in ()\n");
-    for (std::size_t g = 0; g < preview.lights.size(); ++g) {
-        std::printf("  %-16s", preview.lights[g].c_str());
-        for (std::size_t c = 0; c < preview.roughness.size(); ++c)
-            std::printf(" %.1f%% (%.2f%%)", 100.0 * preview.error[g][c],
-                        100.0 * preview.referenceError[g][c]);
-        std::printf("\n");
-    }
+    std::printf("%s", lightPreviewErrorText(preview).c_str());
     std::printf("time    %.1f ms\n", millisecondsSince(start));
     return 0;
 }
@@ -109,17 +102,7 @@ Action addPreviewCommand(CLI::App& app) {
                     exrPath.c_str(), executor.description().c_str());
         std::printf("probe   LD chain of %u levels%s\n", bake.set.distantLd().layout.levelCount,
                     bake.set.roughLayers().layerCount != 0 ? " and its rough layers" : "");
-        if (!preview.error.empty()) {
-            std::printf("error   relative mean per roughness column (luminance, both rows):");
-            for (double e : preview.error)
-                std::printf(" %.1f%%", 100.0 * e);
-            std::printf(
-                "\nreference's own estimated error per column (%zu bright texels integrated exactly):",
-                preview.referenceBrightTexels);
-            for (double e : preview.referenceError)
-                std::printf(" %.2f%%", 100.0 * e);
-            std::printf("\n");
-        }
+        std::printf("%s", materialPreviewErrorText(preview).c_str());
         std::printf("time    %.1f ms\n", millisecondsSince(start));
         return 0;
     };

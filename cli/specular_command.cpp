@@ -1,17 +1,19 @@
 // iblbake specular: HDRI in, prefiltered specular (LD) cube mip chain out as KTX2. The flow is the
-// library's (iblbake/baker/product_flows.h bakeSpecularProducts); this parses, prepares and prints.
+// library's: the plan of a scene's environment, sun and specular stages (iblbake/baker/product_plans.h
+// specularPlan), run by the scene's stage runner; this parses and prints.
 #include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/baker/product_flows.h>
+#include <iblbake/baker/product_plans.h>
 #include <iblbake/core/limits.h>
 #include <iblbake/ktx2/cube_profile.h>
 
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 namespace ibl::cli {
 
@@ -38,24 +40,18 @@ struct SpecularOptions {
 
 // The library's job of these options.
 SpecularJob specularJob(const SpecularOptions& o) {
-    SpecularJob job;
-    job.settings.levels = o.levels;
-    job.settings.quality = parseQuality(o.quality);
-    job.settings.samples = o.samples;
-    job.settings.mapping = parseMipMapping(o.mipMapping);
-    job.settings.lodBias = o.lodBias;
-    job.faceSize = o.size;
-    job.rotateDegrees = o.input.rotateDegrees;
-    job.format = parseKtx2Format(o.format);
-    job.clampToFormat = o.clampToFormat;
-    job.profile = o.profile;
-    job.sunMaxSolidAngle = o.calibration.sunMaxSolidAngle;
-    job.chain = o.output;
-    job.roughLayers = o.roughLayers;
-    job.exrDirectory = o.exrDir;
-    job.preview = o.preview;
-    job.sunJson = o.calibration.sunJson;
-    return job;
+    return {.settings = {.levels = o.levels,
+                         .mapping = parseMipMapping(o.mipMapping),
+                         .samples = o.samples,
+                         .quality = parseQuality(o.quality),
+                         .lodBias = o.lodBias},
+            .format = o.format,
+            .clampToFormat = o.clampToFormat,
+            .profile = o.profile,
+            .chain = o.output,
+            .roughLayers = o.roughLayers,
+            .exrDirectory = o.exrDir,
+            .preview = o.preview};
 }
 
 } // namespace
@@ -101,36 +97,23 @@ Action addSpecularCommand(CLI::App& app) {
         auto start = std::chrono::steady_clock::now();
         const SpecularJob job = specularJob(*o);
         validateSpecularSettings(job.settings, o->size);
-        checkSpecularOutputs(job); // every output before any work: a bad --preview must not fail after -o
-        std::future<Executor> pendingExecutor = o->backend.startExecutor(standaloneSpecularBackend(
-            parseBackend(o->backend.backend), !o->backend.device.empty(), job.settings, o->size));
-        // The cube with the sun is kept for level 0.
-        PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size, true);
-        const Executor executor = pendingExecutor.get();
-        const double ingestMs = millisecondsSince(start);
-
-        const SpecularProducts products =
-            bakeSpecularProducts(std::move(input), job, executor, [&](const char* stage, double ms) {
-                o->backend.printTiming(executor, stage, ms);
-            });
-        BackendOptions::storeBuiltKernels(executor);
-        for (const SpecularLevelTiming& t : products.timings)
-            std::printf("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.level, t.perceptualRoughness,
-                        products.levelFaceSizes[std::size_t(t.level)], t.milliseconds);
-        const StoredCube& chain = products.written.chain;
-        std::printf("wrote   %s: %zu levels, %s, %llu clamped texels, %llu repaired non-finite\n",
-                    o->output.c_str(), products.levelFaceSizes.size(), o->format.c_str(),
-                    (unsigned long long)chain.stats.clampedTexels,
-                    (unsigned long long)chain.stats.repairedNonFinite);
-        printStorage(o->output, o->format, chain.storage);
-        if (products.written.roughLayers) {
-            std::printf("wrote   %s: %u rough layers of %u px (r = %s)\n", o->roughLayers.c_str(),
-                        IBL_ROUGH_LAYER_COUNT, roughLayerFaceSize(std::uint32_t(o->size)),
-                        roughLayerRoughnessText().c_str());
-            printStorage(o->roughLayers, o->format, products.written.roughLayers->storage);
-        }
-        std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n", ingestMs,
-                    products.bakeMilliseconds, executor.description().c_str(), millisecondsSince(start));
+        const Backend backend = standaloneSpecularBackend(parseBackend(o->backend.backend),
+                                                          !o->backend.device.empty(), job.settings, o->size);
+        std::future<Executor> pendingExecutor = o->backend.startExecutor(backend);
+        std::optional<Executor> executor;
+        const ProductPlan plan =
+            specularPlan(environmentJob(o->input, o->calibration, o->size), job, backendName(backend));
+        const ProductRun run = runCalibrated(plan, o->calibration, [&] {
+            return &executor.emplace(pendingExecutor.get()); // its set-up overlapped the ingest
+        });
+        std::printf("%s", environmentRunText(run).c_str());
+        const double bakeMs = 1000.0 * run.stageSeconds("specular");
+        o->backend.printTiming(*executor, "specular", bakeMs);
+        BackendOptions::storeBuiltKernels(*executor);
+        std::printf("%s", specularRunText(plan, run).c_str());
+        std::printf("time    ingest %.1f ms, bake %.1f ms (%s), total %.1f ms\n",
+                    1000.0 * (run.stageSeconds("environment") + run.stageSeconds("sun")), bakeMs,
+                    executor->description().c_str(), millisecondsSince(start));
         return 0;
     };
 }

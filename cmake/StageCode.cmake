@@ -24,7 +24,8 @@ set(IBLBAKE_CODE_INCLUDE_DIRS kernels baker/include/core baker/include/opencl ba
 
 # Groups shared by several kinds.
 set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's files (products), the entry layout
-    baker/src/scene/scene_stages.cpp baker/src/scene/stage_cache.cpp baker/src/io/ktx2_writer.cpp
+    baker/src/scene/scene_stages.cpp baker/src/scene/stage_runner.cpp baker/src/scene/stage_cache.cpp
+    baker/src/io/ktx2_writer.cpp
     baker/src/io/ktx2_reader.cpp baker/src/io/ktx2_format_names.cpp baker/src/io/ktx2_storage_scale.cpp
     baker/src/io/cube_profile.cpp
     baker/src/products)
@@ -84,6 +85,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
     baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
     baker/src/scene/up_to_date.cpp
+    baker/src/scene/product_plans.cpp baker/src/scene/product_run_text.cpp # a command's plan, its files' delivery, its report
     baker/src/batch baker/src/accuracy
     baker/src/light_preview # `iblbake preview --lights`: no stage renders it
     baker/src/flows # the single-product commands' flows: their products' bytes are the writers' (products)

@@ -97,13 +97,7 @@ IBL_FN vec3 cubeSampleLevel(IBL_FLOAT_BUFFER pyramid, CubePyramidLayout shape, u
     CubeBilinearTaps taps = cubeBilinearTaps(shape, level, c);
     uint i00 = 3u * taps.texel00;
     uint i10 = i00 + 3u, i01 = i00 + 3u * taps.stride, i11 = i01 + 3u;
-    float w00 = taps.w00, w10 = taps.w10, w01 = taps.w01, w11 = taps.w11;
-    return v3(w00 * IBL_READ(pyramid, i00) + w10 * IBL_READ(pyramid, i10) + w01 * IBL_READ(pyramid, i01) +
-                  w11 * IBL_READ(pyramid, i11),
-              w00 * IBL_READ(pyramid, i00 + 1u) + w10 * IBL_READ(pyramid, i10 + 1u) +
-                  w01 * IBL_READ(pyramid, i01 + 1u) + w11 * IBL_READ(pyramid, i11 + 1u),
-              w00 * IBL_READ(pyramid, i00 + 2u) + w10 * IBL_READ(pyramid, i10 + 2u) +
-                  w01 * IBL_READ(pyramid, i01 + 2u) + w11 * IBL_READ(pyramid, i11 + 2u));
+    return weightedRgb4(pyramid, i00, i10, i01, i11, taps.w00, taps.w10, taps.w01, taps.w11);
 }
 
 // Pre-filtered importance sampling (Frostbite Listing 19, Krivanek & Colbert 2008): the source level

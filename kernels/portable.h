@@ -224,6 +224,19 @@ IBL_FN vec3 v3normalize(vec3 a) {
     return v3scale(a, 1.0f / sqrt(v3dot(a, a)));
 }
 
+// Four RGB texels of a float buffer (each at the index of its red value) weighted and summed: a bilinear
+// read's taps (cube_sample.h cubeSampleLevel, textured_light.h lightCardLevel, probe.h's LUT read), in one
+// order everywhere.
+IBL_FN vec3 weightedRgb4(IBL_FLOAT_BUFFER data, uint i00, uint i10, uint i01, uint i11, float w00, float w10,
+                         float w01, float w11) {
+    return v3(w00 * IBL_READ(data, i00) + w10 * IBL_READ(data, i10) + w01 * IBL_READ(data, i01) +
+                  w11 * IBL_READ(data, i11),
+              w00 * IBL_READ(data, i00 + 1u) + w10 * IBL_READ(data, i10 + 1u) +
+                  w01 * IBL_READ(data, i01 + 1u) + w11 * IBL_READ(data, i11 + 1u),
+              w00 * IBL_READ(data, i00 + 2u) + w10 * IBL_READ(data, i10 + 2u) +
+                  w01 * IBL_READ(data, i01 + 2u) + w11 * IBL_READ(data, i11 + 2u));
+}
+
 IBL_END_NAMESPACE
 
 #endif

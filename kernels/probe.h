@@ -156,13 +156,8 @@ IBL_FN vec3 dfgLookup(IBL_FLOAT_BUFFER lut, uint size, float NoV, float perceptu
     uint x1 = min(x0 + 1u, size - 1u), y1 = min(y0 + 1u, size - 1u);
     uint i00 = 3u * (y0 * size + x0), i10 = 3u * (y0 * size + x1);
     uint i01 = 3u * (y1 * size + x0), i11 = 3u * (y1 * size + x1);
-    float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
-    return v3(w00 * IBL_READ(lut, i00) + w10 * IBL_READ(lut, i10) + w01 * IBL_READ(lut, i01) +
-                  w11 * IBL_READ(lut, i11),
-              w00 * IBL_READ(lut, i00 + 1u) + w10 * IBL_READ(lut, i10 + 1u) + w01 * IBL_READ(lut, i01 + 1u) +
-                  w11 * IBL_READ(lut, i11 + 1u),
-              w00 * IBL_READ(lut, i00 + 2u) + w10 * IBL_READ(lut, i10 + 2u) + w01 * IBL_READ(lut, i01 + 2u) +
-                  w11 * IBL_READ(lut, i11 + 2u));
+    return weightedRgb4(lut, i00, i10, i01, i11, (1.0f - fx) * (1.0f - fy), fx * (1.0f - fy),
+                        (1.0f - fx) * fy, fx * fy);
 }
 
 // Filament's irradianceSH(n) (5.3.4.1) on the pre-scaled coefficients. Kept small and separate so that it

@@ -31,13 +31,8 @@ IBL_FN vec3 lightCardBilinear(IBL_FLOAT_BUFFER data, LightCardLayout card, uint 
     float fx = x - IBL_FLOAT(x0), fy = y - IBL_FLOAT(y0);
     uint i00 = base + 4u * (y0 * w + x0), i10 = base + 4u * (y0 * w + x1);
     uint i01 = base + 4u * (y1 * w + x0), i11 = base + 4u * (y1 * w + x1);
-    float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
-    return v3(w00 * IBL_READ(data, i00) + w10 * IBL_READ(data, i10) + w01 * IBL_READ(data, i01) +
-                  w11 * IBL_READ(data, i11),
-              w00 * IBL_READ(data, i00 + 1u) + w10 * IBL_READ(data, i10 + 1u) +
-                  w01 * IBL_READ(data, i01 + 1u) + w11 * IBL_READ(data, i11 + 1u),
-              w00 * IBL_READ(data, i00 + 2u) + w10 * IBL_READ(data, i10 + 2u) +
-                  w01 * IBL_READ(data, i01 + 2u) + w11 * IBL_READ(data, i11 + 2u));
+    return weightedRgb4(data, i00, i10, i01, i11, (1.0f - fx) * (1.0f - fy), fx * (1.0f - fy),
+                        (1.0f - fx) * fy, fx * fy);
 }
 
 // The specular card at footprint radius rho (card units): trilinear between the two levels around it.

@@ -2,7 +2,7 @@
 // errors name the setting and no CLI flag, the cube with the sun is kept only when asked, and the CLI and a
 // scene bake prepare the same environment from the same settings.
 #include "cli_runner.h"
-#include "scene_test_support.h"
+#include "scene_bake_support.h"
 
 #include <iblbake/baker/bake_scene.h>
 #include <iblbake/baker/calibration.h>
@@ -192,11 +192,7 @@ TEST(PrepareEnvironment, CliAndSceneBakePrepareTheSameCube) {
     const nlohmann::json scene = {
         {"environment", {{"file", kSample.string()}, {"calibration", {{"sunIlluminance", 100000}}}}},
         {"outputs", {{"directory", "out"}, {"quality", "draft"}, {"faceSize", 32}, {"dfgSize", 16}}}};
-    writeText(dir / "scene.json", scene.dump());
-    BakeOptions options;
-    options.backend = Backend::Cpu;
-    ProgressSink silent;
-    const BakeSummary summary = bakeScene(loadSceneFile(dir / "scene.json"), options, silent);
+    const BakeSummary summary = bakeSceneJson(dir, scene);
     ASSERT_TRUE(summary.ok) << summary.error;
 
     const Ktx2Image fromCli = readKtx2(cliKtx), fromScene = readKtx2(dir / "out" / "specular.ktx2");

@@ -15,16 +15,11 @@ namespace {
 using namespace ibl;
 using namespace rt_test;
 
-const ProbeVolume kRoom = boxVolume(glm::vec3(0, 1.5f, 0), glm::vec3(3, 1.5f, 3));
+const ProbeVolume& kRoom = kWindowRoom;
 const glm::vec3 kOffset(0.0f, 0.2f, 0.0f);
-const glm::vec3 kCapturePoint = glm::vec3(kRoom.center) + kOffset;
+const glm::vec3& kCapturePoint = kWindowRoomCapturePoint;
 // Toward the window's centre as a floor point 0.66 m from the room's centre reflects it to the camera below.
 const glm::vec3 kSunDirection = glm::normalize(glm::vec3(1.0f, 0.64f, 0.05f));
-
-// The window: part of the +X wall (proxy-local coordinates).
-bool inWindow(glm::vec3 local) {
-    return local.x > 2.999f && std::abs(local.y) < 0.8f && std::abs(local.z) < 1.2f;
-}
 
 // The distant map: a sky gradient and a sun disc (3 degrees, 50 times the sky) that the window frames.
 constexpr float kSunAngularRadius = 0.05f;
@@ -95,77 +90,25 @@ RoomSet roomSet(int captureSize, bool frozenSky = false, Outside outsideMap = ou
     return {capture, distant, set};
 }
 
-// Whether the four level-0 texels a bilinear lookup in direction d reads are all window or all one wall.
-bool tapsAgree(int n, glm::vec3 d, bool window, int wall) {
-    CubeCoord c = cubeCoordFromDirection(d);
-    float x = c.s * n - 0.5f, y = c.t * n - 0.5f;
-    int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    for (int j = -1; j < 3; ++j) // the taps and their neighbours: the capture averages 2 x 2 sub-texels
-        for (int i = -1; i < 3; ++i) {
-            glm::vec3 tap = glm::normalize(
-                glm::vec3(cubeFaceDirection(c.face, (x0 + i + 0.5f) / n, (y0 + j + 0.5f) / n)));
-            glm::vec3 hit = analyticHitLocal(kRoom, kCapturePoint, tap);
-            if (inWindow(hit) != window || (!window && wallOf(kRoom, hit) != wall)) return false;
-        }
-    return true;
-}
-
 TEST(VisibilityRoomEndToEnd, MirrorsThroughTheWindowGetTheDistantMapAndTheOthersTheWall) {
     const int n = 128;
     RoomSet room = roomSet(n);
     ReferenceLighting far = ReferenceLighting::distant(room.distant);
-    std::mt19937 rng(21);
-    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    std::vector<ShadingPoint> points;
-    std::vector<int> kind; // -1 not checked, 0..5 wall, 6 window
-    while (points.size() < 6000) {
-        glm::vec3 p =
-            glm::vec3(kRoom.center) + glm::vec3(u(rng), u(rng), u(rng)) * (glm::vec3(kRoom.extent) - 0.3f);
-        glm::vec3 nrm = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
-        // Half of the views chosen so that the mirror looks at the window's side of the room.
-        glm::vec3 target = points.size() % 2 ? glm::vec3(3.0f, 1.5f + u(rng), 1.2f * u(rng))
-                                             : p + glm::vec3(u(rng), u(rng), u(rng));
-        glm::vec3 R = glm::normalize(target - p);
-        nrm = glm::normalize(R + glm::normalize(glm::vec3(u(rng), u(rng), u(rng))));
-        glm::vec3 view = glm::reflect(-R, nrm);
-        if (glm::dot(nrm, view) < 0.05f) continue;
-        glm::vec3 hit = analyticHitLocal(kRoom, p, R);
-        glm::vec3 lookup = glm::normalize(glm::vec3(kRoom.center) + hit - kCapturePoint);
-        bool window = inWindow(hit);
-        int wall = wallOf(kRoom, hit);
-        points.push_back(makeShadingPoint(p, nrm, view, glm::vec3(1.0f), 1.0f, 0.0f));
-        kind.push_back(tapsAgree(n, lookup, window, wall) ? (window ? 6 : wall) : -1);
-    }
+    const RoomMirrorPoints mirrors = windowRoomMirrorPoints(6000, 21, n);
+    const std::vector<ShadingPoint>& points = mirrors.points;
+    const std::vector<int>& kind = mirrors.kind;
     RuntimeOptions options;
     options.diffuse = false;
     std::vector<glm::vec4> out = evaluateCpu(room.set, points, options);
-    int throughWindow = 0, onWall = 0;
-    double worstWindow = 0.0, worstWall = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (kind[i] < 0) continue;
-        glm::vec3 R = glm::reflect(-points[i].view, points[i].normal);
-        glm::vec3 expected = kind[i] == 6
-                                 ? glm::vec3(far.radiance(points[i].position, glm::dvec3(glm::normalize(R))))
-                                 : kWallColors[kind[i]];
-        double e = 0.0;
-        for (int c = 0; c < 3; ++c)
-            e = std::max(e, double(std::abs(out[i][c] - expected[c]) / expected[c]));
-        if (kind[i] == 6) {
-            ++throughWindow;
-            worstWindow = std::max(worstWindow, e);
-            EXPECT_EQ(out[i].w, 0.0f) << "point " << i << ": the window is transparent";
-        } else {
-            ++onWall;
-            worstWall = std::max(worstWall, e);
-        }
-        EXPECT_LT(e, 0.01) << "point " << i << (kind[i] == 6 ? " through the window" : " on a wall");
-    }
+    const RoomMirrors m = checkRoomMirrors(points, kind, out, [&](const ShadingPoint& p, glm::vec3 R) {
+        return glm::vec3(far.radiance(p.position, glm::dvec3(R)));
+    });
     std::printf(
         "room, mirrors: %d through the window (max relative error to the distant map %.2g), %d on walls "
         "(to the wall %.2g)\n",
-        throughWindow, worstWindow, onWall, worstWall);
-    EXPECT_GT(throughWindow, 300);
-    EXPECT_GT(onWall, 2000);
+        m.throughWindow, m.worstWindow, m.onWall, m.worstWall);
+    EXPECT_GT(m.throughWindow, 300);
+    EXPECT_GT(m.onWall, 2000);
     EXPECT_BACKENDS_AGREE(room.set, points, options);
 }
 

@@ -77,7 +77,11 @@ DiskLight diskLightFromJson(const std::string& text) {
     DiskLight light;
     light.direction = vector("direction");
     if (!(glm::length(light.direction) > 0.0)) throw Error("disk light JSON: 'direction' is zero");
-    light.direction = glm::normalize(light.direction);
+    // A direction this program wrote is unit to the last bit, and renormalizing it would move that bit: a
+    // light read back from a bake's entry must be the light that was written (product_plans.h: a command's
+    // chain records the same sun as before its plan ran through the stage cache).
+    if (std::abs(glm::length(light.direction) - 1.0) > 1e-12)
+        light.direction = glm::normalize(light.direction);
     light.angularRadius = number("angularRadiusDegrees") * kDegree;
     light.color = vector("color");
     light.illuminance = number("illuminanceLux");

@@ -1,4 +1,5 @@
 // `iblbake diffuse`'s flow (product_flows.h): the SH, the optional irradiance cube, the document.
+#include "iblbake/bake_state/bake_state.h"
 #include "iblbake/baker/product_flows.h"
 #include "iblbake/core/format_text.h"
 #include "iblbake/ktx2/atomic_file.h"
@@ -48,6 +49,24 @@ std::string shWindowText(const ShWindowResult& w, int faceSize) {
                              "(worst channel: %.3f%% -> %.3f%% of its mean)\n",
                              w.minBefore.x, w.minBefore.y, w.minBefore.z, w.minAfter.x, w.minAfter.y,
                              w.minAfter.z, percent(w.minBefore), percent(w.minAfter));
+}
+
+std::string diffuseProductsText(const DiffuseJob& job, const DiffuseProducts& products, int sourceFaceSize) {
+    std::string text = shWindowText(products.sh.window, sourceFaceSize);
+    if (products.cube) {
+        const IrradianceCubeJob& c = *job.cube;
+        text += formatText("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
+                           c.settings.faceSize, irradianceMethodName(c.method), c.formatName.c_str(),
+                           products.cubeMilliseconds, (unsigned long long)products.cube->stats.clampedTexels,
+                           (unsigned long long)products.shNegativeTexels);
+        const ProductStorage& s = products.cube->storage;
+        text +=
+            "storage " +
+            storageLine({c.file.filename().string(), c.formatName, s.scale, s.clamped, s.energyLostPercent}) +
+            "\n";
+    }
+    return text + formatText("wrote   %s%s%s\n", job.document.string().c_str(), job.cube ? " and " : "",
+                             job.cube ? job.cube->file.string().c_str() : "");
 }
 
 void checkDiffuseOutputs(const DiffuseJob& job) {

@@ -1,6 +1,7 @@
 // The light preview (iblbake/baker/light_preview.h): the balls lit by each area-light shape and by a
 // textured rectangle, the runtime against the fp64 brute force, drawn as the material preview's grid.
 #include "iblbake/baker/light_preview.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/core/numeric.h"
 
 #include "../preview/preview_grid.h"
@@ -195,6 +196,19 @@ LightPreview renderLightPreviewFile(const std::filesystem::path& cardFile, const
     const LightCard baked = bakeLightCard(emission, 1.0f, cardSettings, executor);
     return renderLightPreview(lightCardData(baked.layout, baked.levels), emission, executor, settings, png,
                               exr);
+}
+
+std::string lightPreviewErrorText(const LightPreview& preview) {
+    std::string text =
+        "error   relative mean per roughness column (luminance), the brute force's own in ()\n";
+    for (std::size_t g = 0; g < preview.lights.size(); ++g) {
+        text += formatText("  %-16s", preview.lights[g].c_str());
+        for (std::size_t c = 0; c < preview.roughness.size(); ++c)
+            text += formatText(" %.1f%% (%.2f%%)", 100.0 * preview.error[g][c],
+                               100.0 * preview.referenceError[g][c]);
+        text += "\n";
+    }
+    return text;
 }
 
 } // namespace ibl

@@ -6,6 +6,7 @@
 #include "iblbake/baker/exr_output.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/runtime/runtime_reference.h"
 #include "preview_grid.h"
@@ -233,6 +234,18 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
         {"iblbake:preview", reference.empty() ? "runtime" : "runtime | reference | error heat map"}};
     writeExr(exr, image, exrOptions);
     return out;
+}
+
+std::string materialPreviewErrorText(const MaterialPreview& preview) {
+    if (preview.error.empty()) return "";
+    std::string text = "error   relative mean per roughness column (luminance, both rows):";
+    for (double e : preview.error)
+        text += formatText(" %.1f%%", 100.0 * e);
+    text += formatText("\nreference's own estimated error per column (%zu bright texels integrated exactly):",
+                       preview.referenceBrightTexels);
+    for (double e : preview.referenceError)
+        text += formatText(" %.2f%%", 100.0 * e);
+    return text + "\n";
 }
 
 } // namespace ibl

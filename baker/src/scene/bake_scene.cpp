@@ -10,6 +10,7 @@
 #include "scene_stages.h"
 #include "stage_cache.h"
 #include "stage_keys.h"
+#include "stage_runner.h"
 
 #include <chrono>
 #include <map>
@@ -135,46 +136,10 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             executor->cl().useProgramBinaries(std::move(programBinaries));
         }
 
-        std::map<std::string, fs::path> entries;
-        std::vector<StagedEntry> ran;
-        const int count = int(plan.stages.size());
-        for (current = 0; current < plan.stages.size(); ++current) {
-            const PlanStage& stage = plan.stages[current];
-            StageResult& result = summary.stages[current];
-            progress.stageStart(result, int(current), count);
-            const auto stageStart = std::chrono::steady_clock::now();
-            std::optional<fs::path> entry;
-            if (!options.force) entry = cache.find(result.key);
-            if (entry) {
-                result.status = StageStatus::Cached;
-            } else {
-                StagedEntry& staged = ran.emplace_back(cache.staging(result.key));
-                StageContext context{scene, stage, {}, executor ? &*executor : nullptr, staged.directory()};
-                context.waiting = [&](const std::string& what, const std::string& detail,
-                                      double secondsLeft) {
-                    progress.stageWaiting(result, what, detail, secondsLeft);
-                };
-                if (executor && executor->usesOpenCL())
-                    executor->cl().setCompileObserver([&](const std::string& file, double seconds) {
-                        progress.stageWaiting(result, "compile",
-                                              "kernels/" + file + ", first use on this device and driver",
-                                              seconds);
-                    });
-                for (const std::string& dependency : stage.dependsOn)
-                    context.dependencies[dependency] = entries.at(dependency);
-                try {
-                    runStage(context);
-                    cache.seal(staged);
-                } catch (const OutputError& e) { // a full disk, a read-only directory: the scene in front
-                    throw OutputError(scene.name + ": " + e.what());
-                }
-                entry = staged.directory();
-                result.status = StageStatus::Ran;
-            }
-            entries[stage.id] = *entry;
-            result.seconds = secondsSince(stageStart);
-            progress.stageEnd(result, int(current), count);
-        }
+        StageRun run = runStages(
+            {scene.name, cache, [&] { return executor ? &*executor : nullptr; }, options.force, progress},
+            plan, summary.stages, current);
+        const std::map<std::string, fs::path>& entries = run.entries;
 
         outputs.createDirectories(outputDirectory, scene.name + ": outputs.directory");
         ManifestInputs manifest{scene, plan, entries, keys, {}, summary.backend};
@@ -188,7 +153,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             });
             // Everything is written: commit the cache entries, then the products, the manifest last (a bake
             // killed in between leaves the old manifest, which points only at files that are still there).
-            for (StagedEntry& staged : ran)
+            for (StagedEntry& staged : run.ran)
                 cache.commit(staged);
             outputs.commit();
         } catch (const OutputError& e) { // a full disk, a read-only directory: the scene in front

@@ -22,7 +22,7 @@ void runGltfStage(const StageContext& c) {
                           [&]() -> const Executor& { return *c.executor; })
                    .gltf;
     } catch (const SettingError& e) {
-        throw Error(c.scene.name + ": outputs.gltf.minFaceSize: " + e.what());
+        throw Error(c.name + ": outputs.gltf.minFaceSize: " + e.what());
     }
     writeJsonFile(c.outputDirectory / kGltfFacts, {{"levels", gltf.scene.specular.levels.size()},
                                                    {"faceSize", gltf.scene.specular.levels.front().faceSize},

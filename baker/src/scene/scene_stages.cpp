@@ -5,8 +5,11 @@
 #include "iblbake/baker/dfg_lut.h"
 #include "iblbake/baker/environment.h"
 #include "iblbake/baker/ingest.h"
+#include "iblbake/baker/inspect.h"
 #include "iblbake/baker/irradiance.h"
 #include "iblbake/baker/light_card.h"
+#include "iblbake/baker/preview.h"
+#include "iblbake/baker/product_plans.h"
 #include "iblbake/baker/product_writers.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sh.h"
@@ -38,17 +41,21 @@ void writeCube(const fs::path& file, const CubeMap& cube, const std::string& pro
     writeKtx2Cube(file, chain, Ktx2Format::RGBA32F, {{"iblbake.product", product}});
 }
 
+// A calibration choice's name in stage settings: a scene's key (scene.h sceneCalibrationName).
+constexpr std::pair<const char*, CalibrationSource> kCalibrationSources[] = {
+    {"none", CalibrationSource::None},
+    {"scale", CalibrationSource::Scale},
+    {"ev100", CalibrationSource::Ev100},
+    {"illuminance", CalibrationSource::Illuminance},
+    {"sunIlluminance", CalibrationSource::SunIlluminance},
+    {"skyLuminance", CalibrationSource::SkyLuminance},
+    {"radiometric", CalibrationSource::Radiometric}};
+
 CalibrationSettings calibrationSettings(const json& choice) {
-    static const std::map<std::string, CalibrationSource> sources = {
-        {"none", CalibrationSource::None},
-        {"scale", CalibrationSource::Scale},
-        {"ev100", CalibrationSource::Ev100},
-        {"illuminance", CalibrationSource::Illuminance},
-        {"sunIlluminance", CalibrationSource::SunIlluminance},
-        {"skyLuminance", CalibrationSource::SkyLuminance},
-        {"radiometric", CalibrationSource::Radiometric}};
     CalibrationSettings s;
-    s.source = sources.at(choice.at("source").get<std::string>());
+    const std::string name = choice.at("source").get<std::string>();
+    for (const auto& [key, source] : kCalibrationSources)
+        if (name == key) s.source = source;
     s.value = choice.value("value", 0.0);
     return s;
 }
@@ -134,14 +141,15 @@ std::string sceneKeyFor(const std::string& setting, const PlanStage& stage, cons
 template <class F>
 void forInput(const StageContext& c, F&& work) {
     const std::string key = c.stage.inputs.empty() ? c.stage.id : c.stage.inputs[0].keyPath;
+    if (c.name.empty()) return work(); // a command's plan: it names its flags itself
     try {
         work();
     } catch (const OutputError&) { // names the output and the reason: the input is not to blame
         throw;
     } catch (const SettingError& e) {
-        throw Error(c.scene.name + ": " + sceneKeyFor(e.setting(), c.stage, key) + ": " + e.what());
+        throw Error(c.name + ": " + sceneKeyFor(e.setting(), c.stage, key) + ": " + e.what());
     } catch (const Error& e) {
-        throw Error(c.scene.name + ": " + key + ": " + e.what());
+        throw Error(c.name + ": " + key + ": " + e.what());
     }
 }
 
@@ -157,9 +165,14 @@ void runDfg(const StageContext& c) {
     DfgSettings settings;
     settings.size = c.stage.settings.at("size").get<std::uint32_t>();
     settings.sampleCount = c.stage.settings.at("samples").get<std::uint32_t>();
+    // A scene's LUT is KTX2; `iblbake dfg` asks for OpenEXR ("container": "exr-float" or "exr-half").
+    const std::string container = c.stage.settings.value("container", "ktx2");
+    const DfgLutFile kind = container == "exr-half"    ? DfgLutFile::ExrHalf
+                            : container == "exr-float" ? DfgLutFile::ExrFloat
+                                                       : DfgLutFile::Ktx2;
     OutputSet outputs;
-    writeDfgLutProduct(outputs, bakeDfgLut(settings, *c.executor), settings.sampleCount, DfgLutFile::Ktx2,
-                       c.outputDirectory / "dfg_lut.ktx2");
+    writeDfgLutProduct(outputs, bakeDfgLut(settings, *c.executor), settings.sampleCount, kind,
+                       c.outputDirectory / c.stage.products.at(0));
     outputs.commit();
 }
 
@@ -178,6 +191,17 @@ void runEnvironment(const StageContext& c) {
         addLatLongPixels(calibration["source"], env.report.latLongPixels);
         writeCube(c.outputDirectory / kCubeFile, env.cube, "calibrated-environment");
         writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
+        const IngestReport& r = env.report;
+        writeJsonFile(c.outputDirectory / kIngestReportFile, {{"file", r.file},
+                                                              {"width", r.width},
+                                                              {"height", r.height},
+                                                              {"layout", layoutText(r)},
+                                                              {"inputColorSpace", r.inputColorSpace},
+                                                              {"workingColorSpace", r.workingColorSpace},
+                                                              {"maxLuminanceIn", r.maxLuminanceIn},
+                                                              {"nanRepaired", r.nanRepaired},
+                                                              {"infRepaired", r.infRepaired},
+                                                              {"negativeRepaired", r.negativeRepaired}});
     });
 }
 
@@ -193,7 +217,11 @@ void runSun(const StageContext& c) {
     try {
         light = *takeSunOut(cube, SunExtraction::Required, detection);
     } catch (const SettingError& e) {
-        throw Error(c.scene.name + ": environment.extractSun: " + e.what());
+        if (c.name.empty()) // a command's plan: the input file in front, as prepareEnvironment names it
+            throw SettingError(e.setting(),
+                               readJsonFile(from / kIngestReportFile).at("file").get<std::string>() + ": " +
+                                   e.what());
+        throw Error(c.name + ": environment.extractSun: " + e.what());
     }
     OutputSet outputs;
     const std::string lightJson = writeSunProduct(outputs, light, calibration.at("absolute").get<bool>(),
@@ -217,6 +245,17 @@ void runSunInProbe(const StageContext& c) {
     writeJsonFile(c.outputDirectory / kSunInProbeFacts, facts);
 }
 
+// The chain's record of what decided its texels (iblbake.settings): a scene's names its roughness range, a
+// command's (settings with a "lodBias") its LOD bias, face size and rotation as given.
+std::string ldSettingsText(const json& s, const SpecularSettings& settings) {
+    const std::string text =
+        "quality=" + s.at("quality").get<std::string>() + " samples=" + std::to_string(samplesFor(settings));
+    if (!s.contains("lodBias")) return text + " roughnessMax=" + s.at("roughnessMax").dump();
+    return text + " lodBias=" + std::to_string(settings.lodBias) +
+           " size=" + std::to_string(s.at("faceSize").get<int>()) +
+           " rotate=" + std::to_string(s.at("rotation").get<float>());
+}
+
 // Bakes and writes an LD chain (the distant environment's or a local probe's) by the product's one writer
 // (product_writers.h writeLdChainProduct); returns the chain's manifest facts. With `withSun`, level 0 may
 // keep the sun's pixels. With `visibility` (a local probe's capture whose alpha is not 1 everywhere), the
@@ -231,7 +270,10 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     SpecularSettings settings;
     settings.mapping = parseMipMapping(s.at("mipMapping").get<std::string>());
     settings.quality = parseQuality(s.at("quality").get<std::string>());
-    settings.integratedLevels = s.at("integratedLevels").get<int>();
+    settings.levels = s.at("levels").get<int>();
+    settings.integratedLevels = s.value("integratedLevels", 0);
+    settings.samples = s.value("samples", 0u);
+    settings.lodBias = s.value("lodBias", settings.lodBias);
     LdChainWriteSettings write;
     write.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
     if (visibility && !ktx2::formatInfo(write.format).hasAlpha)
@@ -240,22 +282,27 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                                                      calibration.sourceFile().value_or("the capture") +
                                                      " (use rgba16f or rgba32f)");
     SpecularWithRoughLayers baked;
+    std::vector<SpecularLevelTiming> timings;
     if (visibility)
         baked.chain = bakeSpecularWithVisibility(source, settings, *c.executor).chain;
     else if (roughLayersFile)
-        baked = bakeSpecularWithRoughLayers(source, settings, *c.executor);
+        baked = bakeSpecularWithRoughLayers(source, settings, *c.executor, &timings);
     else
-        baked.chain = bakeSpecular(source, settings, *c.executor);
+        baked.chain = bakeSpecular(source, settings, *c.executor, &timings);
+    json levels = json::array();
+    for (const SpecularLevelTiming& t : timings)
+        levels.push_back({{"level", t.level},
+                          {"perceptualRoughness", t.perceptualRoughness},
+                          {"faceSize", baked.chain.levels[std::size_t(t.level)].faceSize},
+                          {"milliseconds", t.milliseconds}});
     write.product.product = product;
     write.product.mapping = settings.mapping;
     write.product.levelCount = int(baked.chain.levels.size());
-    write.product.integratedLevels = settings.integratedLevels;
+    if (s.contains("integratedLevels")) write.product.integratedLevels = settings.integratedLevels;
     write.product.colorSpace = calibration.colorSpace();
     write.product.source = calibration.sourceFile();
     write.product.latLongPixels = calibration.latLongPixels();
-    write.product.settings = "quality=" + s.at("quality").get<std::string>() +
-                             " samples=" + std::to_string(samplesFor(settings)) +
-                             " roughnessMax=" + s.at("roughnessMax").dump();
+    write.product.settings = ldSettingsText(s, settings);
     if (s.contains("sunMaxSolidAngle"))
         write.product.sunMaxSolidAngle = s.at("sunMaxSolidAngle").get<double>();
     write.clampToFormat = s.at("clampToFormat").get<bool>();
@@ -266,7 +313,17 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     const LdChainWritten written =
         writeLdChainProduct(outputs, baked, write, calibration.record, calibration.sun, file,
                             roughLayersFile ? *roughLayersFile : fs::path());
+    // A command's extra views of the chain (`iblbake specular --exr, --preview`).
+    if (s.value("exrLevels", false))
+        writeLdChainExrLevels(outputs, baked.chain, settings.mapping, c.outputDirectory / kLdExrDirectory);
+    if (s.value("preview", false))
+        outputs.writeFile(c.outputDirectory / kLdPreviewFile,
+                          [&](const fs::path& temporary) { writeChainPreview(temporary, baked.chain); });
     outputs.commit();
+    writeJsonFile(c.outputDirectory / kChainReportFile,
+                  {{"levels", levels},
+                   {"clampedTexels", written.chain.stats.clampedTexels},
+                   {"repairedNonFinite", written.chain.stats.repairedNonFinite}});
     writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(written.chain.storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();
@@ -275,7 +332,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     facts.levels = s.at("levels").get<int>();
     facts.integratedLevels = settings.integratedLevels;
     facts.mapping = settings.mapping;
-    facts.validRoughnessMax = s.at("roughnessMax").get<double>();
+    facts.validRoughnessMax = s.value("roughnessMax", 1.0);
     facts.quality = s.at("quality").get<std::string>();
     if (withSun) facts.sunInLevel0 = written.sunInLevel0;
     if (written.roughLayers)
@@ -382,6 +439,15 @@ void runProbe(const StageContext& c) {
 }
 
 } // namespace
+
+json calibrationChoiceJson(const CalibrationSettings& settings) {
+    for (const auto& [key, source] : kCalibrationSources)
+        if (source == settings.source)
+            return source == CalibrationSource::None || source == CalibrationSource::Radiometric
+                       ? json{{"source", key}}
+                       : json{{"source", key}, {"value", settings.value}};
+    throw Error("calibration: unknown source");
+}
 
 CubeMap readCubeFile(const fs::path& file) {
     Ktx2Image image = readKtx2(file);

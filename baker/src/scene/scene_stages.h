@@ -2,9 +2,9 @@
 // files, writes its files into a staging directory (scene_plan.h lists the kinds).
 #pragma once
 
+#include "iblbake/baker/calibration.h"
 #include "iblbake/core/cubemap.h"
 #include "iblbake/opencl/executor.h"
-#include "iblbake/scene/scene.h"
 #include "iblbake/scene/scene_plan.h"
 
 #include <nlohmann/json.hpp>
@@ -17,7 +17,7 @@
 namespace ibl {
 
 struct StageContext {
-    const Scene& scene;
+    const std::string& name; // in front of errors: the scene's name, or the command's
     const PlanStage& stage;
     std::map<std::string, std::filesystem::path> dependencies; // stage id -> its cache entry
     const Executor* executor = nullptr;                        // set when stage.usesBackend
@@ -68,6 +68,10 @@ inline constexpr const char* kSunInProbeFacts = "sun_in_probe.json";
 void runGltfStage(const StageContext& context);
 void runPreviewReferenceStage(const StageContext& context);
 void runPreviewStage(const StageContext& context);
+
+// The "calibration" setting of an environment stage ({source, value}, as scene_plan.cpp writes a scene's),
+// for a command's plan.
+nlohmann::json calibrationChoiceJson(const CalibrationSettings& settings);
 
 // Level 0 of a cube KTX2 of a cache entry; throws ibl::Error naming the file.
 CubeMap readCubeFile(const std::filesystem::path& file);

@@ -54,4 +54,8 @@ LightPreview renderLightPreviewFile(const std::filesystem::path& cardFile, const
                                     const LightPreviewSettings& settings, const std::filesystem::path& png,
                                     const std::filesystem::path& exr);
 
+// `iblbake preview --lights`' error lines: per light, the relative mean error per roughness column and the
+// brute force's own.
+std::string lightPreviewErrorText(const LightPreview& preview);
+
 } // namespace ibl

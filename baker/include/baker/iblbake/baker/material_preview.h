@@ -130,6 +130,10 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
                                       const CubeMap* reference, const Executor& executor,
                                       const MaterialPreviewSettings& settings,
                                       const std::filesystem::path& png, const std::filesystem::path& exr);
+
+// `iblbake preview`'s error lines (none without a reference): the runtime's relative mean error per roughness
+// column, and the reference's own estimate.
+std::string materialPreviewErrorText(const MaterialPreview& preview);
 // The same with the reference already rendered (renderPreviewReference of the same settings), or nullptr.
 MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions& options,
                                       const PreviewReference* reference, const Executor& executor,

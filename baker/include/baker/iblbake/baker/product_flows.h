@@ -1,8 +1,8 @@
-// The flows of the single-product commands (docs/architecture.md "Where things live"): from a prepared
-// environment (environment.h prepareEnvironment: ingest, calibration, sun extraction) through the bake, the
-// storage and the documents to the files, all of them or none (OutputSet). `iblbake specular` and `iblbake
-// diffuse` fill these jobs from their options and print what comes back; the documents are written by the
-// same writers as the scene stages' (product_writers.h).
+// The flow of `iblbake diffuse` (docs/architecture.md "Where things live"): from a prepared environment
+// (environment.h prepareEnvironment: ingest, calibration, sun extraction) through the bake, the storage and
+// the documents to the files, all of them or none (OutputSet), by the same writers as the scene stages'
+// (product_writers.h). `iblbake specular` and `iblbake dfg` run plans of the scene's stages instead
+// (product_plans.h).
 #pragma once
 
 #include "iblbake/baker/environment.h"
@@ -23,39 +23,6 @@ namespace ibl {
 // Called after each timed stage of a flow ("specular", "sh-projection", "irradiance-cube") with its wall
 // time, e.g. to print the executor's dispatch times of that stage.
 using StageTimed = std::function<void(const char* stage, double milliseconds)>;
-
-// ---------------------------------------------------------------------------------------------------
-// The LD chain of one environment, as `iblbake specular` writes it.
-
-struct SpecularJob {
-    SpecularSettings settings;
-    int faceSize = 256;
-    float rotateDegrees = 0.0f; // as the input was rotated: recorded in iblbake.settings
-    Ktx2Format format = Ktx2Format::RGBA16F;
-    bool clampToFormat = false;
-    std::string profile = "standard";
-    double sunMaxSolidAngle = 0.0; // recorded when level 0 keeps the sun
-    std::filesystem::path chain;   // the KTX2 chain
-    // Optional outputs (empty: none): the rough layers (KTX2 cube map array), the levels as OpenEXR, a
-    // tone-mapped PNG of every level, the extracted sun's light.
-    std::filesystem::path roughLayers, exrDirectory, preview, sunJson;
-};
-
-// Every output of the job can be written (ktx2/atomic_file.h checkOutputFile), before any work. Throws
-// ibl::OutputError naming the path.
-void checkSpecularOutputs(const SpecularJob& job);
-
-struct SpecularProducts {
-    std::vector<SpecularLevelTiming> timings;
-    std::vector<int> levelFaceSizes;
-    double bakeMilliseconds = 0.0;
-    LdChainWritten written;
-};
-
-// Bakes the chain (with rough layers when job.roughLayers is set) from `input` (prepared with
-// keepCubeWithSun, so that level 0 may keep the sun) and writes the job's outputs.
-SpecularProducts bakeSpecularProducts(PreparedEnvironment input, const SpecularJob& job,
-                                      const Executor& executor, const StageTimed& timed = {});
 
 // ---------------------------------------------------------------------------------------------------
 // The diffuse products of one environment, as `iblbake diffuse` writes them: the SH document and
@@ -92,6 +59,10 @@ struct DiffuseProducts {
 // The SH window's report (`iblbake diffuse`): the window chosen, and the smallest irradiance before and
 // after it, per channel and as the worst channel's percentage of its mean; two lines.
 std::string shWindowText(const ShWindowResult& window, int faceSize);
+
+// `iblbake diffuse`'s report of its products: the SH window (shWindowText, from `sourceFaceSize` px faces),
+// the irradiance cube and its storage when written, the files.
+std::string diffuseProductsText(const DiffuseJob& job, const DiffuseProducts& products, int sourceFaceSize);
 
 // `executor` runs the sampled irradiance cube (the SH are projected on the CPU).
 DiffuseProducts bakeDiffuseProducts(const PreparedEnvironment& input, const DiffuseJob& job,

@@ -1,0 +1,196 @@
+// The single-product commands' plans and their run (iblbake/baker/product_plans.h).
+#include "iblbake/baker/product_plans.h"
+
+#include "iblbake/core/error.h"
+#include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/output_set.h"
+#include "scene_stages.h"
+#include "stage_cache.h"
+#include "stage_keys.h"
+#include "stage_runner.h"
+
+#include <fstream>
+
+namespace ibl {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The private cache of one run: a new directory under the system's temporary directory, removed with
+// everything in it when the run ends (its entries are never reused).
+class PrivateCache {
+  public:
+    PrivateCache() : directory_(fs::temp_directory_path() / ("iblbake-" + uniqueSuffix())) {}
+    PrivateCache(const PrivateCache&) = delete;
+    PrivateCache& operator=(const PrivateCache&) = delete;
+    ~PrivateCache() {
+        std::error_code ignored;
+        fs::remove_all(directory_, ignored);
+    }
+    const fs::path& directory() const { return directory_; }
+
+  private:
+    fs::path directory_;
+};
+
+// Every file the plan delivers, checked before any work (a directory output: its first file).
+void checkDeliveries(const ProductPlan& plan) {
+    for (const auto& [product, file] : plan.files) {
+        if (product != kLdExrDirectory) {
+            checkOutputFile(file);
+        } else if (fs::exists(file) && !fs::is_directory(file)) {
+            throw Error(file.string() + ": is not a directory (--exr)");
+        } else {
+            checkOutputFile(fs::is_directory(file) ? file / "level_0.exr" : file);
+        }
+    }
+}
+
+// The stage that makes `product`.
+const PlanStage& stageOf(const Plan& plan, const std::string& product) {
+    for (const PlanStage& s : plan.stages)
+        for (const std::string& p : s.products)
+            if (p == product) return s;
+    throw Error("plan: no stage makes " + product);
+}
+
+// Every JSON file of an entry, by name.
+std::map<std::string, json> entryFacts(const fs::path& entry) {
+    std::map<std::string, json> facts;
+    for (const fs::directory_entry& file : fs::directory_iterator(entry))
+        if (file.path().extension() == ".json" && file.path().filename() != "entry.json")
+            facts[file.path().filename().string()] = readJsonFile(file.path());
+    return facts;
+}
+
+// The environment stage of a command's input (the scene's "environment" kind), and its sun stage.
+void addEnvironmentStages(const EnvironmentJob& e, Plan& plan, std::map<std::string, fs::path>& files) {
+    PlanStage environment{"environment", "environment", {}, {}, {}, {}, false, "ingest and calibrate"};
+    for (std::size_t i = 0; i < e.files.size(); ++i)
+        environment.inputs.push_back({"input[" + std::to_string(i) + "]", e.files[i]});
+    environment.settings = {{"layout", e.layout},
+                            {"colorSpace", e.inputColorSpace},
+                            {"workingColorSpace", e.workingColorSpace},
+                            {"rotation", e.rotateDegrees},
+                            {"latlongPixels", e.latLongPixels},
+                            {"calibration", calibrationChoiceJson(e.calibration)},
+                            {"faceSize", e.faceSize}};
+    plan.stages.push_back(std::move(environment));
+    if (!e.extractSun) return;
+    PlanStage sun{
+        "sun",        "sun-extract", {"environment"},          {}, {{"sunMaxSolidAngle", e.sunMaxSolidAngle}},
+        {"sun.json"}, false,         "the sun as a disk light"};
+    plan.stages.push_back(std::move(sun));
+    if (!e.sunJson.empty()) files["sun.json"] = e.sunJson;
+}
+
+} // namespace
+
+double ProductRun::stageSeconds(const std::string& id) const {
+    for (const StageResult& s : stages)
+        if (s.id == id) return s.seconds;
+    return 0.0;
+}
+
+ProductRun runProductPlan(const ProductPlan& plan, const std::function<const Executor*()>& executor) {
+    checkDeliveries(plan);
+    ProductRun out;
+    // The keys only name the private cache's entries, which no later run finds: the inputs' content is left
+    // out of them (reading a large HDRI twice would cost as much as its ingest).
+    std::map<std::string, std::string> inputHashes;
+    for (const PlanStage& s : plan.plan.stages)
+        for (const PlanInput& in : s.inputs)
+            inputHashes[in.file.string()] = "";
+    const std::map<std::string, std::string> keys = planStageKeys(plan.plan, inputHashes, plan.backend);
+    for (const PlanStage& s : plan.plan.stages)
+        out.stages.push_back({s.id, s.kind, StageStatus::Pending, keys.at(s.id), 0.0, s.products});
+
+    const PrivateCache privateCache;
+    const StageCache cache(privateCache.directory());
+    ProgressSink quiet;
+    std::size_t current = 0;
+    const StageRun run = runStages({"", cache, executor, true, quiet}, plan.plan, out.stages, current);
+    OutputSet outputs; // all of them or none
+    for (const auto& [product, file] : plan.files) {
+        const fs::path from = run.entries.at(stageOf(plan.plan, product).id) / product;
+        if (fs::is_directory(from)) {
+            outputs.writeDirectory(file, [&](const fs::path& temporary) {
+                for (const fs::directory_entry& f : fs::directory_iterator(from))
+                    fs::copy_file(f.path(), temporary / f.path().filename());
+            });
+        } else {
+            outputs.writeFile(file, [&](const fs::path& temporary) {
+                fs::copy_file(from, temporary, fs::copy_options::overwrite_existing);
+            });
+        }
+    }
+    outputs.commit();
+    for (const PlanStage& s : plan.plan.stages)
+        out.facts[s.id] = entryFacts(run.entries.at(s.id));
+    return out;
+}
+
+ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& job,
+                         const std::string& backend) {
+    ProductPlan p;
+    p.backend = backend;
+    addEnvironmentStages(environment, p.plan, p.files);
+    const SpecularSettings& s = job.settings;
+    PlanStage specular{"specular",
+                       "specular-ld",
+                       {environment.extractSun ? "sun" : "environment"},
+                       {},
+                       {},
+                       {"specular.ktx2"},
+                       true,
+                       "the LD chain"};
+    // Level 0 keeps the sun's pixels where the format holds them: the cube from before the extraction too.
+    if (environment.extractSun) specular.dependsOn.push_back("environment");
+    specular.settings = {
+        {"faceSize", environment.faceSize},
+        {"levels", levelCountFor(environment.faceSize, s)},
+        {"mipMapping", mipMappingName(s.mapping)},
+        {"quality", qualityName(s.quality)},
+        {"samples", s.samples},
+        {"lodBias", s.lodBias},
+        {"rotation", environment.rotateDegrees},
+        {"ktx2Format", job.format},
+        {"clampToFormat", job.clampToFormat},
+        {"profile", job.profile},
+        {"sunMaxSolidAngle", environment.sunMaxSolidAngle},
+        {"roughLayers", job.roughLayers.empty() ? json::array() : json(roughLayerRoughnessValues())},
+        {"exrLevels", !job.exrDirectory.empty()},
+        {"preview", !job.preview.empty()}};
+    p.files["specular.ktx2"] = job.chain;
+    if (!job.roughLayers.empty()) {
+        specular.products.push_back(kRoughLayersFile);
+        p.files[kRoughLayersFile] = job.roughLayers;
+    }
+    if (!job.exrDirectory.empty()) {
+        specular.products.push_back(kLdExrDirectory);
+        p.files[kLdExrDirectory] = job.exrDirectory;
+    }
+    if (!job.preview.empty()) {
+        specular.products.push_back(kLdPreviewFile);
+        p.files[kLdPreviewFile] = job.preview;
+    }
+    p.plan.stages.push_back(std::move(specular));
+    return p;
+}
+
+ProductPlan dfgPlan(const DfgSettings& settings, DfgLutFile container, const fs::path& file,
+                    const std::string& backend) {
+    ProductPlan p;
+    p.backend = backend;
+    PlanStage dfg{"dfg", "dfg-lut", {}, {}, {}, {"dfg_lut.exr"}, true, "the DFG LUT"};
+    dfg.settings = {{"size", settings.size},
+                    {"samples", settings.sampleCount},
+                    {"container", container == DfgLutFile::ExrHalf ? "exr-half" : "exr-float"}};
+    p.plan.stages.push_back(std::move(dfg));
+    p.files["dfg_lut.exr"] = file;
+    return p;
+}
+
+} // namespace ibl
