@@ -11,9 +11,15 @@
 // V from the eye position under an orthographic projection too. Babylon's default left-handed scene shows
 // glTF (x, y, z) at its (-x, y, z): the harness reads its columns mirrored.
 //
+// The split-sum floor: what a pre-filtered cube read in the mirror direction R (as Babylon reads it) shows
+// at best, the same integral for the normal and view R (the lobe such a cube can hold at R) times
+// E(n.v, alpha) / E(1, alpha) (the directional albedo, the part a DFG term restores). Its error against the
+// reference is the split sum's own, which no cube can remove.
+//
 // Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json
 // Writes { pixels, maskRadius, faceSize, roughness: [...], spheres: [{ roughness, luminance: [per masked
-// pixel, rows bottom to top], meanLuminance, errorEstimate (relative, of the mean) }] }.
+// pixel, rows bottom to top], splitSumLuminance [the same pixels], meanLuminance, errorEstimate (relative,
+// of the mean) }] }.
 #include <iblbake/baker/ingest.h>
 #include <iblbake/core/error.h>
 #include <iblbake/runtime/runtime_reference.h>
@@ -24,11 +30,14 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+
+#include <glm/geometric.hpp>
 #include <string>
 
 namespace {
 
 constexpr double kEyeDistance = 3.0; // render_fidelity_page.html's camera
+constexpr std::uint32_t kAlbedoSamples = 1024;
 
 double luminance(const glm::dvec3& c) {
     return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
@@ -74,16 +83,31 @@ int main(int argc, char** argv) {
                 }
             const ibl::ConvergedReference reference =
                 ibl::renderConvergedReference(environment, points, options);
-            nlohmann::json values = nlohmann::json::array();
+            std::vector<ibl::ShadingPoint> mirrored = points;
+            std::vector<double> albedoRatio;
+            const double alpha = std::max(double(roughness) * roughness, 1e-4);
+            const double albedoAtNormalIncidence = ibl::directionalAlbedo(1.0, alpha, kAlbedoSamples);
+            for (ibl::ShadingPoint& p : mirrored) {
+                const glm::dvec3 n = glm::dvec3(p.normal), v = glm::normalize(glm::dvec3(p.view));
+                const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
+                albedoRatio.push_back(ibl::directionalAlbedo(glm::dot(n, v), alpha, kAlbedoSamples) /
+                                      albedoAtNormalIncidence);
+                p.normal = p.view = glm::vec3(r);
+            }
+            const ibl::ConvergedReference splitSum =
+                ibl::renderConvergedReference(environment, mirrored, options);
+            nlohmann::json values = nlohmann::json::array(), floor = nlohmann::json::array();
             double sum = 0.0, error = 0.0;
             for (std::size_t k = 0; k < points.size(); ++k) {
                 const double value = luminance(reference.results[k].total());
                 values.push_back(value);
+                floor.push_back(luminance(splitSum.results[k].total()) * albedoRatio[k]);
                 sum += value;
                 error += luminance(reference.errorEstimate[k]);
             }
             out["spheres"].push_back({{"roughness", roughness},
                                       {"luminance", values},
+                                      {"splitSumLuminance", floor},
                                       {"meanLuminance", sum / double(points.size())},
                                       {"errorEstimate", error / sum}});
             std::printf("reference r = %.1f: %zu pixels, mean luminance %.6g, estimated error %.4f%%\n",
