@@ -144,9 +144,11 @@ GltfExport readBakeForGltf(const GltfExportSource& source, const GltfExportSetti
     out.lowestFaceSize = lowest;
     scene.extras["iblbake.profile"] = profile.name;
     scene.extras["iblbake.levelRoughness"] = roughnessList;
-    const std::string levelsNote = "re-filtered from level 0 with the perceptual roughness Babylon.js reads at "
-                                   "each level (its getLodFromAlphaG with the loader's lodGenerationScale), "
-                                   "quality " + settings.quality;
+    const std::string levelsNote =
+        "re-filtered from level 0 with the perceptual roughness Babylon.js reads at "
+        "each level (its getLodFromAlphaG with the loader's lodGenerationScale), "
+        "quality " +
+        settings.quality;
     scene.specular = std::move(chain);
     scene.extras["iblbake.specularLevels"] = levelsNote;
     for (const auto& [key, value] : ktx.keyValues)

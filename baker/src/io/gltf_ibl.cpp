@@ -175,7 +175,8 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
             outputs.writeFile(path.parent_path() / name, [&](const fs::path& temporary) {
                 writeRgbdPng(temporary,
                              encodedForDecodeGamma(exportedFaceImage(scene.specular.levels[m], f),
-                                                   1.0 / (intensity * scene.storageScale), profile.decodeGamma),
+                                                   1.0 / (intensity * scene.storageScale),
+                                                   profile.decodeGamma),
                              1.0f);
             });
             faces.push_back(images.size());

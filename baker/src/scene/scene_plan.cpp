@@ -105,9 +105,10 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
                       {"profile", "babylon"},
                       {"minFaceSize", o.gltf->minFaceSize},
                       {"quality", o.quality}};
-        s.reason = "outputs.gltf: glTF 2.0 with EXT_lights_image_based (" + std::to_string(levels) +
-                   " levels of RGBD PNG faces, re-filtered to the roughness Babylon.js reads, profile babylon)" +
-                   (sun ? " and the sun as KHR_lights_punctual" : "");
+        s.reason =
+            "outputs.gltf: glTF 2.0 with EXT_lights_image_based (" + std::to_string(levels) +
+            " levels of RGBD PNG faces, re-filtered to the roughness Babylon.js reads, profile babylon)" +
+            (sun ? " and the sun as KHR_lights_punctual" : "");
         plan.stages.push_back(std::move(s));
     }
 

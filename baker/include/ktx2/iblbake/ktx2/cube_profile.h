@@ -58,8 +58,8 @@ inline constexpr EngineProfile kEngineProfiles[] = {
      "RGBA16F/RGBA32F cube KTX2, linear, x storageScale", "diffuse.json: A_l k_i L_i, our basis"},
     {"three", "three.js r187 (iblbakeCubeLoader.js, PMREM)", LevelRule::Baked, 0.0, 1, true, 1.0, 1,
      "RGBA16F/RGBA32F cube KTX2 mirrored in x, linear", "diffuse.json: A_l k_i L_i, our basis"},
-    {"babylon", "Babylon.js 9.28 glTF loader (EXT_lights_image_based)", LevelRule::BabylonLodFromAlphaG, 0.0005,
-     16, false, 2.2, 2, "RGBD PNG of value^(1/2.2) / intensity",
+    {"babylon", "Babylon.js 9.28 glTF loader (EXT_lights_image_based)", LevelRule::BabylonLodFromAlphaG,
+     0.0005, 16, false, 2.2, 2, "RGBD PNG of value^(1/2.2) / intensity",
      "irradianceCoefficients: Babylon's basis and frame, E_i / intensity^2"},
 };
 
