@@ -19,7 +19,8 @@
 // Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json
 // Writes { pixels, maskRadius, faceSize, roughness: [...], spheres: [{ roughness, luminance: [per masked
 // pixel, rows bottom to top], splitSumLuminance [the same pixels], meanLuminance, errorEstimate (relative,
-// of the mean) }] }.
+// of the mean) }], dielectricSpheres: [the same without splitSumLuminance] }. The dielectric spheres: base
+// colour 1, metallic 0, f0 0.04, Lambert diffuse (base colour / pi, no (1 - F) weight), the same pixels.
 #include <iblbake/baker/ingest.h>
 #include <iblbake/core/error.h>
 #include <iblbake/runtime/runtime_reference.h>
@@ -61,6 +62,8 @@ int main(int argc, char** argv) {
         ibl::RuntimeOptions options;
         options.diffuse = false; // white metal: specular only
         options.energyCompensation = false;
+        ibl::RuntimeOptions dielectricOptions = options;
+        dielectricOptions.diffuse = true;
         nlohmann::json out = {
             {"pixels", pixels}, {"maskRadius", maskRadius}, {"faceSize", ingest.sourceFaceSize}};
         for (int step = 0; step <= 5; ++step) {
@@ -112,6 +115,24 @@ int main(int argc, char** argv) {
                                       {"errorEstimate", error / sum}});
             std::printf("reference r = %.1f: %zu pixels, mean luminance %.6g, estimated error %.4f%%\n",
                         roughness, points.size(), sum / double(points.size()), 100.0 * error / sum);
+            for (ibl::ShadingPoint& p : points)
+                p.metallic = 0.0f;
+            const ibl::ConvergedReference dielectric =
+                ibl::renderConvergedReference(environment, points, dielectricOptions);
+            nlohmann::json dielectricValues = nlohmann::json::array();
+            double dielectricSum = 0.0, dielectricError = 0.0;
+            for (std::size_t k = 0; k < points.size(); ++k) {
+                dielectricValues.push_back(luminance(dielectric.results[k].total()));
+                dielectricSum += dielectricValues.back().get<double>();
+                dielectricError += luminance(dielectric.errorEstimate[k]);
+            }
+            out["dielectricSpheres"].push_back({{"roughness", roughness},
+                                                {"luminance", dielectricValues},
+                                                {"meanLuminance", dielectricSum / double(points.size())},
+                                                {"errorEstimate", dielectricError / dielectricSum}});
+            std::printf("reference dielectric r = %.1f: mean luminance %.6g, estimated error %.4f%%\n",
+                        roughness, dielectricSum / double(points.size()),
+                        100.0 * dielectricError / dielectricSum);
         }
         std::ofstream(argv[5]) << out.dump() << '\n';
         std::printf("reference time %.1f s\n",

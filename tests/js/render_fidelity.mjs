@@ -1,4 +1,5 @@
-// Render fidelity in Babylon.js 9.28 (headless Chromium, float render targets): white metal spheres of
+// Render fidelity in Babylon.js 9.28 (headless Chromium, float render targets): white metal (and, measured
+// only, white dielectric) spheres of
 // perceptual roughness 0, 0.2, ..., 1, lit (1) by our glTF through the stock loader and (2) by Babylon's own
 // HDRCubeTexture prefilter of the same HDRI, against the brute-force GGX reference of the same pixels
 // (render_fidelity_reference, converged; its own estimated error is printed). Per roughness: the ratio of
@@ -93,12 +94,27 @@ for (const variant of variants) {
   table[variant.name] = roughness.map((r, k) => {
     const ref = reference.spheres[k].luminance;
     const [ours, theirs] = ['our glTF', 'Babylon prefilter'].map((name) =>
-      compare(maskedLuminance(results[name].renders[variant.name][k]).map((v) => v / environmentScale), ref));
+      compare(maskedLuminance(results[name].renders[`${variant.name}/metal`][k]).map((v) => v / environmentScale), ref));
     const floor = compare(reference.spheres[k].splitSumLuminance, ref);
     const cell = (c) => `${c.ratio.toFixed(3)}  ${(100 * c.error).toFixed(1).padStart(5)}%`;
     console.log(`  ${r.toFixed(1)}  |           ${cell(ours)}  |                    ${cell(theirs)}  |` +
                 `                  ${cell(floor)}`);
     return { roughness: r, ours, theirs, floor };
+  });
+}
+// White dielectric spheres (measured, not judged): Babylon's diffuse and its dielectric energy split differ
+// from the reference's Lambert (no (1 - F) weight), so both engines share a bias there.
+for (const variant of variants) {
+  console.log(`\ndielectric, ${variant.name}:`);
+  console.log('  r    | our glTF: ratio  error   | Babylon prefilter: ratio  error');
+  roughness.forEach((r, k) => {
+    const ref = reference.dielectricSpheres[k].luminance;
+    const cells = ['our glTF', 'Babylon prefilter'].map((name) => {
+      const c = compare(maskedLuminance(results[name].renders[`${variant.name}/dielectric`][k])
+        .map((v) => v / environmentScale), ref);
+      return `${c.ratio.toFixed(3)}  ${(100 * c.error).toFixed(1).padStart(5)}%`;
+    });
+    console.log(`  ${r.toFixed(1)}  |           ${cells[0]}  |                    ${cells[1]}`);
   });
 }
 console.log(`\nBabylon renders ${((Date.now() - start) / 1000).toFixed(1)} s`);
@@ -116,7 +132,7 @@ console.log(`\nBabylon renders ${((Date.now() - start) / 1000).toFixed(1)} s`);
   roughness.forEach((r, column) => {
     const ref = reference.spheres[column].luminance;
     const rows = ['our glTF', 'Babylon prefilter'].map((name) =>
-      maskedLuminance(results[name].renders['features off'][column]).map((v) => v / environmentScale));
+      maskedLuminance(results[name].renders['features off/metal'][column]).map((v) => v / environmentScale));
     let m = 0;
     for (let row = 0; row < pixels; ++row)
       for (let c = 0; c < pixels; ++c) {
