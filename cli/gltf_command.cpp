@@ -68,8 +68,7 @@ Action addGltfCommand(CLI::App& app) {
         if (executor) BackendOptions::storeBuiltKernels(*executor);
         std::printf("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
                     o->output.c_str(), scene.specular.levels.size(), scene.specular.levels.front().faceSize,
-                    gltfIblIntensity(scene.specular, scene.storageScale),
-                    scene.sun ? ", sun as KHR_lights_punctual" : "");
+                    gltfIblIntensity(scene), scene.sun ? ", sun as KHR_lights_punctual" : "");
         std::printf("time    %.1f ms\n", millisecondsSince(start));
         return 0;
     };

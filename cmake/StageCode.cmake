@@ -60,7 +60,7 @@ set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradian
     baker/src/stages/irradiance.cpp baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp)
 set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
 # The engine outputs (outputs.gltf, outputs.preview): the flows of `iblbake gltf` (the residual of a level 0
-# that kept the sun, the re-filter to the extension's mapping, the RGBD PNG writer) and `iblbake preview`
+# that kept the sun, the re-filter to the babylon profile's levels, the RGBD PNG writer) and `iblbake preview`
 # (the runtime module and its kernels, the brute-force reference, the labelled grid, PNG and EXR writers).
 set(IBLBAKE_STAGE_CODE_gltf-export stage_runner kernel_host ld_chain baker/src/scene/engine_output_stages.cpp
     baker/src/export baker/src/calibration baker/src/io/gltf_ibl.cpp baker/src/io/rgbd_png.cpp

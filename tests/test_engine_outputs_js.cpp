@@ -322,6 +322,35 @@ TEST_F(IndependentParser, BabylonShowsTheGltfRightSideUp) {
     fs::remove_all(dir);
 }
 
+// Render fidelity (docs/engines.md "Render fidelity"): white metal spheres at r = 0, 0.2, ..., 1 in stock
+// Babylon.js 9.28 with our glTF of potsdamer_platz_1k (no sun extraction), against the converged brute-force
+// reference of the same pixels (render_fidelity_reference), beside Babylon's own HDRCubeTexture prefilter of
+// the HDRI and the split-sum floor. tests/js/render_fidelity.mjs --check holds the limits.
+TEST_F(IndependentParser, BabylonRendersTheGltfAsTheReference) {
+    if (!chromiumFound()) GTEST_SKIP() << "headless Chromium was not found (.ci/install-deps installs it)";
+    const fs::path hdri = fs::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / "potsdamer_platz_1k.hdr";
+    ASSERT_TRUE(fs::exists(hdri)) << hdri;
+    const fs::path dir = ibl::test::freshTempDir("babylon_fidelity");
+    CliRun specular = runCli("specular " + hdri.string() + " --size 128 --quality draft -o " +
+                             (dir / "specular.ktx2").string());
+    ASSERT_EQ(specular.exitCode, 0) << specular.err;
+    CliRun diffuse = runCli("diffuse " + hdri.string() + " --size 128 -o " + (dir / "diffuse.json").string());
+    ASSERT_EQ(diffuse.exitCode, 0) << diffuse.err;
+    CliRun gltf =
+        runCli("gltf " + dir.string() + " -o " + (dir / "scene.gltf").string() + " --quality draft");
+    ASSERT_EQ(gltf.exitCode, 0) << gltf.err;
+    const std::string reference = (dir / "reference.json").string();
+    const std::string command = std::string(IBLBAKE_FIDELITY_REFERENCE) + " " + hdri.string() +
+                                " 128 32 0.9 " + reference + " > " + (dir / "reference.log").string() +
+                                " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    NodeRun r = runNode("render_fidelity.mjs", (dir / "scene.gltf").string() + " " + reference + " " +
+                                                   hdri.string() + " " + IBLBAKE_SCREENSHOT_DIR + " --check");
+    std::printf("%s", r.out.c_str());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
+}
+
 // three.js r187 shows a `--profile three` cube (and a standard one, through the loader helper) unmirrored:
 // the sun within 2 degrees in scene.background and on a PMREM mirror sphere, sky above the horizon; a
 // standard cube built into a texture as stored shows the sun mirrored in x.

@@ -116,6 +116,8 @@ ibl::CubeCoord ourTexelShownAt(int face, int x, int row, int n) {
 
 // Every texel of level `level` of the export against level `ktxLevel` of the KTX2, where Babylon shows
 // it; returns the largest relative error (for the report) and fails on any texel outside the RGBD bound.
+// The file stores (value / intensity)^(1 / 2.2) (Babylon raises the decoded texel to 2.2: the babylon
+// profile's decodeGamma), which is what the RGBD bound applies to.
 double compareLevel(const fs::path& dir, const nlohmann::json& light, int level, const ibl::Ktx2Image& ktx,
                     int ktxLevel) {
     const double intensity = light.at("intensity").get<double>();
@@ -134,7 +136,8 @@ double compareLevel(const fs::path& dir, const nlohmann::json& light, int level,
             const ibl::ImageRGBA& face = ktx.levels[std::size_t(ktxLevel)][std::size_t(at.face)];
             const std::size_t j =
                 std::size_t(at.t * float(width)) * std::size_t(width) + std::size_t(at.s * float(width));
-            const glm::dvec3 v = glm::dvec3(glm::vec3(face.pixels[j])) / intensity;
+            const glm::dvec3 v =
+                glm::pow(glm::dvec3(glm::vec3(face.pixels[j])) / intensity, glm::dvec3(1.0 / 2.2));
             const double maxRgb = std::max({v.x, v.y, v.z});
             for (int c = 0; c < 3; ++c) {
                 if (std::abs(decoded[i][c] - v[c]) > rgbdBound(v[c], maxRgb)) {
@@ -175,7 +178,7 @@ TEST_F(GltfExport, IrradianceCoefficientsReproduceOurShIrradiance) {
     ibl::ShRgb fromGltf = shFromJson(light["irradianceCoefficients"]);
     const double intensity = light["intensity"].get<double>();
     for (glm::dvec3& c : fromGltf)
-        c *= intensity; // loaders scale the coefficients by the light's intensity
+        c *= intensity * intensity; // Babylon's loader scales them by the intensity, its shader again
     const glm::dvec3 directions[] = {{0, 1, 0},  {0, -1, 0}, {1, 0, 0},        {-1, 0, 0},        {0, 0, 1},
                                      {0, 0, -1}, {1, 1, 1},  {-0.3, 0.8, 0.5}, {0.6, -0.2, -0.77}};
     for (glm::dvec3 n : directions) {
@@ -193,7 +196,7 @@ TEST_F(GltfExport, StructureFollowsTheExtension) {
     EXPECT_EQ(gltf["scenes"][0]["extensions"]["EXT_lights_image_based"]["light"], 0);
     EXPECT_EQ(light["rotation"], nlohmann::json::array({0.0, 0.0, 0.0, 1.0}));
     EXPECT_EQ(light["specularImageSize"], 32);
-    // The sample bake uses the Frostbite mapping, so the chain is re-filtered 32..16 (linear, 2 levels).
+    // The chain is re-filtered 32..16 (2 levels) to the roughness Babylon reads at each level.
     ASSERT_EQ(light["specularImages"].size(), 2u);
     for (const auto& level : light["specularImages"]) {
         ASSERT_EQ(level.size(), 6u);
@@ -211,9 +214,17 @@ TEST_F(GltfExport, FirstSpecularLevelRoundTripsLdLevel0) {
     const ibl::Ktx2Image ktx = ibl::readKtx2(bake / "specular.ktx2");
     EXPECT_LT(ibl::ktx2StorageScale(ktx), 1.0);
     ASSERT_EQ(ktx.keyValues.at("iblbake.sunInLevel0"), "true");
-    const double worst = compareLevel(out, light, 0, withResidualLevel0(radianceOf(ktx)), 0);
-    std::printf("level 0: largest RGBD error %.4f%% of the texel's brightest channel\n", 100.0 * worst);
-    EXPECT_GT(light["intensity"].get<double>(), 1.0); // calibrated values need the multiplier
+    const ibl::Ktx2Image radiance = withResidualLevel0(radianceOf(ktx));
+    const double worst = compareLevel(out, light, 0, radiance, 0);
+    std::printf(
+        "level 0: largest RGBD error %.4f%% of the texel's brightest channel (before the power 2.2)\n",
+        100.0 * worst);
+    // The brightest exported channel (level 0's: the others are its filtered copies) decodes to 255^2.2.
+    float brightest = 0.0f;
+    for (const ibl::ImageRGBA& face : radiance.levels[0])
+        for (const glm::vec4& p : face.pixels)
+            brightest = std::max({brightest, p.r, p.g, p.b});
+    EXPECT_NEAR(light["intensity"].get<double>() * std::pow(255.0, 2.2), brightest, 1e-5 * brightest);
 }
 
 TEST_F(GltfExport, SunIsADirectionalLightWithTheSameIlluminance) {
@@ -241,18 +252,27 @@ TEST_F(GltfExport, SunIsADirectionalLightWithTheSameIlluminance) {
         EXPECT_NEAR(rotated[c], -sun.direction[c], 1e-9);
 }
 
-TEST(GltfExportLinear, LinearBakeIsExportedAsBaked) {
+// Whatever mapping the bake has (here linear, the extension's m / (N - 1)), the export is re-filtered so
+// that level m holds the roughness stock Babylon.js reads there (the babylon profile), recorded in the
+// light's extras; level 0 stays the bake's (the unconvolved source).
+TEST(GltfExportLevels, LevelsHoldTheRoughnessBabylonReads) {
     const fs::path bake = ibl::test::makeBakeDir("gltf_linear", "--mip-mapping linear");
     const fs::path out = ibl::test::freshTempDir("gltf_linear_out");
-    CliRun r = runCli("gltf " + bake.string() + " -o " + (out / "scene.gltf").string());
+    CliRun r =
+        runCli("gltf " + bake.string() + " -o " + (out / "scene.gltf").string() + " --min-face-size 4");
     ASSERT_EQ(r.exitCode, 0) << r.err;
-    EXPECT_EQ(r.out.find("refilter"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("refilter 4 levels 32..4 px"), std::string::npos) << r.out;
     const nlohmann::json gltf = readJson(out / "scene.gltf");
     const nlohmann::json& light = gltf["extensions"]["EXT_lights_image_based"]["lights"][0];
-    const ibl::Ktx2Image ktx = withResidualLevel0(radianceOf(ibl::readKtx2(bake / "specular.ktx2")));
-    ASSERT_EQ(light["specularImages"].size(), ktx.levels.size());
-    for (int m : {0, 3, 5})
-        compareLevel(out, light, m, ktx, m);
+    ASSERT_EQ(light["specularImages"].size(), 4u);
+    EXPECT_EQ(light["extras"]["iblbake.profile"], "babylon");
+    // alphaG = 32^(m/3 - 1), r = sqrt(alphaG - 0.0005): 0, 0.1574, 0.3149, 0.9997 (level 0: the source).
+    std::string expected;
+    for (double alphaG : {0.0, std::pow(32.0, -2.0 / 3.0), std::pow(32.0, -1.0 / 3.0), 1.0})
+        expected += (expected.empty() ? "" : ", ") +
+                    nlohmann::json(float(alphaG > 0 ? std::sqrt(alphaG - 0.0005) : 0.0)).dump();
+    EXPECT_EQ(light["extras"]["iblbake.levelRoughness"], expected);
+    compareLevel(out, light, 0, withResidualLevel0(radianceOf(ibl::readKtx2(bake / "specular.ktx2"))), 0);
     fs::remove_all(bake);
     fs::remove_all(out);
 }
@@ -273,10 +293,11 @@ TEST(GltfExportSunInLevel0, FirstImageIsTheResidual) {
         for (const glm::vec4& p : ktx.levels[1][std::size_t(f)].pixels)
             peakLevel1 = std::max({peakLevel1, p.r, p.g, p.b});
     }
-    // intensity = the brightest exported channel / 255: the residual's, far below the sun's pixels.
+    // intensity = the brightest exported channel / 255^2.2: the residual's, far below the sun's pixels.
     const nlohmann::json gltf = readJson(out / "scene.gltf");
     const double exportedPeak =
-        255.0 * gltf["extensions"]["EXT_lights_image_based"]["lights"][0]["intensity"].get<double>();
+        std::pow(255.0, 2.2) *
+        gltf["extensions"]["EXT_lights_image_based"]["lights"][0]["intensity"].get<double>();
     EXPECT_LT(exportedPeak, 1e-2 * peakLevel0);
     EXPECT_GT(exportedPeak, 0.5 * peakLevel1);
     fs::remove_all(bake);

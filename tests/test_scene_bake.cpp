@@ -889,7 +889,8 @@ TEST(SceneBake, EngineOutputsOnlyWhenAskedListedAndReported) {
     const json manifest = json::parse(readBytes(d.out() / "manifest.json"));
     const json& gltf = manifest["products"]["gltf"];
     EXPECT_EQ(gltf["file"], "park.gltf");
-    EXPECT_EQ(gltf["levels"], 3); // 16, 8, 4 px: re-filtered to the extension's linear mapping
+    EXPECT_EQ(gltf["levels"], 3); // 16, 8, 4 px: re-filtered to the roughness Babylon reads at each level
+    EXPECT_EQ(gltf["profile"], "babylon");
     EXPECT_EQ(gltf["files"].size(), 3u * 6u);
     for (const json& f : gltf["files"])
         EXPECT_TRUE(fs::exists(d.out() / f["file"].get<std::string>())) << f;

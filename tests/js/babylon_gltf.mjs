@@ -102,14 +102,15 @@ check(luminance(...up) > luminance(...down) && blueness(up) > blueness(down),
       `blue/red up ${blueness(up).toFixed(2)} vs down ${blueness(down).toFixed(2)})`);
 
 // 3. Babylon's SH irradiance (the PBR shader's SPHERICAL_HARMONICS path: sum of the pre-scaled harmonics
-// times 1, y, z, x, xy, yz, 3z^2 - 1, xz, x^2 - y^2 of the lookup direction, = E / pi) against ours.
+// times 1, y, z, x, xy, yz, 3z^2 - 1, xz, x^2 - y^2 of the lookup direction, = E / pi, times the texture's
+// level, computeEnvironmentIrradiance) against ours.
 const prescaled = JSON.parse(readFileSync(path.join(bakeDir, 'diffuse.json'), 'utf8')).sh.irradiance;
 const babylonIrradiance = (world) => {
   const m = b.reflectionMatrix, n = world;
   const rotated = [0, 1, 2].map((c) => n[0] * m[c] + n[1] * m[4 + c] + n[2] * m[8 + c]);
   const [x, y, z] = cubeFromWorld(rotated);
   const p = [1, y, z, x, x * y, y * z, 3 * z * z - 1, x * z, x * x - y * y];
-  return [0, 1, 2].map((c) => Math.PI * b.preScaledHarmonics.reduce((e, h, i) => e + h[c] * p[i], 0));
+  return [0, 1, 2].map((c) => Math.PI * b.level * b.preScaledHarmonics.reduce((e, h, i) => e + h[c] * p[i], 0));
 };
 const directions = [[0, 1, 0], [0, -1, 0], [1, 0, 0], [-1, 0, 0], [0, 0, 1], [0, 0, -1], [1, 1, 1],
                     [-0.3, 0.8, 0.5], [0.6, -0.2, -0.77]].map(normalize);
@@ -125,8 +126,9 @@ check(Math.abs(babylonRatio / ourRatio - 1) < 0.05,
       `SH E(up)/E(down): Babylon ${babylonRatio.toFixed(3)}, ours ${ourRatio.toFixed(3)} (limit 5%)`);
 check(worstSh < 0.03, `SH irradiance in 9 directions: worst ${(100 * worstSh).toFixed(2)}% from ours (limit 3%)`);
 
-// 4. Babylon's decoded texels x level against our level 0, texel for texel where Babylon shows them; the
-// sun's texels are left out (the glTF carries the residual there when level 0 kept the sun).
+// 4. Babylon's decoded texels against our level 0, texel for texel where Babylon shows them: its shaders
+// show decoded^2.2 x level (gammaSpace true), so decoded = (ours / level)^(1/2.2) (the babylon profile's
+// encoding). The sun's texels are left out (the glTF carries the residual there when level 0 kept the sun).
 const ours = readKtx2Cube(path.join(bakeDir, 'specular.ktx2'));
 function texelMatch(map) {
   let worst = 0, sum = 0, count = 0, skipped = 0;
@@ -137,13 +139,14 @@ function texelMatch(map) {
         const g = map(d);
         if (angleDegrees(g, sunGltf) < 3) { ++skipped; continue; }
         const t = cubeTexel(g, ours.size), o = ours.levels[0][t.face], j = 4 * (t.y * ours.size + t.x);
-        const i = 4 * (y * b.size + x), scale = Math.max(o[j], o[j + 1], o[j + 2], 1e-6);
+        const i = 4 * (y * b.size + x), w = [0, 1, 2].map((c) => Math.pow(Math.max(o[j + c], 0) / b.level, 1 / 2.2));
+        const scale = Math.max(...w, 1e-6);
         // Beyond RGBD's own rounding of this texel (bound as in tests/test_gltf.cpp rgbdBound).
-        const maxRgb = scale / b.level, dScale = Math.min(Math.max(Math.floor(Math.max(255 / Math.max(maxRgb, 1e-7), 1)), 1), 255) / 255;
+        const dScale = Math.min(Math.max(Math.floor(Math.max(255 / scale, 1)), 1), 255) / 255;
         for (let c = 0; c < 3; ++c) {
-          const g = Math.pow(Math.min((o[j + c] / b.level) * dScale, 1), 1 / 2.2), h = 0.5 / 255;
-          const rgbdStep = b.level * (Math.pow(Math.min(g + h, 1), 2.2) - Math.pow(Math.max(g - h, 0), 2.2)) / dScale;
-          const e = Math.max(0, Math.abs(decoded[f][i + c] * b.level - o[j + c]) - rgbdStep) / scale;
+          const g = Math.pow(Math.min(w[c] * dScale, 1), 1 / 2.2), h = 0.5 / 255;
+          const rgbdStep = (Math.pow(Math.min(g + h, 1), 2.2) - Math.pow(Math.max(g - h, 0), 2.2)) / dScale;
+          const e = Math.max(0, Math.abs(decoded[f][i + c] - w[c]) - rgbdStep) / scale;
           worst = Math.max(worst, e);
           sum += e;
           ++count;
@@ -157,10 +160,10 @@ const rowsReversed = texelMatch(([x, y, z]) => { // the same face, rows in the o
   const t = cubeTexel([x, y, z], b.size);
   return normalize(cubeFaceDirection(t.face, (t.x + 0.5) / b.size, 1 - (t.y + 0.5) / b.size));
 });
-console.log(`texels x level vs our level 0 (worst / mean error beyond RGBD's rounding, of the texel's brightest channel): where Babylon shows them ` +
+console.log(`decoded texels vs (our level 0 / level)^(1/2.2) (worst / mean error beyond RGBD's rounding, of the texel's brightest channel): where Babylon shows them ` +
             `${(100 * asShown.worst).toFixed(2)}% / ${(100 * asShown.mean).toFixed(3)}%; same cube direction ` +
             `${(100 * sameDirection.worst).toFixed(1)}% / ${(100 * sameDirection.mean).toFixed(2)}%; rows reversed ` +
             `${(100 * rowsReversed.worst).toFixed(1)}% / ${(100 * rowsReversed.mean).toFixed(2)}% (${asShown.skipped} sun texels left out)`);
-check(asShown.worst < 0.01, `decoded texels x level equal our level 0 where Babylon shows them (worst ${(100 * asShown.worst).toFixed(2)}%, limit 1%)`);
+check(asShown.worst < 0.01, `decoded texels^2.2 x level equal our level 0 where Babylon shows them (worst ${(100 * asShown.worst).toFixed(2)}% before the power, limit 1%)`);
 
 process.exit(failures.length ? 1 : 0);

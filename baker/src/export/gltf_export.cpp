@@ -7,6 +7,7 @@
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
 #include "iblbake/core/numeric.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/ktx2/storage_scale.h"
 #include "iblbake/runtime/runtime.h"
@@ -121,34 +122,33 @@ GltfExport readBakeForGltf(const GltfExportSource& source, const GltfExportSetti
         chain.levels.front() =
             residualLevel0(chain.levels.front(), ktx, scene.sun, scene.storageScale, ktxPath);
 
-    // The extension maps its levels evenly to roughness 0..1; a linear bake already does, any other
-    // is re-filtered from its level 0 (the unconvolved source) down to the lowest face size.
-    const auto mapping = ktx.keyValues.find("iblbake.roughnessMapping");
-    bool linear = false;
-    try {
-        linear =
-            mapping != ktx.keyValues.end() && parseStoredMipMapping(mapping->second) == MipMapping::Linear;
-    } catch (const Error& e) {
-        throw Error(ktxPath.string() + ": " + e.what());
+    // The levels hold what stock Babylon.js reads there (the babylon engine profile, cube_profile.h), which
+    // no --mip-mapping bakes: the chain is re-filtered from its level 0 (the unconvolved source) down to the
+    // lowest face size.
+    const EngineProfile& profile = engineProfile(scene.profile);
+    const int base = chain.levels.front().faceSize;
+    if (base < 2) throw Error(ktxPath.string() + ": a 1-texel cube cannot hold roughness 0 and 1");
+    const int lowest = gltfLowestFaceSize(base, settings.minFaceSize);
+    if ((lowest & (lowest - 1)) != 0)
+        throw SettingError("minFaceSize", std::to_string(settings.minFaceSize) + " is not a power of two");
+    SpecularSettings refilter;
+    refilter.levels = gltfRefilteredLevels(base, settings.minFaceSize);
+    refilter.quality = parseQuality(settings.quality);
+    std::string roughnessList;
+    for (int m = 0; m < refilter.levels; ++m) {
+        refilter.levelRoughness.push_back(engineLevelRoughness(profile, m, refilter.levels, base));
+        roughnessList += (m ? ", " : "") + nlohmann::json(refilter.levelRoughness.back()).dump();
     }
-    std::string levelsNote = "as baked (linear roughness mapping)";
-    if (!linear) {
-        const int base = chain.levels.front().faceSize;
-        if (base < 2) throw Error(ktxPath.string() + ": a 1-texel cube cannot hold roughness 0 and 1");
-        const int lowest = gltfLowestFaceSize(base, settings.minFaceSize);
-        if ((lowest & (lowest - 1)) != 0)
-            throw SettingError("minFaceSize",
-                               std::to_string(settings.minFaceSize) + " is not a power of two");
-        SpecularSettings refilter;
-        refilter.mapping = MipMapping::Linear;
-        refilter.levels = gltfRefilteredLevels(base, settings.minFaceSize);
-        refilter.quality = parseQuality(settings.quality);
-        out.refilter = refilter;
-        out.baseFaceSize = base;
-        out.lowestFaceSize = lowest;
-        levelsNote =
-            "re-filtered from level 0 with perceptual roughness m/(N-1), quality " + settings.quality;
-    }
+    out.refilter = refilter;
+    out.baseFaceSize = base;
+    out.lowestFaceSize = lowest;
+    scene.extras["iblbake.profile"] = profile.name;
+    scene.extras["iblbake.levelRoughness"] = roughnessList;
+    const std::string levelsNote =
+        "re-filtered from level 0 with the perceptual roughness Babylon.js reads at "
+        "each level (its getLodFromAlphaG with the loader's lodGenerationScale), "
+        "quality " +
+        settings.quality;
     scene.specular = std::move(chain);
     scene.extras["iblbake.specularLevels"] = levelsNote;
     for (const auto& [key, value] : ktx.keyValues)

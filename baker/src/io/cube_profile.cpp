@@ -3,6 +3,7 @@
 #include "iblbake/core/error.h"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace ibl {
@@ -15,6 +16,19 @@ CubeProfile parseCubeProfile(const std::string& name) {
 
 const char* cubeProfileName(CubeProfile profile) {
     return profile == CubeProfile::Three ? "three" : "standard";
+}
+
+const EngineProfile& engineProfile(const std::string& name) {
+    for (const EngineProfile& profile : kEngineProfiles)
+        if (name == profile.name) return profile;
+    throw Error(valueForMessage(name) + " is not one of standard, three, babylon");
+}
+
+float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize) {
+    if (profile.levelRule != LevelRule::BabylonLodFromAlphaG || level <= 0 || levelCount < 2) return 0.0f;
+    const double alphaG =
+        std::pow(double(baseFaceSize), double(level) / double(levelCount - 1) - 1.0); // 1 at the last level
+    return float(std::sqrt(std::max(alphaG - profile.minimumVariance, 0.0)));
 }
 
 // Direction (x, y, z) -> (-x, y, z) in the OpenGL face table: +X (1, -t, -s) and -X (-1, -t, s) trade

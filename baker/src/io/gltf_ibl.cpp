@@ -5,6 +5,7 @@
 #include "iblbake/core/gltf_names.h"
 #include "iblbake/core/numeric.h"
 #include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/output_set.h"
 #include "iblbake/scene/json_vec3.h"
 
@@ -51,6 +52,15 @@ ImageRGBA exportedFaceImage(const CubeMap& level, int face) {
             image.pixels[std::size_t(r) * std::size_t(source.width) + std::size_t(x)] =
                 source.pixels[std::size_t(source.height - 1 - r) * std::size_t(source.width) +
                               std::size_t(source.width - 1 - x)];
+    return image;
+}
+
+// (texel x scale)^(1 / decodeGamma) per colour channel: what an engine that raises its decoded texels to
+// decodeGamma (Babylon's gammaSpace) turns back into texel x scale. Alpha is not stored (RGBD).
+ImageRGBA encodedForDecodeGamma(ImageRGBA image, double scale, double decodeGamma) {
+    for (glm::vec4& p : image.pixels)
+        for (int c = 0; c < 3; ++c)
+            p[c] = float(std::pow(std::max(double(p[c]) * scale, 0.0), 1.0 / decodeGamma));
     return image;
 }
 
@@ -123,14 +133,19 @@ glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n) {
     return e;
 }
 
-double gltfIblIntensity(const CubeMapChain& specular, double storageScale) {
+double gltfIblIntensity(const GltfIblScene& scene) {
+    return gltfIblIntensity(scene.specular, scene.storageScale, engineProfile(scene.profile).decodeGamma);
+}
+
+double gltfIblIntensity(const CubeMapChain& specular, double storageScale, double decodeGamma) {
     float brightest = 0.0f;
     for (const CubeMap& level : specular.levels)
         for (const ImageRGBA& face : level.faces)
             for (const glm::vec4& p : face.pixels)
                 for (int c = 0; c < 3; ++c)
                     if (std::isfinite(p[c])) brightest = std::max(brightest, p[c]);
-    return (brightest > 0.0f ? double(brightest) / kRgbdMaxValue : 1.0) / storageScale;
+    return (brightest > 0.0f ? double(brightest) / std::pow(double(kRgbdMaxValue), decodeGamma) : 1.0) /
+           storageScale;
 }
 
 std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight) {
@@ -146,7 +161,8 @@ std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight) {
 
 void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
     checkChain(path, scene.specular);
-    const double intensity = gltfIblIntensity(scene.specular, scene.storageScale);
+    const EngineProfile& profile = engineProfile(scene.profile);
+    const double intensity = gltfIblIntensity(scene);
     const std::string stem = path.stem().string();
 
     nlohmann::json images = nlohmann::json::array();
@@ -157,8 +173,11 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
         for (int f = 0; f < 6; ++f) {
             const std::string name = gltfSpecularImageName(stem, int(m), f);
             outputs.writeFile(path.parent_path() / name, [&](const fs::path& temporary) {
-                writeRgbdPng(temporary, exportedFaceImage(scene.specular.levels[m], f),
-                             float(1.0 / (intensity * scene.storageScale)));
+                writeRgbdPng(temporary,
+                             encodedForDecodeGamma(exportedFaceImage(scene.specular.levels[m], f),
+                                                   1.0 / (intensity * scene.storageScale),
+                                                   profile.decodeGamma),
+                             1.0f);
             });
             faces.push_back(images.size());
             images.push_back({{"uri", name}, {"mimeType", "image/png"}});
@@ -168,7 +187,7 @@ void writeGltfIbl(const fs::path& path, const GltfIblScene& scene) {
 
     nlohmann::json coefficients = nlohmann::json::array();
     for (const glm::dvec3& c : gltfIrradianceCoefficients(scene.prescaledIrradiance))
-        coefficients.push_back(vec3Json(c / intensity));
+        coefficients.push_back(vec3Json(c / std::pow(intensity, profile.shIntensityPower)));
     nlohmann::json extras = nlohmann::json::object();
     for (const auto& [key, value] : scene.extras)
         extras[key] = value;

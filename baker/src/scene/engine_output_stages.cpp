@@ -26,7 +26,7 @@ void runGltfStage(const StageContext& c) {
     }
     writeJsonFile(c.outputDirectory / kGltfFacts, {{"levels", gltf.scene.specular.levels.size()},
                                                    {"faceSize", gltf.scene.specular.levels.front().faceSize},
-                                                   {"intensity", gltfIblIntensity(gltf.scene.specular)},
+                                                   {"intensity", gltfIblIntensity(gltf.scene)},
                                                    {"sun", gltf.scene.sun.has_value()}});
 }
 

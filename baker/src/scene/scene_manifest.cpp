@@ -81,6 +81,7 @@ json gltfEntry(const PlanStage& stage, const json& facts, const std::map<std::st
         {"file", file},
         {"format", "glTF 2.0 (JSON), EXT_lights_image_based with RGBD PNG faces beside it" +
                        std::string(facts.at("sun").get<bool>() ? ", the sun as KHR_lights_punctual" : "")},
+        {"profile", stage.settings.value("profile", "babylon")}, // the engine profile (cube_profile.h)
         {"levels", facts.at("levels")},
         {"faceSize", facts.at("faceSize")},
         {"intensity", facts.at("intensity")},

@@ -91,22 +91,24 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
                                       "material uses specular"
                                     : "outputs.gltf: a 1-texel cube cannot hold roughness 0 and 1"});
     } else {
-        // The extension maps its levels evenly to roughness 0..1: a chain baked with another mapping is
-        // re-filtered from level 0 (kernels: the backend).
-        const bool linear = o.mipMapping == "linear";
-        const int levels =
-            linear ? mipLevelCount(o.faceSize) : gltfRefilteredLevels(o.faceSize, o.gltf->minFaceSize);
-        PlanStage s{"gltf", "gltf-export", {"specular", "diffuse"}, {}, {}, {o.gltf->file}, !linear, ""};
+        // The levels hold what stock Babylon.js reads there (the babylon engine profile), which no mapping
+        // bakes: the chain is re-filtered from level 0 (kernels: the backend).
+        const int levels = gltfRefilteredLevels(o.faceSize, o.gltf->minFaceSize);
+        PlanStage s{"gltf", "gltf-export", {"specular", "diffuse"}, {}, {}, {o.gltf->file}, true, ""};
         if (sun) s.dependsOn.push_back("sun");
         const std::string stem = std::filesystem::path(o.gltf->file).stem().string();
         for (int m = 0; m < levels; ++m)
             for (int f = 0; f < 6; ++f)
                 s.products.push_back(gltfSpecularImageName(stem, m, f));
-        s.settings = {{"file", o.gltf->file}, {"levels", levels}};
-        if (!linear) s.settings.update({{"minFaceSize", o.gltf->minFaceSize}, {"quality", o.quality}});
-        s.reason = "outputs.gltf: glTF 2.0 with EXT_lights_image_based (" + std::to_string(levels) +
-                   " levels of RGBD PNG faces" + (linear ? "" : ", re-filtered to roughness m/(N-1)") + ")" +
-                   (sun ? " and the sun as KHR_lights_punctual" : "");
+        s.settings = {{"file", o.gltf->file},
+                      {"levels", levels},
+                      {"profile", "babylon"},
+                      {"minFaceSize", o.gltf->minFaceSize},
+                      {"quality", o.quality}};
+        s.reason =
+            "outputs.gltf: glTF 2.0 with EXT_lights_image_based (" + std::to_string(levels) +
+            " levels of RGBD PNG faces, re-filtered to the roughness Babylon.js reads, profile babylon)" +
+            (sun ? " and the sun as KHR_lights_punctual" : "");
         plan.stages.push_back(std::move(s));
     }
 

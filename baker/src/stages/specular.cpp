@@ -231,7 +231,9 @@ CubeMapChain bakeChain(CubeMap source, const LdBake& bake, const SpecularSetting
             chain.levels.push_back(downsampleBox(chain.levels.back()));
             continue;
         }
-        const float r = perceptualRoughnessForLevel(m, levelCount, settings.mapping);
+        const float r = settings.levelRoughness.empty()
+                            ? perceptualRoughnessForLevel(m, levelCount, settings.mapping)
+                            : settings.levelRoughness.at(std::size_t(m));
         InFlight next{m, r, bake.startLevel(std::max(1, faceSize >> m), r)};
         if (inFlight) finish();
         inFlight.emplace(std::move(next));

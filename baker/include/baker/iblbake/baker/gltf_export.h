@@ -1,6 +1,7 @@
 // A bake's files as the glTF export (gltf_ibl.h) of `iblbake gltf` and of a scene's outputs.gltf: the
 // specular chain with the sun taken out of level 0 again where the bake kept it there, re-filtered to the
-// extension's roughness mapping when baked with another, the SH and the sun light.
+// roughness stock Babylon.js reads at each level (the babylon engine profile, cube_profile.h), the SH and the
+// sun light.
 #pragma once
 
 #include "iblbake/baker/gltf_ibl.h"
@@ -23,13 +24,14 @@ struct GltfExportSource {
 };
 
 struct GltfExportSettings {
-    int minFaceSize = 16;               // face size of the roughness-1 level of a re-filtered chain
+    int minFaceSize = 16;               // face size of the re-filtered chain's last (roughness-1) level
     std::string quality = "production"; // sample preset of a re-filtered chain (specular.h parseQuality)
 };
 
 struct GltfExport {
     GltfIblScene scene;
-    // Set when the chain must be re-filtered (any mapping but linear): from level 0 with these settings.
+    // The re-filter of the chain from level 0 (always set: no --mip-mapping bakes the babylon profile's
+    // levels); its levelRoughness holds the profile's roughness per level.
     std::optional<SpecularSettings> refilter;
     int baseFaceSize = 0, lowestFaceSize = 0; // of the re-filtered chain
 };

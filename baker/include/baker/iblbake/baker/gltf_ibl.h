@@ -5,16 +5,19 @@
 // disagrees with Babylon.js (9.28, the loader it was written for), the file follows Babylon, checked by
 // numbers in headless Chromium (tests/js/babylon_gltf.mjs):
 // - Frame: glTF's (right-handed, +Y up) is docs/conventions.md's, so `rotation` is the identity [0, 0, 0, 1].
-// - specularImages[m][f]: level m of N holds perceptual roughness m / (N - 1) ("the various mip levels
-//   evenly map to roughness values from 0 to 1"); faces +X, -X, +Y, -Y, +Z, -Z. Babylon uploads each
+// - specularImages[m][f]: level m holds the perceptual roughness stock Babylon reads there (the babylon
+//   engine profile, cube_profile.h; not the extension's m / (N - 1), which Babylon does not read);
+//   faces +X, -X, +Y, -Y, +Z, -Z. Babylon uploads each
 //   image with its rows in the opposite order and, in its default left-handed scene, shows cube
 //   direction c at glTF direction (-c.x, c.y, c.z); so image f is our face with +X and -X swapped
 //   (f = 0 holds our -X, 1 our +X), turned a half turn (column x, row r = our column N-1-x, row N-1-r).
-// - Images: 4-channel PNG, RGBD (iblbake/baker/rgbd.h) of value / intensity. `intensity` (the extension's
-//   brightness multiplier, applied by loaders to images and coefficients alike) is chosen so that the
-//   brightest exported channel encodes to RGBD's maximum 255: intensity x decoded = the bake's value
-//   (the stored texel over the KTX2's storage scale).
-// - irradianceCoefficients: 9 x [r, g, b] in docs/conventions.md order, s_i E_i / intensity with E_i = A_l
+// - Images: 4-channel PNG, RGBD (iblbake/baker/rgbd.h) of (value / intensity)^(1 / 2.2): Babylon's loader
+//   leaves gammaSpace true, so its shaders raise the decoded texel to 2.2 before multiplying by `intensity`
+//   (the texture's level). `intensity` is chosen so that the brightest exported channel decodes to RGBD's
+//   maximum 255 (255^2.2 after the power): intensity x decoded^2.2 = the bake's value (the stored texel
+//   over the KTX2's storage scale).
+// - irradianceCoefficients: 9 x [r, g, b] in docs/conventions.md order, s_i E_i / intensity^2 (Babylon's
+//   loader scales them by intensity and its shader the irradiance by the level again) with E_i = A_l
 // L_i, the
 //   SH coefficients of the irradiance E(n) = sum E_i Y_i(n) (our basis, no Condon-Shortley phase), and
 //   s_i = -1 for i = 1 (y), 4 (xy), 5 (yz), +1 otherwise: Babylon reads them in its basis (Condon-Shortley
@@ -40,7 +43,11 @@
 namespace ibl {
 
 struct GltfIblScene {
-    // Level m of N holds perceptual roughness m / (N - 1); face sizes halve from level to level.
+    // The engine profile the file is written for (cube_profile.h kEngineProfiles): its levels, texel
+    // encoding (decodeGamma) and SH scaling (shIntensityPower). `iblbake gltf` writes for stock Babylon.js.
+    std::string profile = "babylon";
+    // Level m holds the roughness the profile's engine reads there (engineLevelRoughness); face sizes halve
+    // from level to level.
     CubeMapChain specular;
     // specular's texels are radiance x storageScale (as its KTX2 stores them, "iblbake.storageScale"); the
     // light's intensity carries 1 / storageScale, so that intensity x decoded texel is radiance.
@@ -55,9 +62,11 @@ struct GltfIblScene {
 ShRgb gltfIrradianceCoefficients(const ShRgb& prescaledIrradiance);
 // E(n) from the written coefficients (glTF direction n): sum_i s_i coefficient_i Y_i(n), our irradiance.
 glm::dvec3 evalGltfIrradiance(const ShRgb& coefficients, const glm::dvec3& n);
-// The light's intensity: the brightest channel of every exported level / 255 (1 when that is 0), over
-// the chain's storage scale.
-double gltfIblIntensity(const CubeMapChain& specular, double storageScale = 1.0);
+// The light's intensity: the brightest channel of every exported level / 255^decodeGamma (the largest value
+// the engine decodes; 1 when the chain is black), over the chain's storage scale.
+double gltfIblIntensity(const CubeMapChain& specular, double storageScale = 1.0, double decodeGamma = 1.0);
+// The same for a scene, with its profile's decodeGamma.
+double gltfIblIntensity(const GltfIblScene& scene);
 // glTF quaternion [x, y, z, w] of a node whose -Z axis points along -towardLight.
 std::array<double, 4> directionalLightRotation(const glm::dvec3& towardLight);
 

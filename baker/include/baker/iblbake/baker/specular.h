@@ -46,6 +46,10 @@ struct SpecularSettings {
     // every level). A scene whose roughest material reads level m needs only m + 1 integrated levels; the
     // chain keeps its full length so that its roughness mapping stays the same (scene_plan.h).
     int integratedLevels = 0;
+    // When set (one entry per level): level m >= 1 holds perceptual roughness levelRoughness[m] instead of
+    // the mapping's, the roughness an engine profile's own lookup reads there (cube_profile.h
+    // engineLevelRoughness; the glTF export's Babylon levels).
+    std::vector<float> levelRoughness{};
 };
 
 std::uint32_t samplesFor(const SpecularSettings& settings);

@@ -21,6 +21,54 @@ enum class CubeProfile { Standard, Three };
 inline const std::vector<std::string> kCubeProfileNames = {"standard", "three"};
 inline constexpr const char* kCubeProfileKey = "iblbake.profile";
 
+// Engine profiles, one row per consumer (docs/engines.md "Engine profiles"): what each engine's own lookup
+// reads, derived from its shader source, so that a bake for it holds at each level exactly the roughness the
+// engine reads there, in the encoding it decodes and with the SH as it applies them.
+// - levelRule: which perceptual roughness level m of N holds. Baked: as the bake's --mip-mapping says (the
+//   runtime, probe.glsl and three.js read the mapping from the file or re-filter). BabylonLodFromAlphaG:
+//   Babylon.js 9.28's PBR shader reads lod = log2(S alphaG) x lodGenerationScale + lodGenerationOffset
+//   (pbrBlockReflection sampleReflectionTexture, getLodFromAlphaG) with alphaG = r^2 + MINIMUMVARIANCE
+//   (convertRoughnessToAverageSlope) and S the level-0 face size; its glTF loader's EXT_lights_image_based
+//   sets lodGenerationScale = (N - 1) / log2(S) and offset 0 (RawCubeTexture.updateRGBDAsync), and leaves
+//   linearSpecularLOD false. So level m (m >= 1) holds alphaG = S^(m / (N - 1) - 1), r = sqrt(alphaG -
+//   MINIMUMVARIANCE); level 0 is the unconvolved source, which Babylon reads for every r up to level 0's.
+// - smallestFace: the default face size of the chain's last level (the extension suggests 16).
+// - mirrorX: the stored cube is ours mirrored in x (three.js samples a cube texture at (-x, y, z)).
+// - decodeGamma: the engine raises decoded texels to this power before use. Babylon's glTF loader leaves
+//   its RawCubeTexture's gammaSpace true, so its shaders run toLinearSpace (pow 2.2, GAMMAREFLECTION)
+//   after the RGBD decode: the file stores value^(1 / 2.2).
+// - shIntensityPower: how many times the engine multiplies the SH by the light's intensity. Babylon's loader
+//   scales the harmonics by `intensity` and its PBR shader multiplies the irradiance by the texture's level
+//   (= intensity) again (computeEnvironmentIrradiance): the file divides the coefficients by intensity^2.
+enum class LevelRule { Baked, BabylonLodFromAlphaG };
+struct EngineProfile {
+    const char* name;
+    const char* consumer;
+    LevelRule levelRule;
+    double minimumVariance; // BabylonLodFromAlphaG: alphaG = r^2 + this (Babylon's MINIMUMVARIANCE)
+    int smallestFace;
+    bool mirrorX;
+    double decodeGamma;
+    int shIntensityPower;
+    const char* storage; // texel encoding and storage
+    const char* sh;      // the SH convention (docs/engines.md has the derivations)
+};
+inline constexpr EngineProfile kEngineProfiles[] = {
+    {"standard", "iblbake runtime, probe.glsl, KTX2 readers", LevelRule::Baked, 0.0, 1, false, 1.0, 1,
+     "RGBA16F/RGBA32F cube KTX2, linear, x storageScale", "diffuse.json: A_l k_i L_i, our basis"},
+    {"three", "three.js r187 (iblbakeCubeLoader.js, PMREM)", LevelRule::Baked, 0.0, 1, true, 1.0, 1,
+     "RGBA16F/RGBA32F cube KTX2 mirrored in x, linear", "diffuse.json: A_l k_i L_i, our basis"},
+    {"babylon", "Babylon.js 9.28 glTF loader (EXT_lights_image_based)", LevelRule::BabylonLodFromAlphaG,
+     0.0005, 16, false, 2.2, 2, "RGBD PNG of value^(1/2.2) / intensity",
+     "irradianceCoefficients: Babylon's basis and frame, E_i / intensity^2"},
+};
+
+// The row named `name`; throws ibl::Error "'<name>' is not one of standard, three, babylon".
+const EngineProfile& engineProfile(const std::string& name);
+// The perceptual roughness level m of a chain of levelCount levels on level-0 faces of baseFaceSize texels
+// must hold for the profile's engine (BabylonLodFromAlphaG; 0 for level 0 and for other rules).
+float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize);
+
 // Throws ibl::Error "'<name>' is not one of standard, three" for any other name.
 CubeProfile parseCubeProfile(const std::string& name);
 const char* cubeProfileName(CubeProfile profile);
