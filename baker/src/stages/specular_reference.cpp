@@ -332,12 +332,33 @@ LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFace
     const CubeMap& source = split.residual;
     const std::vector<std::size_t> brightIndices = brightTexels(source);
     const std::vector<SourceTexel> bright = texelList(source, brightIndices);
-    std::vector<char> isBright(6 * std::size_t(w) * w, 0);
+    // The texels the dim samples read, alpha 0 where bright (integrated above instead): one array and one
+    // cache line a sample (the random reads of the source and of a separate flag were ~80% of the time).
+    const std::size_t faceTexels = std::size_t(w) * std::size_t(w);
+    std::vector<glm::vec4> dimTexels(6 * faceTexels);
+    for (std::size_t k = 0; k < dimTexels.size(); ++k)
+        dimTexels[k] = glm::vec4(glm::vec3(source.faces[k / faceTexels].pixels[k % faceTexels]), 1.0f);
     for (std::size_t k : brightIndices)
-        isBright[k] = 1;
+        dimTexels[k].w = 0.0f;
     // GGX sampling of h around the normal: cos theta_h from the CDF variable xi.
     auto cosHalf = [&](double xi) { return std::sqrt((1.0 - xi) / (1.0 + (a2 - 1.0) * xi)); };
     const std::uint32_t samplesPerHalf = referenceSamplesPerHalf(texels.size());
+    // The dim rest's samples of h in the normal's frame, two halves under different rotations of the same
+    // stratified set: the same for every texel, so computed once (those with NoL > 0 only).
+    struct HalfVectorSample {
+        double tangent, bitangent, cosTheta; // sin theta_h cos phi, sin theta_h sin phi, cos theta_h
+    };
+    std::vector<HalfVectorSample> halfSamples[2];
+    const glm::dvec2 shifts[2] = {{0.0, 0.0}, {0.61803398875, 0.41421356237}};
+    for (int h = 0; h < 2; ++h)
+        for (std::uint32_t i = 0; i < samplesPerHalf; ++i) {
+            glm::dvec2 u = glm::dvec2((i + 0.5) / samplesPerHalf, double(radicalInverse2(i))) + shifts[h];
+            u -= glm::floor(u);
+            const double c = cosHalf(u.x), sn = std::sqrt(std::max(0.0, 1.0 - c * c));
+            const double phi = 2.0 * kPi * u.y;
+            if (2.0 * c * c - 1.0 <= 0.0) continue; // NoL
+            halfSamples[h].push_back({sn * std::cos(phi), sn * std::sin(phi), c});
+        }
     LdTexelReference out;
     out.value.resize(texels.size());
     out.errorEstimate.resize(texels.size());
@@ -356,23 +377,19 @@ LdTexelReference referenceSpecularTexels(const CubeMap& original, int outputFace
         const glm::dvec3 tx = glm::normalize(glm::cross(up, nrm)), ty = glm::cross(nrm, tx);
         glm::dvec3 half[2] = {glm::dvec3(0.0), glm::dvec3(0.0)};
         double halfWeight[2] = {0.0, 0.0}; // the dim texels' share of the lobe
-        const glm::dvec2 shifts[2] = {{0.0, 0.0}, {0.61803398875, 0.41421356237}};
         for (int h = 0; h < 2; ++h)
-            for (std::uint32_t i = 0; i < samplesPerHalf; ++i) {
-                glm::dvec2 u = glm::dvec2((i + 0.5) / samplesPerHalf, double(radicalInverse2(i))) + shifts[h];
-                u -= glm::floor(u);
-                const double c = cosHalf(u.x), sn = std::sqrt(std::max(0.0, 1.0 - c * c));
-                const double phi = 2.0 * kPi * u.y;
-                const glm::dvec3 hv = sn * std::cos(phi) * tx + sn * std::sin(phi) * ty + c * nrm;
+            for (const HalfVectorSample& sample : halfSamples[h]) {
+                const double c = sample.cosTheta;
+                const glm::dvec3 hv = sample.tangent * tx + sample.bitangent * ty + c * nrm;
                 const glm::dvec3 l = 2.0 * c * hv - nrm;
                 const double NoL = 2.0 * c * c - 1.0;
-                if (NoL <= 0.0) continue;
                 const CubeCoord cc = cubeCoordFromDirection(vec3(l));
                 const int x = std::clamp(int(cc.s * float(w)), 0, w - 1),
                           y = std::clamp(int(cc.t * float(w)), 0, w - 1);
                 const std::size_t index = (std::size_t(cc.face) * w + y) * w + x;
-                if (isBright[index]) continue;
-                half[h] += glm::dvec3(source.faces[cc.face].at(x, y)) * (4.0 * NoL / samplesPerHalf);
+                const glm::vec4& texel = dimTexels[index];
+                if (texel.w == 0.0f) continue;
+                half[h] += glm::dvec3(texel) * (4.0 * NoL / samplesPerHalf);
                 halfWeight[h] += 4.0 * NoL / samplesPerHalf;
             }
         // The integral of pi D NoL (the weights' measure) over the sphere, bright part exact, dim sampled.
