@@ -97,22 +97,38 @@ struct ColumnErrors {
     double mean() const { return std::accumulate(both.begin(), both.end(), 0.0) / double(both.size()); }
 };
 
+// Column k's points: the dielectric sphere's, then the metal one's (as many).
+std::vector<ShadingPoint> columnPoints(int k) {
+    std::vector<ShadingPoint> both = sphereGrid(k / 10.0f, 0.0f, kDielectricBase);
+    const std::vector<ShadingPoint> metal = sphereGrid(k / 10.0f, 1.0f, kMetalBase);
+    both.insert(both.end(), metal.begin(), metal.end());
+    return both;
+}
+
+// The reference of every column under `lighting` (default RuntimeOptions): computed once per lighting and
+// shared by the probe sets compared with it (it was most of a map's time, and the same for both sets).
+using ColumnReferences = std::vector<std::vector<ReferenceResult>>;
+ColumnReferences columnReferences(const ReferenceLighting& lighting) {
+    ColumnReferences references;
+    for (int k = 0; k < kColumns; ++k)
+        references.push_back(renderReference(lighting, columnPoints(k), RuntimeOptions{}));
+    return references;
+}
+
 // Per roughness column: relative mean absolute error (sum |runtime - reference| / sum |reference| over the
-// points and RGB) of the dielectric sphere, the metal sphere, and both together (the column); with
-// `environment` (the lighting without the sun, what the LD chain holds) also the column's floor.
-ColumnErrors sphereGridErrors(const std::string& name, const ProbeSet& set, const ReferenceLighting& lighting,
-                              const ReferenceLighting* environment) {
+// points and RGB) of the dielectric sphere, the metal sphere, and both together (the column), against
+// `references` (columnReferences of the lighting); with `environment` (the lighting without the sun, what the
+// LD chain holds) also the column's floor.
+ColumnErrors sphereGridErrors(const std::string& name, const ProbeSet& set,
+                              const ColumnReferences& references, const ReferenceLighting* environment) {
     RuntimeOptions options;
     ColumnErrors errors;
     std::vector<ShadingPoint> all;
     for (int k = 0; k < kColumns; ++k) {
-        std::vector<ShadingPoint> dielectric = sphereGrid(k / 10.0f, 0.0f, kDielectricBase);
-        std::vector<ShadingPoint> metal = sphereGrid(k / 10.0f, 1.0f, kMetalBase);
-        std::vector<ShadingPoint> both = dielectric;
-        both.insert(both.end(), metal.begin(), metal.end());
+        const std::vector<ShadingPoint> both = columnPoints(k);
         std::vector<glm::vec4> rt = evaluateCpu(set, both, options);
-        std::vector<ReferenceResult> ref = renderReference(lighting, both, options);
-        std::size_t nd = dielectric.size();
+        const std::vector<ReferenceResult>& ref = references[std::size_t(k)];
+        std::size_t nd = both.size() / 2;
         errors.dielectric.push_back(relativeError(std::span(rt).first(nd), std::span(ref).first(nd)));
         errors.metal.push_back(relativeError(std::span(rt).subspan(nd), std::span(ref).subspan(nd)));
         errors.both.push_back(relativeError(rt, ref));
@@ -156,7 +172,8 @@ void expectWithinTolerance(const ColumnErrors& e, const std::string& name) {
 TEST(SphereGrid, SyntheticSky) {
     CubeMap sky = makeCube(32, skyLike, 4);
     ReferenceLighting lighting = ReferenceLighting::distant(sky);
-    ColumnErrors e = sphereGridErrors("synthetic sky (32^2)", distantSet(sky), lighting, &lighting);
+    ColumnErrors e =
+        sphereGridErrors("synthetic sky (32^2)", distantSet(sky), columnReferences(lighting), &lighting);
     expectWithinTolerance(e, "synthetic sky");
 }
 
@@ -179,20 +196,21 @@ TEST_P(SphereGridHdri, PerColumnErrors) {
     settings.sourceFaceSize = kHdriFaceSize;
     CubeMap cube = ingestEnvironment({path}, settings).cube;
     ReferenceLighting whole = ReferenceLighting::distant(cube);
+    const ColumnReferences wholeReferences = columnReferences(whole);
     SunDetectSettings sunSettings;
     sunSettings.maxSolidAngle = kMaxSunSolidAngle;
     SunDetection detection = detectSun(cube, sunSettings);
     if (!detection.found) {
         std::printf("(%s: no sun detected: %s)\n", GetParam(), detection.reason.c_str());
-        ColumnErrors e =
-            sphereGridErrors(std::string(GetParam()) + ", whole HDRI", distantSet(cube, true), whole, &whole);
+        ColumnErrors e = sphereGridErrors(std::string(GetParam()) + ", whole HDRI", distantSet(cube, true),
+                                          wholeReferences, &whole);
         expectWithinTolerance(e, GetParam());
         return;
     }
     // 1. The whole HDRI in the probe (LD + SH) against the HDRI: for information. A sun left in the split
     //    sum costs 20-70% on metals (the N = V = R lobe cannot reproduce a compact source's highlight).
-    sphereGridErrors(std::string(GetParam()) + ", whole HDRI (sun left in)", distantSet(cube), whole,
-                     nullptr);
+    sphereGridErrors(std::string(GetParam()) + ", whole HDRI (sun left in)", distantSet(cube),
+                     wholeReferences, nullptr);
     // 2. The sun extracted into the disk light (Frostbite 4.9.1, 4.6), as `iblbake specular --extract-sun`
     //    bakes it: residual in the probe from level 1 on, level 0 the full map; against the full HDRI.
     CubeMap residual = cube;
@@ -202,7 +220,7 @@ TEST_P(SphereGridHdri, PerColumnErrors) {
     std::snprintf(label, sizeof label, "%s, sun extracted (%.2f deg, E %.3g)", GetParam(),
                   light.angularRadius * 57.29578, light.illuminance);
     ReferenceLighting environment = ReferenceLighting::distant(residual);
-    ColumnErrors e = sphereGridErrors(label, set, whole, &environment);
+    ColumnErrors e = sphereGridErrors(label, set, wholeReferences, &environment);
     expectWithinTolerance(e, GetParam());
 }
 
