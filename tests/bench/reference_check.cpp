@@ -6,8 +6,9 @@
 // - with `samples` > 0, the every-texel brute force (renderReference) at `samples` per strategy, with its own
 //   noise (its difference from itself at half the samples),
 // with the time of each.
-// `brightFactor` sets the converged reference's (runtime_reference.h kBrightFactor by default).
-//   reference_check HDRI [sphereSize [samples [brightFactor]]]
+// `brightFactor` sets the converged reference's (runtime_reference.h kBrightFactor by default),
+// `firstSamples` the adaptive reference's first round (AdaptiveReferenceSettings' by default).
+//   reference_check HDRI [sphereSize [samples [brightFactor [firstSamples]]]]
 #include <iblbake/baker/material_preview.h>
 #include <iblbake/runtime/runtime_reference.h>
 
@@ -34,7 +35,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 
 int main(int argc, char** argv) try {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: reference_check HDRI [sphereSize [samples [brightFactor]]]\n");
+        std::fprintf(stderr,
+                     "usage: reference_check HDRI [sphereSize [samples [brightFactor [firstSamples]]]]\n");
         return 2;
     }
     MaterialPreviewSettings settings;
@@ -52,8 +54,10 @@ int main(int argc, char** argv) try {
     std::vector<int> column = ball;
     for (int& c : column)
         c %= kPreviewColumns;
+    AdaptiveReferenceSettings rounds;
+    if (argc > 5) rounds.firstSamples = std::uint32_t(std::atol(argv[5]));
     auto start = std::chrono::steady_clock::now();
-    const AdaptiveReference adaptive = renderAdaptiveReference(cube, points, column, options, effort, {});
+    const AdaptiveReference adaptive = renderAdaptiveReference(cube, points, column, options, effort, rounds);
     const double adaptiveSeconds = secondsSince(start);
     std::printf("adaptive: %.2f s, samples per column:", adaptiveSeconds);
     for (std::uint32_t n : adaptive.groupSamples)

@@ -17,10 +17,6 @@ unsigned dfgSamples(const std::string& quality) {
     return quality == "draft" ? 256u : quality == "reference" ? 4096u : 1024u;
 }
 
-// Each preview ball's reference is rendered until its own estimated error is under this (the default of
-// material_preview.h MaterialPreviewSettings::referenceTargetError).
-constexpr double kPreviewReferenceTargetError = 0.005;
-
 json calibrationJson(const SceneCalibrationChoice& c) {
     json out = {{"source", sceneCalibrationName(c.source)}};
     if (c.source != SceneCalibration::None && c.source != SceneCalibration::Radiometric)
@@ -78,8 +74,9 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
                             false,
                             ""};
         reference.settings["targetError"] = kPreviewReferenceTargetError;
-        reference.reason = "outputs.preview: the converged reference of the preview's balls, each roughness "
-                           "column until its own estimated error is under 0.5%";
+        reference.reason = formatText("outputs.preview: the converged reference of the preview's balls, each "
+                                      "roughness column until its own estimated error is under %g%%",
+                                      100.0 * kPreviewReferenceTargetError);
         plan.stages.push_back(std::move(reference));
     }
     if (!o.gltf) {

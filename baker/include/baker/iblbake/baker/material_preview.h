@@ -10,6 +10,7 @@
 #include "iblbake/opencl/executor.h"
 #include "iblbake/runtime/runtime.h"
 #include "iblbake/runtime/runtime_reference.h"
+#include "iblbake/scene/scene.h"
 
 #include <filesystem>
 #include <optional>
@@ -58,7 +59,7 @@ struct MaterialPreviewSettings {
     float exposureEV = 0.0f; // exposure compensation in stops
     // The converged reference (runtime_reference.h renderAdaptiveReference): each roughness column at the
     // least effort whose own estimated error (relative, luminance, both rows) is at most this.
-    double referenceTargetError = 0.005;
+    double referenceTargetError = kPreviewReferenceTargetError;
 };
 
 // The converged reference of the preview's balls (renderAdaptiveReference, one group per roughness column:

@@ -107,6 +107,11 @@ struct ScenePreviewOutput {
     double exposure = 0.0;            // stops
 };
 
+// What the preview's converged reference takes each roughness column to: its own estimated error, relative
+// (luminance), at most this (issue 46). Not a scene key: the plan's preview-reference stage and `iblbake
+// preview --reference` (material_preview.h MaterialPreviewSettings) both take it from here.
+inline constexpr double kPreviewReferenceTargetError = 0.005;
+
 struct SceneOutputs {
     std::filesystem::path directory;
     std::string ktx2Format = "rgba16f";   // rgba16f, rgba32f, b10g11r11, e5b9g9r9
