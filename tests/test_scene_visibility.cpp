@@ -135,18 +135,9 @@ void expectMirrorsThroughTheWindow(const SceneDir& d) {
     ASSERT_EQ(loaded.set.localProbes().size(), 1u);
     EXPECT_EQ(loaded.set.localProbes()[0].hasVisibility, 1u);
 
-    const RoomMirrorPoints mirrors = windowRoomMirrorPoints(4000, 16, kProbeFaceSize);
-    const std::vector<ShadingPoint>& points = mirrors.points;
-    const std::vector<int>& kind = mirrors.kind;
-    RuntimeOptions options = loaded.options;
-    options.diffuse = false;
-    const std::vector<glm::vec4> out = evaluateCpu(loaded.set, points, options);
-    const RoomMirrors m =
-        checkRoomMirrors(points, kind, out, [&](const ShadingPoint&, glm::vec3 R) { return outside(R); });
-    std::printf(
-        "scene room, mirrors: %d through the window (max relative error to the distant map %.2g), %d on "
-        "walls (to the wall %.2g)\n",
-        m.throughWindow, m.worstWindow, m.onWall, m.worstWall);
+    const RoomMirrors m = checkRoomMirrors(
+        loaded.set, loaded.options, windowRoomMirrorPoints(4000, 16, kProbeFaceSize),
+        [&](const ShadingPoint&, glm::vec3 R) { return outside(R); }, "scene room");
     EXPECT_GT(m.throughWindow, 200);
     EXPECT_GT(m.onWall, 1500);
 }

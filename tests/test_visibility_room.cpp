@@ -95,21 +95,17 @@ TEST(VisibilityRoomEndToEnd, MirrorsThroughTheWindowGetTheDistantMapAndTheOthers
     RoomSet room = roomSet(n);
     ReferenceLighting far = ReferenceLighting::distant(room.distant);
     const RoomMirrorPoints mirrors = windowRoomMirrorPoints(6000, 21, n);
-    const std::vector<ShadingPoint>& points = mirrors.points;
-    const std::vector<int>& kind = mirrors.kind;
-    RuntimeOptions options;
-    options.diffuse = false;
-    std::vector<glm::vec4> out = evaluateCpu(room.set, points, options);
-    const RoomMirrors m = checkRoomMirrors(points, kind, out, [&](const ShadingPoint& p, glm::vec3 R) {
-        return glm::vec3(far.radiance(p.position, glm::dvec3(R)));
-    });
-    std::printf(
-        "room, mirrors: %d through the window (max relative error to the distant map %.2g), %d on walls "
-        "(to the wall %.2g)\n",
-        m.throughWindow, m.worstWindow, m.onWall, m.worstWall);
+    const RoomMirrors m = checkRoomMirrors(
+        room.set, RuntimeOptions{}, mirrors,
+        [&](const ShadingPoint& p, glm::vec3 R) {
+            return glm::vec3(far.radiance(p.position, glm::dvec3(R)));
+        },
+        "room");
     EXPECT_GT(m.throughWindow, 300);
     EXPECT_GT(m.onWall, 2000);
-    EXPECT_BACKENDS_AGREE(room.set, points, options);
+    RuntimeOptions specularOnly;
+    specularOnly.diffuse = false;
+    EXPECT_BACKENDS_AGREE(room.set, mirrors.points, specularOnly);
 }
 
 // A glossy metal floor whose reflections run up the window wall, against the reference of the same room
