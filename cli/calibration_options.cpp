@@ -110,12 +110,8 @@ PreparedEnvironment ingestCalibrated(const InputOptions& input, const Calibratio
     } catch (const SettingError& e) {
         throw withFlag(e, calibration);
     }
-    printIngestReport(prepared.env.report);
-    const PreparedEnvironment& c = prepared;
-    if (c.record.absolute()) std::printf("%s\n", c.record.summary().c_str());
-    if (c.sun)
-        std::printf("sun     extracted: %.6g lux at elevation %.2f deg, azimuth %.2f deg\n",
-                    c.sun->illuminance, c.sun->elevationDegrees(), c.sun->azimuthDegrees());
+    std::printf("%s%s", ingestReportText(prepared.env.report).c_str(),
+                preparationText(prepared.record, prepared.sun).c_str());
     return prepared;
 }
 

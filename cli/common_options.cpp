@@ -55,10 +55,4 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-void printStorage(const std::string& file, const std::string& format, const ProductStorage& storage) {
-    const StoredProduct product{std::filesystem::path(file).filename().string(), format, storage.scale,
-                                storage.clamped, storage.energyLostPercent};
-    std::printf("storage %s\n", storageLine(product).c_str());
-}
-
 } // namespace ibl::cli

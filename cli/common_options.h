@@ -37,8 +37,4 @@ struct BackendOptions {
 
 double millisecondsSince(std::chrono::steady_clock::time_point start);
 
-// The report's "storage" line of a written product (bake_state.h storageLine): its storage scale, or the
-// energy lost per level when clamped on request.
-void printStorage(const std::string& file, const std::string& format, const ProductStorage& storage);
-
 } // namespace ibl::cli

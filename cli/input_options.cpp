@@ -60,12 +60,7 @@ IngestSettings InputOptions::settings(int sourceFaceSize) const {
 }
 
 void printIngestReport(const IngestReport& r) {
-    std::printf("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width, r.height,
-                layoutText(r).c_str(), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
-                r.maxLuminanceIn);
-    std::printf("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
-                (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,
-                (unsigned long long)r.negativeRepaired);
+    std::printf("%s", ingestReportText(r).c_str());
 }
 
 } // namespace ibl::cli

@@ -1,5 +1,4 @@
 // `iblbake diffuse`'s flow (product_flows.h): the SH, the optional irradiance cube, the document.
-#include "iblbake/bake_state/bake_state.h"
 #include "iblbake/baker/product_flows.h"
 #include "iblbake/core/format_text.h"
 #include "iblbake/ktx2/atomic_file.h"
@@ -59,11 +58,7 @@ std::string diffuseProductsText(const DiffuseJob& job, const DiffuseProducts& pr
                            c.settings.faceSize, irradianceMethodName(c.method), c.formatName.c_str(),
                            products.cubeMilliseconds, (unsigned long long)products.cube->stats.clampedTexels,
                            (unsigned long long)products.shNegativeTexels);
-        const ProductStorage& s = products.cube->storage;
-        text +=
-            "storage " +
-            storageLine({c.file.filename().string(), c.formatName, s.scale, s.clamped, s.energyLostPercent}) +
-            "\n";
+        text += storageText(c.file, c.formatName, products.cube->storage);
     }
     return text + formatText("wrote   %s%s%s\n", job.document.string().c_str(), job.cube ? " and " : "",
                              job.cube ? job.cube->file.string().c_str() : "");

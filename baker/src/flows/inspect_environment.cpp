@@ -41,6 +41,23 @@ std::string layoutText(const IngestReport& r) {
     return text;
 }
 
+std::string ingestReportText(const IngestReport& r) {
+    return formatText("input   %s: %dx%d %s, %s -> %s, max luminance %.6g\n", r.file.c_str(), r.width,
+                      r.height, layoutText(r).c_str(), r.inputColorSpace.c_str(), r.workingColorSpace.c_str(),
+                      r.maxLuminanceIn) +
+           formatText("repaired NaN %llu, Inf %llu, negative %llu channel values\n",
+                      (unsigned long long)r.nanRepaired, (unsigned long long)r.infRepaired,
+                      (unsigned long long)r.negativeRepaired);
+}
+
+std::string preparationText(const CalibrationRecord& record, const std::optional<DiskLight>& sun) {
+    std::string text = record.absolute() ? record.summary() + "\n" : "";
+    if (sun)
+        text += formatText("sun     extracted: %.6g lux at elevation %.2f deg, azimuth %.2f deg\n",
+                           sun->illuminance, sun->elevationDegrees(), sun->azimuthDegrees());
+    return text;
+}
+
 std::string inspectionText(const EnvironmentInspection& inspection) {
     std::string text;
     const auto line = [&](const char* pattern, auto... values) { text += formatText(pattern, values...); };

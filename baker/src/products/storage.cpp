@@ -1,4 +1,5 @@
 // How product cubes go into their formats (iblbake/baker/products.h "Float storage").
+#include "iblbake/bake_state/bake_state.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/storage_scale.h"
@@ -136,6 +137,14 @@ Ktx2WriteStats writeProductCubeArray(const std::filesystem::path& path, const st
     const Ktx2KeyValues kv = withStorageKeys(keyValues, storage);
     if (storage.scale == 1.0) return writeKtx2CubeArray(path, layers, format, kv);
     return writeKtx2CubeArray(path, scaledCubes(layers, storage), format, kv);
+}
+
+std::string storageText(const std::filesystem::path& file, const std::string& format,
+                        const ProductStorage& storage) {
+    return "storage " +
+           storageLine({file.filename().string(), format, storage.scale, storage.clamped,
+                        storage.energyLostPercent}) +
+           "\n";
 }
 
 json productStorageToJson(const ProductStorage& storage) {

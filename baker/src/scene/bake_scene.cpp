@@ -74,10 +74,7 @@ std::map<std::string, std::string> stageProducts(const Plan& plan,
                 } catch (const Error&) { // unreadable: replace it
                 }
             if (!same)
-                outputs.writeFile(to, [&](const fs::path& temporary) {
-                    fs::copy_file(from, temporary, fs::copy_options::overwrite_existing, ec);
-                    if (ec) throw OutputError(temporary.string() + ": cannot write: " + ec.message());
-                });
+                outputs.writeFile(to, [&](const fs::path& temporary) { copyProductFile(from, temporary); });
             hashes[product] = hash;
             summary.products.push_back(to);
         }

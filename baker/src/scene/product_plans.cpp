@@ -9,8 +9,6 @@
 #include "stage_keys.h"
 #include "stage_runner.h"
 
-#include <fstream>
-
 namespace ibl {
 
 namespace fs = std::filesystem;
@@ -54,14 +52,6 @@ const PlanStage& stageOf(const Plan& plan, const std::string& product) {
         for (const std::string& p : s.products)
             if (p == product) return s;
     throw Error("plan: no stage makes " + product);
-}
-
-// A product's copy from the private cache to the temporary beside its target: a failure names the file being
-// written (OutputSet puts the target in its place) and the system's reason, as bakeScene's copies do.
-void copyProduct(const fs::path& from, const fs::path& temporary) {
-    std::error_code ec;
-    fs::copy_file(from, temporary, fs::copy_options::overwrite_existing, ec);
-    if (ec) throw OutputError(temporary.string() + ": cannot write: " + ec.message());
 }
 
 // Every JSON file of an entry, by name.
@@ -126,10 +116,10 @@ ProductRun runProductPlan(const ProductPlan& plan, const std::function<const Exe
         if (fs::is_directory(from)) {
             outputs.writeDirectory(file, [&](const fs::path& temporary) {
                 for (const fs::directory_entry& f : fs::directory_iterator(from))
-                    copyProduct(f.path(), temporary / f.path().filename());
+                    copyProductFile(f.path(), temporary / f.path().filename());
             });
         } else {
-            outputs.writeFile(file, [&](const fs::path& temporary) { copyProduct(from, temporary); });
+            outputs.writeFile(file, [&](const fs::path& temporary) { copyProductFile(from, temporary); });
         }
     }
     outputs.commit();

@@ -191,17 +191,8 @@ void runEnvironment(const StageContext& c) {
         addLatLongPixels(calibration["source"], env.report.latLongPixels);
         writeCube(c.outputDirectory / kCubeFile, env.cube, "calibrated-environment");
         writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
-        const IngestReport& r = env.report;
-        writeJsonFile(c.outputDirectory / kIngestReportFile, {{"file", r.file},
-                                                              {"width", r.width},
-                                                              {"height", r.height},
-                                                              {"layout", layoutText(r)},
-                                                              {"inputColorSpace", r.inputColorSpace},
-                                                              {"workingColorSpace", r.workingColorSpace},
-                                                              {"maxLuminanceIn", r.maxLuminanceIn},
-                                                              {"nanRepaired", r.nanRepaired},
-                                                              {"infRepaired", r.infRepaired},
-                                                              {"negativeRepaired", r.negativeRepaired}});
+        writeJsonFile(c.outputDirectory / kIngestReportFile,
+                      {{"file", env.report.file}, {"text", ingestReportText(env.report)}});
     });
 }
 

@@ -61,6 +61,12 @@ std::string uniqueSuffix() {
     return std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-" + std::to_string(random());
 }
 
+void copyProductFile(const fs::path& from, const fs::path& temporary) {
+    std::error_code ec;
+    fs::copy_file(from, temporary, fs::copy_options::overwrite_existing, ec);
+    if (ec) throw OutputError(temporary.string() + ": cannot write: " + ec.message());
+}
+
 StagedEntry::StagedEntry(std::string key, fs::path directory, int ownerLock)
     : key_(std::move(key)), directory_(std::move(directory)), ownerLock_(ownerLock) {}
 

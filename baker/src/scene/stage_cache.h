@@ -58,8 +58,9 @@ class StageCache {
 // A name no other process or thread on any machine will pick: pid, a per-process counter and 64 random bits.
 std::string uniqueSuffix();
 
-// Copies `from` to `to` through a temporary file beside `to` and a rename: readers see the old file or the
-// new one, never part of one. Throws ibl::Error naming `to` on failure.
-void copyAtomically(const std::filesystem::path& from, const std::filesystem::path& to);
+// Copies a product from its cache entry to `temporary`, the file an OutputSet writes beside its target: a
+// failure (a full disk) throws ibl::OutputError naming `temporary` (which the set replaces with the target)
+// and the system's reason.
+void copyProductFile(const std::filesystem::path& from, const std::filesystem::path& temporary);
 
 } // namespace ibl

@@ -32,6 +32,7 @@
 // }
 #pragma once
 
+#include "iblbake/baker/calibration.h"
 #include "iblbake/baker/environment_stats.h"
 #include "iblbake/baker/ingest.h"
 #include "iblbake/baker/sun.h"
@@ -40,6 +41,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -70,5 +72,11 @@ std::string inspectionText(const EnvironmentInspection& inspection);
 
 // The input's layout as the commands print it: "latlong (pixels centre)", "exr-cube".
 std::string layoutText(const IngestReport& report);
+
+// The baking commands' report of their input: the "input" line (file, size, layout, colour spaces, brightest
+// luminance) and the "repaired" line; and of its preparation: the calibration (when absolute) and the sun
+// taken out, one line each.
+std::string ingestReportText(const IngestReport& report);
+std::string preparationText(const CalibrationRecord& record, const std::optional<DiskLight>& sun);
 
 } // namespace ibl

@@ -89,8 +89,8 @@ inline constexpr const char* kLdPreviewFile = "preview.png";
 // Beside a chain of the specular stage, for printing: per level its face size and bake time ("levels"), and
 // what the writer repaired or clamped (ktx2.h Ktx2WriteStats: "clampedTexels", "repairedNonFinite").
 inline constexpr const char* kChainReportFile = "chain_report.json";
-// The environment stage's ingest report (ingest.h IngestReport: file, size, layout, colour spaces, maximum
-// luminance, repaired values), for printing.
+// Beside the environment stage's cube: the input file as given ("file") and its report as the commands print
+// it (inspect.h ingestReportText, "text").
 inline constexpr const char* kIngestReportFile = "ingest_report.json";
 
 } // namespace ibl

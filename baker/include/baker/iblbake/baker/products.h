@@ -145,6 +145,9 @@ Ktx2WriteStats writeProductCubeArray(const std::filesystem::path& path, const st
 // {"energyLostPercent": [per level], "meaning"}; the same object is a stage's cache record. Its reader
 // throws ibl::Error naming the key.
 nlohmann::json productStorageToJson(const ProductStorage& storage);
+// The commands' "storage" line of a product written to `file` in `format` (bake_state.h storageLine).
+std::string storageText(const std::filesystem::path& file, const std::string& format,
+                        const ProductStorage& storage);
 ProductStorage productStorageFromJson(const nlohmann::json& json);
 
 // ---------------------------------------------------------------------------------------------------
