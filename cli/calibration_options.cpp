@@ -5,8 +5,6 @@
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
 
-#include <cstdio>
-#include <fstream>
 
 namespace ibl::cli {
 
@@ -83,14 +81,12 @@ CalibrationSettings CalibrationOptions::settings() const {
     return s;
 }
 
-EnvironmentSettings CalibrationOptions::environmentSettings(const IngestSettings& ingest,
-                                                            bool keepCubeWithSun) const {
+EnvironmentSettings CalibrationOptions::environmentSettings(const IngestSettings& ingest) const {
     EnvironmentSettings s;
     s.ingest = ingest;
     s.calibration = settings();
     s.sun = extractSun ? SunExtraction::Required : SunExtraction::Keep;
     s.sunMaxSolidAngle = sunMaxSolidAngle;
-    s.keepCubeWithSun = keepCubeWithSun;
     return s;
 }
 
@@ -99,20 +95,6 @@ Error withFlag(const SettingError& error, const CalibrationOptions& calibration)
     // The source's own flag: --scale, --ev100, --illuminance, --sun-illuminance, --sky-luminance.
     return Error(std::string("--") + calibrationSourceName(calibration.settings().source) + ": " +
                  error.what());
-}
-
-PreparedEnvironment ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
-                                     int sourceFaceSize, bool keepCubeWithSun) {
-    PreparedEnvironment prepared;
-    try {
-        prepared = prepareEnvironment(
-            input.files(), calibration.environmentSettings(input.settings(sourceFaceSize), keepCubeWithSun));
-    } catch (const SettingError& e) {
-        throw withFlag(e, calibration);
-    }
-    std::printf("%s%s", ingestReportText(prepared.env.report).c_str(),
-                preparationText(prepared.record, prepared.sun).c_str());
-    return prepared;
 }
 
 EnvironmentJob environmentJob(const InputOptions& input, const CalibrationOptions& calibration,

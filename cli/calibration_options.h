@@ -1,8 +1,7 @@
 // Calibration options shared by the commands that read an HDRI (calibrate, specular, diffuse): one
 // calibration source, and the optional sun extraction. The preparation itself is the library's
-// (iblbake/baker/environment.h), and so are the flows that write the sun's light with --sun-json
-// (iblbake/baker/product_flows.h, product_writers.h writeSunProduct); these turn the options into its
-// settings and its errors into flag wording.
+// (iblbake/baker/environment.h), and so are the plans that write the sun's light with --sun-json
+// (iblbake/baker/product_plans.h); these turn the options into its settings and its errors into flag wording.
 #pragma once
 
 #include <iblbake/baker/calibration.h>
@@ -36,9 +35,8 @@ struct CalibrationOptions {
     void addTo(CLI::App& command);
     bool anySource() const;
     CalibrationSettings settings() const; // throws ibl::Error on > 1 source
-    // The library's settings: `ingest`, these options, and with keepCubeWithSun the calibrated cube from
-    // before the extraction (the specular chain's level 0).
-    EnvironmentSettings environmentSettings(const IngestSettings& ingest, bool keepCubeWithSun) const;
+    // The library's settings: `ingest` and these options.
+    EnvironmentSettings environmentSettings(const IngestSettings& ingest) const;
 };
 
 // A library error about one setting with the flag that set it in front, e.g. "--sun-illuminance:
@@ -54,10 +52,5 @@ EnvironmentJob environmentJob(const InputOptions& input, const CalibrationOption
 // runProductPlan, a calibration error named by its source's flag (withFlag).
 ProductRun runCalibrated(const ProductPlan& plan, const CalibrationOptions& calibration,
                          const std::function<const Executor*()>& executor);
-
-// prepareEnvironment of the input at `sourceFaceSize` with these options (errors withFlag), and prints the
-// input report, the calibration and the extracted sun. keepCubeWithSun: as environmentSettings'.
-PreparedEnvironment ingestCalibrated(const InputOptions& input, const CalibrationOptions& calibration,
-                                     int sourceFaceSize, bool keepCubeWithSun = false);
 
 } // namespace ibl::cli

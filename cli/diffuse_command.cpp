@@ -1,17 +1,16 @@
 // iblbake diffuse: HDRI in, L2 SH (radiance and pre-scaled irradiance) out as JSON, optionally a small
-// irradiance cube as KTX2. The flow is the library's (iblbake/baker/product_flows.h bakeDiffuseProducts);
-// this parses, prepares and prints.
+// irradiance cube as KTX2. The flow is the library's: the plan of a scene's environment, sun, diffuse and
+// irradiance stages (iblbake/baker/product_plans.h diffusePlan); this parses and prints.
 #include "calibration_options.h"
 #include "commands.h"
 #include "common_options.h"
 #include "input_options.h"
 
-#include <iblbake/baker/product_flows.h>
+#include <iblbake/baker/product_plans.h>
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
 #include <iblbake/ktx2/cube_profile.h>
 
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -45,9 +44,6 @@ struct DiffuseOptions {
 DiffuseJob DiffuseOptions::job() const {
     DiffuseJob job;
     const IrradianceMethod method = parseIrradianceMethod(irradianceMethod);
-    if (size < 1 || size > limits::kMaxFaceSize)
-        throw Error("--size: " + std::to_string(size) + " is not from 1 to " +
-                    std::to_string(limits::kMaxFaceSize));
     if (!irradianceCube.empty() && method == IrradianceMethod::Sampled && (size & (size - 1)) != 0)
         throw Error("--size: " + std::to_string(size) +
                     " is not a power of two (needed by --irradiance-method sampled)");
@@ -56,23 +52,17 @@ DiffuseJob DiffuseOptions::job() const {
     job.window.parameter = windowParam;
     if (windowParam && (job.window.automatic || job.window.window == ShWindow::None))
         throw Error("--window-param: needs --window sloan, hanning or lanczos");
-    job.requestedWindow = window;
-    job.rotateDegrees = input.rotateDegrees;
     job.document = output;
-    job.sunJson = calibration.sunJson;
     if (irradianceCube.empty()) return job;
     if (std::filesystem::absolute(irradianceCube) == std::filesystem::absolute(output))
         throw Error("--irradiance-cube: " + irradianceCube + " is also the JSON output");
-    IrradianceCubeJob& cube = job.cube.emplace();
-    cube.method = method;
-    cube.settings.faceSize = irradianceSize;
-    cube.settings.quality = parseQuality(quality);
-    cube.settings.samples = samples;
-    cube.formatName = format;
-    parseKtx2Format(format); // before any work
-    cube.clampToFormat = clampToFormat;
-    cube.profile = profile;
-    cube.file = irradianceCube;
+    job.cube = {
+        .method = method,
+        .settings = {.faceSize = irradianceSize, .samples = samples, .quality = parseQuality(quality)},
+        .format = format,
+        .clampToFormat = clampToFormat,
+        .profile = profile,
+        .file = irradianceCube};
     return job;
 }
 
@@ -120,31 +110,35 @@ Action addDiffuseCommand(CLI::App& app) {
         ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--size", o->size,
                     "face size of the source cube (power of two for --irradiance-method sampled)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(CLI::Range(1, limits::kMaxFaceSize));
     o->backend.addTo(*cmd);
     o->calibration.addTo(*cmd);
 
     return [o] {
         auto start = std::chrono::steady_clock::now();
-        DiffuseJob job = o->job();
-        checkDiffuseOutputs(job); // before the work; the files appear only when everything succeeded
+        const DiffuseJob job = o->job();
         // Only the sampled irradiance cube runs on the backend; the SH are projected on the CPU.
         const bool needsBackend = job.cube && job.cube->method == IrradianceMethod::Sampled;
+        const Backend backend = parseBackend(o->backend.backend);
         std::future<Executor> pendingExecutor;
-        if (needsBackend) pendingExecutor = o->backend.startExecutor();
-        const PreparedEnvironment input = ingestCalibrated(o->input, o->calibration, o->size);
-        const Executor executor = needsBackend ? pendingExecutor.get() : Executor::cpu();
-        job.ingestMilliseconds = millisecondsSince(start);
-
-        const DiffuseProducts products =
-            bakeDiffuseProducts(input, job, executor, [&](const char* stage, double ms) {
-                o->backend.printTiming(executor, stage, ms);
-            });
-        BackendOptions::storeBuiltKernels(executor);
-        std::printf("%s", diffuseProductsText(job, products, input.env.cube.faceSize).c_str());
+        if (needsBackend) pendingExecutor = o->backend.startExecutor(backend);
+        std::optional<Executor> executor;
+        const ProductPlan plan = diffusePlan(environmentJob(o->input, o->calibration, o->size), job,
+                                             needsBackend ? backendName(backend) : "none");
+        const ProductRun run = runCalibrated(plan, o->calibration, [&] {
+            return &executor.emplace(pendingExecutor.get()); // its set-up overlapped the ingest
+        });
+        std::printf("%s", environmentRunText(run).c_str());
+        if (executor) {
+            o->backend.printTiming(*executor, "irradiance-cube", 1000.0 * run.stageSeconds("irradiance"));
+            BackendOptions::storeBuiltKernels(*executor);
+        }
+        std::printf("%s", diffuseRunText(plan, run).c_str());
         std::printf("time    ingest %.1f ms, sh %.1f ms, cube %.1f ms (%s), total %.1f ms\n",
-                    job.ingestMilliseconds, products.shMilliseconds, products.cubeMilliseconds,
-                    executor.description().c_str(), millisecondsSince(start));
+                    1000.0 * (run.stageSeconds("environment") + run.stageSeconds("sun")),
+                    1000.0 * run.stageSeconds("diffuse"), 1000.0 * run.stageSeconds("irradiance"),
+                    executor ? executor->description().c_str() : "cpu", millisecondsSince(start));
         return 0;
     };
 }

@@ -59,16 +59,9 @@ Action addGltfCommand(CLI::App& app) {
         } catch (const SettingError& e) {
             throw Error(flaggedMessage(e));
         }
-        const GltfExport& gltf = exported.gltf;
-        if (gltf.refilter)
-            std::printf("refilter %d levels %d..%d px, %s: %.1f ms\n", gltf.refilter->levels,
-                        gltf.baseFaceSize, gltf.lowestFaceSize, executor->description().c_str(),
-                        exported.refilterMilliseconds);
-        const GltfIblScene& scene = gltf.scene;
         if (executor) BackendOptions::storeBuiltKernels(*executor);
-        std::printf("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
-                    o->output.c_str(), scene.specular.levels.size(), scene.specular.levels.front().faceSize,
-                    gltfIblIntensity(scene), scene.sun ? ", sun as KHR_lights_punctual" : "");
+        std::printf("%s",
+                    gltfExportText(exported, o->output, executor ? executor->description() : "").c_str());
         std::printf("time    %.1f ms\n", millisecondsSince(start));
         return 0;
     };

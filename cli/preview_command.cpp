@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -83,26 +84,19 @@ Action addPreviewCommand(CLI::App& app) {
         if (o->lights) return previewLights(*o);
         if (!o->card.empty()) throw Error("preview: --card " + o->card + " needs --lights");
         if (o->bakeDir.empty()) throw Error("preview: a bake directory, or --lights");
-        const PreviewBake bake = loadPreviewBake(o->bakeDir);
-        std::optional<CubeMap> reference;
-        if (!o->reference.empty())
-            reference = previewReferenceCube(o->reference, bake.calibrationFactor,
-                                             int(bake.set.distantLd().layout.baseFaceSize),
-                                             parseLatLongPixels(o->latLongPixels));
-        Executor executor = o->backend.makeExecutor();
+        std::optional<Executor> executor;
         MaterialPreviewSettings settings;
         settings.sphereSize = o->sphereSize;
         settings.exposureEV = o->exposure;
         const fs::path exrPath = fs::path(o->output).replace_extension(".exr");
-        const MaterialPreview preview =
-            renderMaterialPreview(bake.set, bake.options, reference ? &*reference : nullptr, executor,
-                                  settings, o->output, exrPath);
-        BackendOptions::storeBuiltKernels(executor);
-        std::printf("wrote   %s (%d x %d) and %s (%s)\n", o->output.c_str(), preview.width, preview.height,
-                    exrPath.c_str(), executor.description().c_str());
-        std::printf("probe   LD chain of %u levels%s\n", bake.set.distantLd().layout.levelCount,
-                    bake.set.roughLayers().layerCount != 0 ? " and its rough layers" : "");
-        std::printf("%s", materialPreviewErrorText(preview).c_str());
+        const BakeDirectoryPreview p = previewBakeDirectory(
+            o->bakeDir, o->reference, parseLatLongPixels(o->latLongPixels),
+            [&]() -> const Executor& { return executor.emplace(o->backend.makeExecutor()); }, settings,
+            o->output, exrPath);
+        BackendOptions::storeBuiltKernels(*executor);
+        std::printf("wrote   %s (%d x %d) and %s (%s)\n", o->output.c_str(), p.preview.width,
+                    p.preview.height, exrPath.c_str(), executor->description().c_str());
+        std::printf("%s", p.text.c_str());
         std::printf("time    %.1f ms\n", millisecondsSince(start));
         return 0;
     };

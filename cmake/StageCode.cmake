@@ -55,7 +55,7 @@ set(IBLBAKE_STAGE_CODE_sun-in-probe stage_runner kernel_host ld_chain baker/src/
     baker/src/stages/sh_projection.cpp kernels/irradiance.cl baker/src/stages/irradiance.cpp
     baker/runtime/src kernels/runtime.cl)
 set(IBLBAKE_STAGE_CODE_specular-ld stage_runner kernel_host ld_chain)
-set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cpp)
+set(IBLBAKE_STAGE_CODE_diffuse-sh stage_runner baker/src/stages/sh_projection.cpp baker/src/stages/sh_window_text.cpp)
 set(IBLBAKE_STAGE_CODE_irradiance-cube stage_runner kernel_host kernels/irradiance.cl
     baker/src/stages/irradiance.cpp baker/src/stages/cube_pyramid.cpp baker/src/stages/bright_split.cpp)
 set(IBLBAKE_STAGE_CODE_probe-ld stage_runner kernel_host ingest ld_chain)
@@ -88,7 +88,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/product_plans.cpp baker/src/scene/product_run_text.cpp # a command's plan, its files' delivery, its report
     baker/src/batch baker/src/accuracy
     baker/src/light_preview # `iblbake preview --lights`: no stage renders it
-    baker/src/flows # the single-product commands' flows: their products' bytes are the writers' (products)
+    baker/src/flows # `iblbake inspect` and `calibrate`: no stage runs them
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes

@@ -6,6 +6,7 @@
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/core/numeric.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx2.h"
@@ -181,6 +182,21 @@ GltfExportSource gltfExportSourceIn(const fs::path& bakeDirectory) {
     GltfExportSource source{bakeDirectory / "specular.ktx2", bakeDirectory / "diffuse.json", std::nullopt};
     if (fs::exists(bakeDirectory / "sun.json")) source.sun = bakeDirectory / "sun.json";
     return source;
+}
+
+std::string gltfExportText(const GltfExported& exported, const std::filesystem::path& output,
+                           const std::string& executorDescription) {
+    const GltfExport& gltf = exported.gltf;
+    std::string text;
+    if (gltf.refilter)
+        text = formatText("refilter %d levels %d..%d px, %s: %.1f ms\n", gltf.refilter->levels,
+                          gltf.baseFaceSize, gltf.lowestFaceSize, executorDescription.c_str(),
+                          exported.refilterMilliseconds);
+    const GltfIblScene& scene = gltf.scene;
+    return text + formatText("wrote   %s: %zu levels of %d px faces as RGBD PNG (intensity %.6g)%s\n",
+                             output.string().c_str(), scene.specular.levels.size(),
+                             scene.specular.levels.front().faceSize, gltfIblIntensity(scene),
+                             scene.sun ? ", sun as KHR_lights_punctual" : "");
 }
 
 } // namespace ibl

@@ -7,6 +7,7 @@
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sun.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/runtime/runtime_manifest.h"
 #include "iblbake/scene/scene_plan.h"
@@ -87,6 +88,25 @@ CubeMap previewReferenceCube(const fs::path& file, double calibrationFactor, int
     SourceEnvironment env = ingestEnvironment({file}, ingest);
     applyCalibration(env.cube, calibrationFactor);
     return std::move(env.cube);
+}
+
+BakeDirectoryPreview
+previewBakeDirectory(const std::filesystem::path& bakeDirectory, const std::filesystem::path& referenceHdri,
+                     LatLongPixels latLongPixels, const std::function<const Executor&()>& executor,
+                     const MaterialPreviewSettings& settings, const std::filesystem::path& png,
+                     const std::filesystem::path& exr) {
+    const PreviewBake bake = loadPreviewBake(bakeDirectory);
+    std::optional<CubeMap> reference;
+    if (!referenceHdri.empty())
+        reference = previewReferenceCube(referenceHdri, bake.calibrationFactor,
+                                         int(bake.set.distantLd().layout.baseFaceSize), latLongPixels);
+    BakeDirectoryPreview out;
+    out.preview = renderMaterialPreview(bake.set, bake.options, reference ? &*reference : nullptr, executor(),
+                                        settings, png, exr);
+    out.text = formatText("probe   LD chain of %u levels%s\n", bake.set.distantLd().layout.levelCount,
+                          bake.set.roughLayers().layerCount != 0 ? " and its rough layers" : "") +
+               materialPreviewErrorText(out.preview);
+    return out;
 }
 
 } // namespace ibl

@@ -43,16 +43,13 @@ void writeDfgLutProduct(OutputSet& outputs, const ImageRGBA& lut, std::uint32_t 
     });
 }
 
-nlohmann::json writeDiffuseProduct(OutputSet& outputs, const DiffuseSH& sh,
-                                   const std::string& requestedWindow, const std::string& colorSpace,
-                                   const DiffuseSource& source, const CalibrationRecord& record,
-                                   const std::optional<DiskLight>& sun, const fs::path& file,
-                                   const nlohmann::json& extra) {
-    nlohmann::json document = diffuseDocument(sh, requestedWindow, colorSpace, source, record, sun);
-    if (extra.is_object()) document.update(extra);
+void writeDiffuseProduct(OutputSet& outputs, const DiffuseSH& sh, const std::string& requestedWindow,
+                         const std::string& colorSpace, const DiffuseSource& source,
+                         const CalibrationRecord& record, const std::optional<DiskLight>& sun,
+                         const fs::path& file) {
+    const nlohmann::json document = diffuseDocument(sh, requestedWindow, colorSpace, source, record, sun);
     outputs.writeFile(file,
                       [&](const fs::path& temporary) { writeFileBytes(temporary, document.dump(2) + '\n'); });
-    return document;
 }
 
 std::string writeSunProduct(OutputSet& outputs, const DiskLight& light, bool absolute, const fs::path& file) {

@@ -176,6 +176,36 @@ ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& j
     return p;
 }
 
+ProductPlan diffusePlan(const EnvironmentJob& environment, const DiffuseJob& job,
+                        const std::string& backend) {
+    ProductPlan p;
+    p.backend = backend;
+    addEnvironmentStages(environment, p.plan, p.files);
+    const std::string lightSource = environment.extractSun ? "sun" : "environment";
+    const ShWindowSettings& w = job.window;
+    PlanStage diffuse{"diffuse", "diffuse-sh", {lightSource}, {}, {}, {"diffuse.json"}, false, "the SH"};
+    diffuse.settings = {{"window", w.automatic ? "auto" : shWindowName(w.window)}};
+    if (w.parameter) diffuse.settings["windowParameter"] = *w.parameter;
+    p.plan.stages.push_back(std::move(diffuse));
+    p.files["diffuse.json"] = job.document;
+    if (!job.cube) return p;
+    const IrradianceCubeJob& c = *job.cube;
+    const bool sampled = c.method == IrradianceMethod::Sampled;
+    PlanStage cube{"irradiance", "irradiance-cube",   {lightSource}, {},
+                   {},           {"irradiance.ktx2"}, sampled,       "the irradiance cube"};
+    if (!sampled) cube.dependsOn.push_back("diffuse"); // evaluated from its SH
+    cube.settings = {{"method", irradianceMethodName(c.method)},
+                     {"faceSize", c.settings.faceSize},
+                     {"quality", qualityName(c.settings.quality)},
+                     {"samples", c.settings.samples},
+                     {"ktx2Format", c.format},
+                     {"clampToFormat", c.clampToFormat},
+                     {"profile", c.profile}};
+    p.plan.stages.push_back(std::move(cube));
+    p.files["irradiance.ktx2"] = c.file;
+    return p;
+}
+
 ProductPlan dfgPlan(const DfgSettings& settings, DfgLutFile container, const fs::path& file,
                     const std::string& backend) {
     ProductPlan p;

@@ -44,4 +44,22 @@ std::string specularRunText(const ProductPlan& plan, const ProductRun& run) {
     return text + storageText(layers, format, written.roughLayers->storage);
 }
 
+std::string diffuseRunText(const ProductPlan& plan, const ProductRun& run) {
+    std::string text = run.facts.at("diffuse").at(kShReportFile).at("text").get<std::string>();
+    const std::filesystem::path& document = plan.files.at("diffuse.json");
+    const auto cube = run.facts.find("irradiance");
+    if (cube == run.facts.end()) return text + formatText("wrote   %s\n", document.string().c_str());
+    const json& settings = plan.plan.stages.back().settings;
+    const std::string format = settings.at("ktx2Format").get<std::string>();
+    const json& report = cube->second.at(kIrradianceReportFile);
+    const std::filesystem::path& file = plan.files.at("irradiance.ktx2");
+    text += formatText("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
+                       settings.at("faceSize").get<int>(), settings.at("method").get<std::string>().c_str(),
+                       format.c_str(), 1000.0 * run.stageSeconds("irradiance"),
+                       report.at("clampedTexels").get<unsigned long long>(),
+                       report.at("shNegativeTexels").get<unsigned long long>());
+    text += storageText(file, format, productStorageFromJson(cube->second.at("storage.json")));
+    return text + formatText("wrote   %s and %s\n", document.string().c_str(), file.string().c_str());
+}
+
 } // namespace ibl

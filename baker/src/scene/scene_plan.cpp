@@ -246,10 +246,9 @@ Plan planScene(const Scene& scene) {
     // Diffuse is always needed (every material has a diffuse lobe); the cube only when the scene asks.
     if (o.irradianceCube) {
         PlanStage s{"irradiance", "irradiance-cube", {lightSource}, {}, {}, {"irradiance.ktx2"}, true, ""};
-        s.settings = {{"faceSize", o.irradianceFaceSize},
-                      {"quality", o.quality},
-                      {"ktx2Format", o.ktx2Format},
-                      {"clampToFormat", o.clampToFormat},
+        s.settings = {{"method", "sampled"},        {"faceSize", o.irradianceFaceSize},
+                      {"quality", o.quality},       {"samples", 0},
+                      {"ktx2Format", o.ktx2Format}, {"clampToFormat", o.clampToFormat},
                       {"profile", o.profile}};
         s.reason = "outputs.irradianceCube: diffuse from a cube of E/pi (sampled, bright texels exact)";
         plan.stages.push_back(std::move(s));

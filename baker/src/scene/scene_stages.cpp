@@ -22,6 +22,7 @@
 #include "iblbake/ktx2/ktx2.h"
 #include "iblbake/ktx2/output_set.h"
 #include "iblbake/runtime/runtime.h"
+#include "iblbake/scene/json_vec3.h"
 
 #include <nlohmann/json.hpp>
 
@@ -347,11 +348,20 @@ void runSpecular(const StageContext& c) {
     writeJsonFile(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
 }
 
+// The SH window a diffuse stage's settings name: "window" auto or a family, "windowParameter" when given.
+ShWindowSettings shWindowSettings(const json& s) {
+    ShWindowSettings window;
+    const std::string name = s.at("window").get<std::string>();
+    window.automatic = name == "auto";
+    if (!window.automatic) window.window = parseShWindow(name);
+    if (s.contains("windowParameter")) window.parameter = s.at("windowParameter").get<double>();
+    return window;
+}
+
 void runDiffuse(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
     const CubeMap cube = readCubeFile(from / kCubeFile);
     const CachedCalibration calibration = readCalibration(from);
-    const ShWindowSettings window; // auto: the weakest window that keeps E >= 0
     DiffuseSource source;
     if (calibration.document.contains("source")) {
         const json& in = calibration.document["source"];
@@ -364,35 +374,54 @@ void runDiffuse(const StageContext& c) {
         source.latLongPixels = latLongPixelsFromJson(in);
     }
     source.faceSize = cube.faceSize;
+    const DiffuseSH sh = bakeDiffuseSH(cube, shWindowSettings(c.stage.settings));
     OutputSet outputs;
-    writeDiffuseProduct(outputs, bakeDiffuseSH(cube, window), "auto", calibration.colorSpace(), source,
-                        calibration.record, calibration.sun, c.outputDirectory / "diffuse.json");
+    writeDiffuseProduct(outputs, sh, c.stage.settings.at("window").get<std::string>(),
+                        calibration.colorSpace(), source, calibration.record, calibration.sun,
+                        c.outputDirectory / "diffuse.json");
     outputs.commit();
+    writeJsonFile(c.outputDirectory / kShReportFile, {{"text", shWindowText(sh.window, cube.faceSize)}});
 }
 
-// The same writer as `iblbake diffuse --irradiance-cube` (product_flows.h bakeDiffuseProducts).
+// The irradiance cube (E/pi), sampled from the environment on the backend, or evaluated from the SH of the
+// diffuse stage it then depends on (its document's pre-scaled irradiance, read back exactly).
 void runIrradiance(const StageContext& c) {
     const json& s = c.stage.settings;
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
     const CachedCalibration calibration = readCalibration(from);
+    const IrradianceMethod method = parseIrradianceMethod(s.at("method").get<std::string>());
     IrradianceSettings settings;
     settings.faceSize = s.at("faceSize").get<int>();
     settings.quality = parseQuality(s.at("quality").get<std::string>());
-    settings.samples = irradianceSamplesFor(settings); // the preset's (irradiance.h)
+    settings.samples = s.at("samples").get<std::uint32_t>();
+    settings.samples = irradianceSamplesFor(settings); // 0: the preset's (irradiance.h)
     IrradianceCubeWriteSettings write;
-    write.methodText = irradianceMethodText(IrradianceMethod::Sampled, settings.samples);
+    write.methodText = irradianceMethodText(method, settings.samples);
     write.colorSpace = calibration.colorSpace();
     write.source = calibration.sourceFile();
     write.latLongPixels = calibration.latLongPixels();
     write.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
     write.clampToFormat = s.at("clampToFormat").get<bool>();
     write.profile = s.at("profile").get<std::string>();
+    std::uint64_t shNegativeTexels = 0;
+    CubeMap cube;
+    if (method == IrradianceMethod::Sampled) {
+        cube = bakeIrradianceCube(readCubeFile(from / kCubeFile), settings, *c.executor);
+    } else {
+        const json document = readJsonFile(c.dependencies.at("diffuse") / "diffuse.json");
+        ShRgb irradiance;
+        for (std::size_t i = 0; i < irradiance.size(); ++i)
+            irradiance[i] = vec3FromJson(document.at("sh").at("irradiance").at(i));
+        cube = irradianceCubeFromSH(irradiance, settings.faceSize, &shNegativeTexels);
+    }
     OutputSet outputs;
-    const StoredCube stored = writeIrradianceCubeProduct(
-        outputs, bakeIrradianceCube(readCubeFile(from / kCubeFile), settings, *c.executor), write,
-        calibration.record, calibration.sun, c.outputDirectory / "irradiance.ktx2");
+    const StoredCube stored =
+        writeIrradianceCubeProduct(outputs, std::move(cube), write, calibration.record, calibration.sun,
+                                   c.outputDirectory / "irradiance.ktx2");
     outputs.commit();
     writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(stored.storage));
+    writeJsonFile(c.outputDirectory / kIrradianceReportFile,
+                  {{"clampedTexels", stored.stats.clampedTexels}, {"shNegativeTexels", shNegativeTexels}});
 }
 
 void runProbe(const StageContext& c) {

@@ -54,6 +54,11 @@ GltfExported exportGltf(const GltfExportSource& source, const GltfExportSettings
                         const std::filesystem::path& output,
                         const std::function<const Executor&()>& executor);
 
+// `iblbake gltf`'s report of an export to `output`: the re-filter (on `executorDescription`) when there was
+// one, and the file written.
+std::string gltfExportText(const GltfExported& exported, const std::filesystem::path& output,
+                           const std::string& executorDescription);
+
 // A bake directory's files: specular.ktx2, diffuse.json, and sun.json when it is there.
 GltfExportSource gltfExportSourceIn(const std::filesystem::path& bakeDirectory);
 

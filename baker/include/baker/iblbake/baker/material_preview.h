@@ -13,6 +13,7 @@
 #include "iblbake/scene/scene.h"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -140,5 +141,20 @@ MaterialPreview renderMaterialPreview(const ProbeSet& set, const RuntimeOptions&
                                       const PreviewReference* reference, const Executor& executor,
                                       const MaterialPreviewSettings& settings,
                                       const std::filesystem::path& png, const std::filesystem::path& exr);
+
+// The flow of `iblbake preview BAKE_DIR [--reference HDRI]`: the bake's balls (loadPreviewBake), beside the
+// reference of `referenceHdri` (previewReferenceCube at the placement `latLongPixels`) unless it is empty,
+// written to `png` and `exr`; `executor` is asked for once the files have been read. `text`: the report's
+// lines after the files' (the probe, materialPreviewErrorText).
+struct BakeDirectoryPreview {
+    MaterialPreview preview;
+    std::string text;
+};
+BakeDirectoryPreview previewBakeDirectory(const std::filesystem::path& bakeDirectory,
+                                          const std::filesystem::path& referenceHdri,
+                                          LatLongPixels latLongPixels,
+                                          const std::function<const Executor&()>& executor,
+                                          const MaterialPreviewSettings& settings,
+                                          const std::filesystem::path& png, const std::filesystem::path& exr);
 
 } // namespace ibl

@@ -1,13 +1,16 @@
-// The single-product commands as plans (docs/architecture.md "One stage runner"): `iblbake specular` and
-// `iblbake dfg` build, in memory, the plan of the stages a scene runs for their product (environment, sun,
-// specular-ld; dfg-lut) with the command's settings, and run it through the scene's stage runner into a
-// private cache; the products are then delivered to the command's files, all of them or none.
+// The single-product commands as plans (docs/architecture.md "One stage runner"): `iblbake specular`,
+// `iblbake diffuse` and `iblbake dfg` build, in memory, the plan of the stages a scene runs for their
+// products (environment, sun, specular-ld; diffuse-sh, irradiance-cube; dfg-lut) with the command's settings,
+// and run it through the scene's stage runner into a private cache; the products are then delivered to the
+// command's files, all of them or none.
 #pragma once
 
 #include "iblbake/bake_state/bake_state.h"
 #include "iblbake/baker/calibration.h"
 #include "iblbake/baker/dfg_lut.h"
+#include "iblbake/baker/irradiance.h"
 #include "iblbake/baker/product_writers.h"
+#include "iblbake/baker/sh.h"
 #include "iblbake/baker/specular.h"
 #include "iblbake/opencl/executor.h"
 #include "iblbake/scene/scene_plan.h"
@@ -73,14 +76,33 @@ struct SpecularJob {
 ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& job,
                          const std::string& backend);
 
+// `iblbake diffuse`: the iblbake.diffuse document (the SH with the window asked for) and optionally the
+// irradiance cube, sampled (on the backend) or evaluated from the document's SH.
+struct IrradianceCubeJob {
+    IrradianceMethod method = IrradianceMethod::Sampled;
+    IrradianceSettings settings;
+    std::string format = "rgba16f"; // a name of ktx2.h kKtx2FormatNames
+    bool clampToFormat = false;
+    std::string profile = "standard";
+    std::filesystem::path file;
+};
+struct DiffuseJob {
+    ShWindowSettings window;
+    std::filesystem::path document;
+    std::optional<IrradianceCubeJob> cube;
+};
+ProductPlan diffusePlan(const EnvironmentJob& environment, const DiffuseJob& job, const std::string& backend);
+
 // `iblbake dfg`: the LUT as OpenEXR (half or float).
 ProductPlan dfgPlan(const DfgSettings& settings, DfgLutFile container, const std::filesystem::path& file,
                     const std::string& backend);
 
 // The lines a command prints of its run (docs/cli.md): its input (the environment stage's ingest report,
-// the calibration, the extracted sun), and the specular chain's levels and files.
+// the calibration, the extracted sun), the specular chain's levels and files, the SH window and the
+// irradiance cube.
 std::string environmentRunText(const ProductRun& run);
 std::string specularRunText(const ProductPlan& plan, const ProductRun& run);
+std::string diffuseRunText(const ProductPlan& plan, const ProductRun& run);
 
 // A command's views of the specular chain (`iblbake specular --exr, --preview`), products of its stage:
 // every level as OpenEXR in a directory, a tone-mapped PNG of every level.
@@ -92,5 +114,10 @@ inline constexpr const char* kChainReportFile = "chain_report.json";
 // Beside the environment stage's cube: the input file as given ("file") and its report as the commands print
 // it (inspect.h ingestReportText, "text").
 inline constexpr const char* kIngestReportFile = "ingest_report.json";
+// Beside the diffuse stage's document: the SH window's report as the commands print it (sh.h shWindowText,
+// "text"). Beside an irradiance cube: its texels clamped to the format and, evaluated from the SH, those
+// clamped at 0 ("clampedTexels", "shNegativeTexels").
+inline constexpr const char* kShReportFile = "sh_report.json";
+inline constexpr const char* kIrradianceReportFile = "irradiance_report.json";
 
 } // namespace ibl

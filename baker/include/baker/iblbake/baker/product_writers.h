@@ -81,13 +81,11 @@ void writeDfgLutProduct(OutputSet& outputs, const ImageRGBA& lut, std::uint32_t 
 // ---------------------------------------------------------------------------------------------------
 // JSON documents.
 
-// The iblbake.diffuse document (products.h diffuseDocument) with `extra`'s keys added at the top level
-// (`iblbake diffuse`: "timing", "irradianceCube"); returns the document written.
-nlohmann::json writeDiffuseProduct(OutputSet& outputs, const DiffuseSH& sh,
-                                   const std::string& requestedWindow, const std::string& colorSpace,
-                                   const DiffuseSource& source, const CalibrationRecord& record,
-                                   const std::optional<DiskLight>& sun, const std::filesystem::path& file,
-                                   const nlohmann::json& extra = {});
+// The iblbake.diffuse document (products.h diffuseDocument).
+void writeDiffuseProduct(OutputSet& outputs, const DiffuseSH& sh, const std::string& requestedWindow,
+                         const std::string& colorSpace, const DiffuseSource& source,
+                         const CalibrationRecord& record, const std::optional<DiskLight>& sun,
+                         const std::filesystem::path& file);
 
 // The extracted sun's disk light (products.h sunJson): in lux when the map is calibrated; returns the text.
 std::string writeSunProduct(OutputSet& outputs, const DiskLight& light, bool absolute,

@@ -164,9 +164,8 @@ struct DiffuseSource {
 // schema, schemaVersion, generator, source (with latlongPixels for a lat-long), colorSpace, units,
 // calibration (the record's keys without prefix, "sun", and "sunLight" as a light object when extracted),
 // directions, sh {order, coefficientCount, basis, basisOrder, clampedCosineFactors, window {..., requested},
-// minIrradiance, radianceUnwindowed, radiance, irradiance, irradianceOverPi and their conventions}. `iblbake
-// diffuse` adds "irradianceCube" and "timing" (what it ran); a scene bake writes the document as it is (its
-// bytes are a cache entry).
+// minIrradiance, radianceUnwindowed, radiance, irradiance, irradianceOverPi and their conventions}; the same
+// from `iblbake diffuse` and a scene bake (one stage writes it).
 nlohmann::json diffuseDocument(const DiffuseSH& sh, const std::string& requestedWindow,
                                const std::string& colorSpace, const DiffuseSource& source,
                                const CalibrationRecord& record, const std::optional<DiskLight>& sun);

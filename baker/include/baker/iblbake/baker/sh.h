@@ -97,4 +97,9 @@ struct DiffuseSH {
 
 DiffuseSH bakeDiffuseSH(const CubeMap& source, const ShWindowSettings& settings);
 
+// The SH window's report (`iblbake diffuse`): the window chosen, and the smallest irradiance before and
+// after it, per channel and as the worst channel's percentage of its mean; two lines, of SH projected from
+// `faceSize` px faces.
+std::string shWindowText(const ShWindowResult& window, int faceSize);
+
 } // namespace ibl
