@@ -63,8 +63,12 @@ std::map<std::string, json> entryFacts(const fs::path& entry) {
     return facts;
 }
 
-// The environment stage of a command's input (the scene's "environment" kind), and its sun stage.
-void addEnvironmentStages(const EnvironmentJob& e, Plan& plan, std::map<std::string, fs::path>& files) {
+// A plan that starts with the environment stage of a command's input (the scene's "environment" kind) and its
+// sun stage.
+ProductPlan environmentPlan(const EnvironmentJob& e, const std::string& backend) {
+    ProductPlan p;
+    p.backend = backend;
+    Plan& plan = p.plan;
     PlanStage environment{"environment", "environment", {}, {}, {}, {}, false, "ingest and calibrate"};
     for (std::size_t i = 0; i < e.files.size(); ++i)
         environment.inputs.push_back({"input[" + std::to_string(i) + "]", e.files[i]});
@@ -76,12 +80,13 @@ void addEnvironmentStages(const EnvironmentJob& e, Plan& plan, std::map<std::str
                             {"calibration", calibrationChoiceJson(e.calibration)},
                             {"faceSize", e.faceSize}};
     plan.stages.push_back(std::move(environment));
-    if (!e.extractSun) return;
+    if (!e.extractSun) return p;
     PlanStage sun{
         "sun",        "sun-extract", {"environment"},          {}, {{"sunMaxSolidAngle", e.sunMaxSolidAngle}},
         {"sun.json"}, false,         "the sun as a disk light"};
     plan.stages.push_back(std::move(sun));
-    if (!e.sunJson.empty()) files["sun.json"] = e.sunJson;
+    if (!e.sunJson.empty()) p.files["sun.json"] = e.sunJson;
+    return p;
 }
 
 } // namespace
@@ -130,9 +135,7 @@ ProductRun runProductPlan(const ProductPlan& plan, const std::function<const Exe
 
 ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& job,
                          const std::string& backend) {
-    ProductPlan p;
-    p.backend = backend;
-    addEnvironmentStages(environment, p.plan, p.files);
+    ProductPlan p = environmentPlan(environment, backend);
     const SpecularSettings& s = job.settings;
     PlanStage specular{"specular",
                        "specular-ld",
@@ -178,9 +181,7 @@ ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& j
 
 ProductPlan diffusePlan(const EnvironmentJob& environment, const DiffuseJob& job,
                         const std::string& backend) {
-    ProductPlan p;
-    p.backend = backend;
-    addEnvironmentStages(environment, p.plan, p.files);
+    ProductPlan p = environmentPlan(environment, backend);
     const std::string lightSource = environment.extractSun ? "sun" : "environment";
     const ShWindowSettings& w = job.window;
     PlanStage diffuse{"diffuse", "diffuse-sh", {lightSource}, {}, {}, {"diffuse.json"}, false, "the SH"};
