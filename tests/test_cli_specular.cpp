@@ -8,6 +8,7 @@
 
 #include <mip_mapping.h>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -143,14 +144,17 @@ TEST(CliSpecular, RoughLayersBesideTheChain) {
 
 // --profile three: the chain three.js r187 samples as is (docs/engines.md "three.js"): down to 8-px faces and
 // never fewer than 6 levels, level m of N holding the r that three's roughnessToMip, (N - 1) r (2 - r), maps
-// to m, named by the file (iblbake.roughnessMapping filament-lod, iblbake.levelRoughness).
+// to m, named by the file (iblbake.roughnessMapping filament-lod, iblbake.levelRoughness) and its --exr
+// levels.
 TEST(CliSpecular, ThreeProfileHoldsWhatThreeReadsAtEveryLevel) {
     fs::path dir = freshTempDir("specular_three");
     for (const auto& [size, levels] : {std::pair{256, 6}, std::pair{512, 7}, std::pair{64, 6}}) {
         const fs::path file = dir / ("three_" + std::to_string(size) + ".ktx2");
-        CliRun r = runCli("specular " + kSampleHdri + " --size " + std::to_string(size) +
-                          " --quality draft --backend cpu --profile three -o " + file.string());
-        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const fs::path exr = dir / ("levels_" + std::to_string(size));
+        CliRun run = runCli("specular " + kSampleHdri + " --size " + std::to_string(size) +
+                            " --quality draft --backend cpu --profile three -o " + file.string() + " --exr " +
+                            exr.string());
+        ASSERT_EQ(run.exitCode, 0) << run.err;
         const ibl::Ktx2Image ktx = ibl::readKtx2(file);
         EXPECT_EQ(ktx.levelCount, std::uint32_t(levels)) << size;
         EXPECT_EQ(ktx.keyValues.at("iblbake.profile"), "three");
@@ -163,6 +167,11 @@ TEST(CliSpecular, ThreeProfileHoldsWhatThreeReadsAtEveryLevel) {
         for (int m = 0; m < levels; ++m) {
             const double r = roughness[std::size_t(m)];
             EXPECT_NEAR((levels - 1) * r * (2.0 - r), m, 1e-5) << size << " level " << m;
+            // The --exr levels say the same.
+            auto in = OIIO::ImageInput::open((exr / ("level_" + std::to_string(m) + ".exr")).string());
+            ASSERT_TRUE(in) << size << " level " << m;
+            EXPECT_EQ(in->spec().get_string_attribute("iblbake:roughnessMapping"), "filament-lod");
+            EXPECT_NEAR(std::stod(in->spec().get_string_attribute("iblbake:levelRoughness")), r, 1e-6);
         }
     }
     fs::remove_all(dir);

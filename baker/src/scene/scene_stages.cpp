@@ -314,7 +314,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                             roughLayersFile ? *roughLayersFile : fs::path());
     // A command's extra views of the chain (`iblbake specular --exr, --preview`).
     if (s.value("exrLevels", false))
-        writeLdChainExrLevels(outputs, baked.chain, settings.mapping, c.outputDirectory / kLdExrDirectory);
+        writeLdChainExrLevels(outputs, baked.chain, write.product, c.outputDirectory / kLdExrDirectory);
     if (s.value("preview", false))
         outputs.writeFile(c.outputDirectory / kLdPreviewFile,
                           [&](const fs::path& temporary) { writeChainPreview(temporary, baked.chain); });
