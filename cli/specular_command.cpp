@@ -74,7 +74,8 @@ Action addSpecularCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
     cmd->add_option("--profile", o->profile,
-                    "cube layout for the engine: standard (OpenGL faces), three (three.js CubeTexture)")
+                    "chain for the engine: standard (OpenGL faces, --mip-mapping), three (what three.js r187 "
+                    "samples as is: mirrored in x, its roughnessToMip per level, down to 8 px)")
         ->capture_default_str()
         ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");

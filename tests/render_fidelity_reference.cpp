@@ -16,11 +16,19 @@
 // E(n.v, alpha) / E(1, alpha) (the directional albedo, the part a DFG term restores). Its error against the
 // reference is the split sum's own, which no cube can remove.
 //
-// Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json
+// With the optional last argument `three` (tests/js/three_fidelity.mjs), the pixels are three.js r187's: its
+// shader takes V = the projection's direction under an orthographic camera (lights_fragment_begin:
+// geometryViewDir = (0, 0, 1) in view space, here (0, 0, -1)), and it reads its cube not at R but at
+// D = normalize(mix(R, N, r^4)) (envmap_physical_pars_fragment getIBLRadiance), so the floor is the same
+// integral for the normal and view D times E(n.v) / E(1). three's camera at (0, 0, -3) looking along +z shows
+// world +x on the left, as the harness's mirrored columns expect.
+//
+// Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json [three]
 // Writes { pixels, maskRadius, faceSize, roughness: [...], spheres: [{ roughness, luminance: [per masked
-// pixel, rows bottom to top], splitSumLuminance [the same pixels], meanLuminance, errorEstimate (relative,
-// of the mean) }], dielectricSpheres: [the same without splitSumLuminance] }. The dielectric spheres: base
-// colour 1, metallic 0, f0 0.04, Lambert diffuse (base colour / pi, no (1 - F) weight), the same pixels.
+// pixel, rows bottom to top], splitSumLuminance [the same pixels], directionalAlbedo [E(n.v, alpha) of the
+// same pixels, the floor's factor over E(1, alpha)], meanLuminance, errorEstimate (relative, of the mean) }],
+// dielectricSpheres: [the same without splitSumLuminance] }. The dielectric spheres: base colour 1, metallic
+// 0, f0 0.04, Lambert diffuse (base colour / pi, no (1 - F) weight), the same pixels.
 #include <iblbake/baker/ingest.h>
 #include <iblbake/core/error.h>
 #include <iblbake/runtime/runtime_reference.h>
@@ -47,8 +55,10 @@ double luminance(const glm::dvec3& c) {
 } // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 6) {
-        std::fprintf(stderr, "usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json\n");
+    const bool three = argc == 7 && std::string(argv[6]) == "three";
+    if (argc != 6 && !three) {
+        std::fprintf(stderr,
+                     "usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json [three]\n");
         return 2;
     }
     try {
@@ -64,8 +74,10 @@ int main(int argc, char** argv) {
         options.energyCompensation = false;
         ibl::RuntimeOptions dielectricOptions = options;
         dielectricOptions.diffuse = true;
-        nlohmann::json out = {
-            {"pixels", pixels}, {"maskRadius", maskRadius}, {"faceSize", ingest.sourceFaceSize}};
+        nlohmann::json out = {{"pixels", pixels},
+                              {"maskRadius", maskRadius},
+                              {"faceSize", ingest.sourceFaceSize},
+                              {"engine", three ? "three" : "babylon"}};
         for (int step = 0; step <= 5; ++step) {
             const float roughness = float(step) / 5.0f;
             std::vector<ibl::ShadingPoint> points;
@@ -77,7 +89,8 @@ int main(int argc, char** argv) {
                     ibl::ShadingPoint p{};
                     p.normal = {float(x), float(y), float(-std::sqrt(1.0 - x * x - y * y))};
                     p.position = p.normal;
-                    p.view = glm::vec3(0.0f, 0.0f, -float(kEyeDistance)) - p.position;
+                    p.view = three ? glm::vec3(0.0f, 0.0f, -1.0f)
+                                   : glm::vec3(0.0f, 0.0f, -float(kEyeDistance)) - p.position;
                     p.baseColor = {1.0f, 1.0f, 1.0f};
                     p.metallic = 1.0f;
                     p.perceptualRoughness = roughness;
@@ -87,14 +100,16 @@ int main(int argc, char** argv) {
             const ibl::ConvergedReference reference =
                 ibl::renderConvergedReference(environment, points, options);
             std::vector<ibl::ShadingPoint> mirrored = points;
-            std::vector<double> albedoRatio;
+            std::vector<double> albedoRatio, albedo;
             const double alpha = std::max(double(roughness) * roughness, 1e-4);
             const double albedoAtNormalIncidence = ibl::directionalAlbedo(1.0, alpha, kAlbedoSamples);
             for (ibl::ShadingPoint& p : mirrored) {
                 const glm::dvec3 n = glm::dvec3(p.normal), v = glm::normalize(glm::dvec3(p.view));
-                const glm::dvec3 r = 2.0 * glm::dot(n, v) * n - v;
-                albedoRatio.push_back(ibl::directionalAlbedo(glm::dot(n, v), alpha, kAlbedoSamples) /
-                                      albedoAtNormalIncidence);
+                const glm::dvec3 mirror = 2.0 * glm::dot(n, v) * n - v;
+                const double bend = three ? std::pow(double(roughness), 4.0) : 0.0;
+                const glm::dvec3 r = glm::normalize(mirror + bend * (n - mirror));
+                albedo.push_back(ibl::directionalAlbedo(glm::dot(n, v), alpha, kAlbedoSamples));
+                albedoRatio.push_back(albedo.back() / albedoAtNormalIncidence);
                 p.normal = p.view = glm::vec3(r);
             }
             const ibl::ConvergedReference splitSum =
@@ -111,6 +126,7 @@ int main(int argc, char** argv) {
             out["spheres"].push_back({{"roughness", roughness},
                                       {"luminance", values},
                                       {"splitSumLuminance", floor},
+                                      {"directionalAlbedo", albedo},
                                       {"meanLuminance", sum / double(points.size())},
                                       {"errorEstimate", error / sum}});
             std::printf("reference r = %.1f: %zu pixels, mean luminance %.6g, estimated error %.4f%%\n",

@@ -8,11 +8,13 @@
 
 #include <mip_mapping.h>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -140,6 +142,41 @@ TEST(CliSpecular, RoughLayersBesideTheChain) {
     fs::remove_all(dir);
 }
 
+// --profile three: the chain three.js r187 samples as is (docs/engines.md "three.js"): down to 8-px faces and
+// never fewer than 6 levels, level m of N holding the r that three's roughnessToMip, (N - 1) r (2 - r), maps
+// to m, named by the file (iblbake.roughnessMapping filament-lod, iblbake.levelRoughness) and its --exr
+// levels.
+TEST(CliSpecular, ThreeProfileHoldsWhatThreeReadsAtEveryLevel) {
+    fs::path dir = freshTempDir("specular_three");
+    for (const auto& [size, levels] : {std::pair{256, 6}, std::pair{512, 7}, std::pair{64, 6}}) {
+        const fs::path file = dir / ("three_" + std::to_string(size) + ".ktx2");
+        const fs::path exr = dir / ("levels_" + std::to_string(size));
+        CliRun run = runCli("specular " + kSampleHdri + " --size " + std::to_string(size) +
+                            " --quality draft --backend cpu --profile three -o " + file.string() + " --exr " +
+                            exr.string());
+        ASSERT_EQ(run.exitCode, 0) << run.err;
+        const ibl::Ktx2Image ktx = ibl::readKtx2(file);
+        EXPECT_EQ(ktx.levelCount, std::uint32_t(levels)) << size;
+        EXPECT_EQ(ktx.keyValues.at("iblbake.profile"), "three");
+        EXPECT_EQ(ktx.keyValues.at("iblbake.roughnessMapping"), "filament-lod");
+        std::istringstream list(ktx.keyValues.at("iblbake.levelRoughness"));
+        std::vector<double> roughness;
+        for (std::string value; std::getline(list, value, ',');)
+            roughness.push_back(std::stod(value));
+        ASSERT_EQ(roughness.size(), std::size_t(levels)) << ktx.keyValues.at("iblbake.levelRoughness");
+        for (int m = 0; m < levels; ++m) {
+            const double r = roughness[std::size_t(m)];
+            EXPECT_NEAR((levels - 1) * r * (2.0 - r), m, 1e-5) << size << " level " << m;
+            // The --exr levels say the same.
+            auto in = OIIO::ImageInput::open((exr / ("level_" + std::to_string(m) + ".exr")).string());
+            ASSERT_TRUE(in) << size << " level " << m;
+            EXPECT_EQ(in->spec().get_string_attribute("iblbake:roughnessMapping"), "filament-lod");
+            EXPECT_NEAR(std::stod(in->spec().get_string_attribute("iblbake:levelRoughness")), r, 1e-6);
+        }
+    }
+    fs::remove_all(dir);
+}
+
 TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
     fs::path dir = freshTempDir("specular_bad");
     std::ofstream(dir / "notes.txt") << "this is not an image\n";
@@ -153,6 +190,7 @@ TEST(CliSpecular, BadInputIsOneLineNonZeroAndWritesNothing) {
         {"specular " + kSampleHdri + " --quality ultra" + out, "--quality"},
         {"specular " + kSampleHdri + " --layout hexagon" + out, "--layout: 'hexagon'"},
         {"specular " + kSampleHdri + " --size 8 -o /nonexistent-dir/env.ktx2", "/nonexistent-dir/env.ktx2"},
+        {"specular " + kSampleHdri + " --size 64 --profile three --levels 3" + out, "--levels"},
         {"specular " + kSampleHdri + " --size 8" + out + " --rough-layers /nonexistent-dir/rough.ktx2",
          "/nonexistent-dir/rough.ktx2"},
     };

@@ -351,6 +351,32 @@ TEST_F(IndependentParser, BabylonRendersTheGltfAsTheReference) {
     fs::remove_all(dir);
 }
 
+// What three.js r187 shows with our `--profile three` chain through iblbakeCubeLoader.js (a PMREM texture it
+// samples as is): white metal and dielectric spheres against the converged brute-force GGX reference of the
+// same pixels in three's view (render_fidelity_reference ... three), beside three's own PMREMGenerator of the
+// HDRI and the split-sum floor at three's read direction. tests/js/three_fidelity.mjs --check holds the
+// limits (docs/engines.md "Render fidelity in three.js").
+TEST_F(IndependentParser, ThreeRendersTheProfileAsTheReference) {
+    if (!chromiumFound()) GTEST_SKIP() << "headless Chromium was not found (.ci/install-deps installs it)";
+    const fs::path hdri = fs::path(IBLBAKE_SHARED_DIR) / "data" / "hdri" / "potsdamer_platz_1k.hdr";
+    ASSERT_TRUE(fs::exists(hdri)) << hdri;
+    const fs::path dir = ibl::test::freshTempDir("three_fidelity");
+    CliRun specular = runCli("specular " + hdri.string() + " --size 256 --profile three -o " +
+                             (dir / "specular.ktx2").string());
+    ASSERT_EQ(specular.exitCode, 0) << specular.err;
+    const std::string reference = (dir / "reference.json").string();
+    const std::string command = std::string(IBLBAKE_FIDELITY_REFERENCE) + " " + hdri.string() +
+                                " 128 32 0.9 " + reference + " three > " + (dir / "reference.log").string() +
+                                " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    NodeRun r = runNode("three_fidelity.mjs", (dir / "specular.ktx2").string() + " " + reference + " " +
+                                                  hdri.string() + " " + IBLBAKE_SOURCE_DIR +
+                                                  "/baker/runtime/js " + IBLBAKE_SCREENSHOT_DIR + " --check");
+    std::printf("%s", r.out.c_str());
+    EXPECT_EQ(r.exitCode, 0) << r.out;
+    fs::remove_all(dir);
+}
+
 // three.js r187 shows a `--profile three` cube (and a standard one, through the loader helper) unmirrored:
 // the sun within 2 degrees in scene.background and on a PMREM mirror sphere, sky above the horizon; a
 // standard cube built into a texture as stored shows the sun mirrored in x.

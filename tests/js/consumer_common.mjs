@@ -154,7 +154,7 @@ export function reflection(view, px, py) {
   return [d[0] - k * p[0], d[1] - k * p[1], d[2] - k * p[2]];
 }
 // --- Our files -----------------------------------------------------------------------------------
-function halfToFloat(h) {
+export function halfToFloat(h) {
   const sign = h & 0x8000 ? -1 : 1, exponent = (h >> 10) & 0x1f, mantissa = h & 0x3ff;
   if (exponent === 0) return sign * mantissa * 2 ** -24;
   if (exponent === 31) return mantissa ? NaN : sign * Infinity;

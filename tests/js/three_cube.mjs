@@ -1,6 +1,7 @@
 // Our cube KTX2 in three.js r187 (headless Chromium) through three's cube-texture path, loaded with the
 // shipped helper baker/runtime/js/iblbakeCubeLoader.js: the brightest spot of scene.background and of a
-// mirror sphere (PMREMGenerator -> MeshStandardMaterial.envMap) against the sun, sky above the horizon;
+// mirror sphere (MeshStandardMaterial.envMap: the --profile three chain as the PMREM texture the helper
+// returns, a standard cube through PMREMGenerator) against the sun, sky above the horizon;
 // and, to show what the profile fixes, a standard file built into a texture as stored (mirrored in x).
 // Usage: node three_cube.mjs THREE_PROFILE.ktx2 STANDARD.ktx2 SUN.json RUNTIME_JS_DIR ARTIFACT_DIR
 // Prints every measurement, "ok" / "FAIL" lines and the screenshots' paths; exits 1 on a failure.
@@ -35,7 +36,7 @@ try {
     const t = await page.evaluate((options) => window.runThree(options),
                                   { url: `${server.url}${run.url}`, asStored: !!run.asStored, towardSun, mirrorCamera, fov: 34, size: 256 });
     console.log(`three.js r${t.threeRevision}, ${run.name}: iblbake.profile ${t.profile}, CubeTexture ${t.isCubeTexture}, ` +
-                `${t.images} faces, ${t.mipLevels} mip levels`);
+                `PMREM texture ${t.isPMREMTexture}, ${t.images} faces, ${t.mipLevels} mip levels`);
     const sky = brightestSpot(pixelSamples(t.sunView, (x, y) => unproject(t.sunView, x, y)));
     const mirror = brightestSpot(pixelSamples(t.mirrorView, (x, y) => reflection(t.mirrorView, x, y)));
     run.angles = { sky: angleDegrees(sky.direction, towardSun), mirror: angleDegrees(mirror.direction, towardSun),
@@ -63,6 +64,9 @@ try {
       console.log(`  screenshot ${file}`);
     }
     if (!run.asStored) check(t.isCubeTexture && t.images === 6, `${run.name}: a cube texture of 6 faces`);
+    if (!run.asStored)
+      check(t.isPMREMTexture === (t.profile === 'three'),
+            `${run.name}: ${t.profile === 'three' ? 'a PMREM texture three uses as is' : 'a cube three re-filters'}`);
   }
 } finally {
   await browser.close();

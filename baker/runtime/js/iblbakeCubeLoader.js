@@ -4,10 +4,14 @@
 // as a 2D texture (its cube branch is for block-compressed formats), hence this helper.
 //
 //   import { loadIblbakeCube } from './iblbakeCubeLoader.js';
-//   const { texture, intensity } = await loadIblbakeCube('specular.ktx2');
-//   scene.background = texture;            scene.backgroundIntensity = intensity;
+//   const { texture, intensity } = await loadIblbakeCube('specular.ktx2'); // `iblbake specular --profile three`
 //   scene.environment = texture;           scene.environmentIntensity = intensity;
-//   // or: material.envMap = new THREE.PMREMGenerator(renderer).fromCubemap(texture).texture;
+//
+// A chain baked with `--profile three` (iblbake.roughnessMapping "filament-lod") holds at level m of N the
+// roughness three r187's shader reads there (roughnessToMip: lod = (N - 1) r (2 - r)), down to 8-px faces as
+// PMREMGenerator's: the texture is marked `isPMREMTexture`, so three samples it as is (WebGLEnvironments)
+// instead of re-filtering it. Any other file (a standard chain, an irradiance cube) is a plain cube texture,
+// which three's PMREMGenerator re-filters when it is used as an environment (or shown as scene.background).
 //
 // three samples a cube texture at (-x, y, z) of the world direction (flipEnvMap = -1), so a file baked with
 // `--profile three` (key iblbake.profile = "three") is stored mirrored in x and is used as stored; a
@@ -87,6 +91,7 @@ export async function loadIblbakeCube(url) {
   const storageScale = Number(parsed.keyValues['iblbake.storageScale'] ?? 1);
   if (!(storageScale > 0)) throw new Error(`${url}: iblbake.storageScale ${parsed.keyValues['iblbake.storageScale']} is not positive`);
   const texture = cubeTextureFromLevels(parsed);
+  texture.isPMREMTexture = parsed.keyValues['iblbake.roughnessMapping'] === 'filament-lod';
   texture.name = url;
   texture.userData.iblbake = { profile, storageScale, keyValues: parsed.keyValues };
   return { texture, intensity: 1 / storageScale, storageScale, profile, keyValues: parsed.keyValues };

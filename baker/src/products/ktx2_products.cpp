@@ -1,6 +1,7 @@
 // KTX2 key/values of the LD chains, the irradiance cube and the DFG LUT (iblbake/baker/products.h).
 #include "iblbake/baker/products.h"
 #include "iblbake/core/error.h"
+#include "iblbake/ktx2/cube_profile.h"
 
 namespace ibl {
 
@@ -37,12 +38,21 @@ Ktx2KeyValues dfgLutMetadata(const std::string& prefix, const std::string& rowWo
 
 Ktx2KeyValues ldChainKeyValues(const LdChainProduct& c, const CalibrationRecord& record,
                                const std::optional<DiskLight>& sun) {
-    Ktx2KeyValues kv = {{"iblbake.product", c.product},
-                        {"iblbake.roughnessMapping", mipMappingName(c.mapping)},
-                        {"iblbake.roughnessMappingMeaning", mipMappingMeaning(c.mapping)},
-                        {"iblbake.levelCount", std::to_string(c.levelCount)},
-                        {"iblbake.colorSpace", c.colorSpace},
-                        {"iblbake.settings", c.settings}};
+    const bool engineLevels = !c.levelRoughness.empty(); // the levels follow an engine profile's rule
+    Ktx2KeyValues kv = {
+        {"iblbake.product", c.product},
+        {"iblbake.roughnessMapping", engineLevels ? kFilamentLodRuleName : mipMappingName(c.mapping)},
+        {"iblbake.roughnessMappingMeaning",
+         engineLevels ? kFilamentLodRuleMeaning : mipMappingMeaning(c.mapping)},
+        {"iblbake.levelCount", std::to_string(c.levelCount)},
+        {"iblbake.colorSpace", c.colorSpace},
+        {"iblbake.settings", c.settings}};
+    if (engineLevels) {
+        std::string list;
+        for (std::size_t m = 0; m < c.levelRoughness.size(); ++m)
+            list += (m ? ", " : "") + nlohmann::json(c.levelRoughness[m]).dump();
+        kv.emplace_back("iblbake.levelRoughness", list);
+    }
     if (c.integratedLevels) kv.emplace_back("iblbake.integratedLevels", std::to_string(*c.integratedLevels));
     if (c.source) kv.emplace_back("iblbake.source", *c.source);
     for (auto& entry : latLongPixelsKeyValues(c.latLongPixels))

@@ -5,6 +5,8 @@
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/runtime/runtime.h"
 
+#include <nlohmann/json.hpp>
+
 namespace ibl {
 
 namespace fs = std::filesystem;
@@ -42,8 +44,9 @@ LdChainWritten writeLdChainProduct(OutputSet& outputs, SpecularWithRoughLayers& 
     return written;
 }
 
-void writeLdChainExrLevels(OutputSet& outputs, const CubeMapChain& chain, MipMapping mapping,
+void writeLdChainExrLevels(OutputSet& outputs, const CubeMapChain& chain, const LdChainProduct& product,
                            const fs::path& directory) {
+    const bool engineLevels = !product.levelRoughness.empty();
     outputs.writeDirectory(directory, [&](const fs::path& temporary) {
         for (std::size_t m = 0; m < chain.levels.size(); ++m) {
             const CubeMap& level = chain.levels[m];
@@ -57,8 +60,13 @@ void writeLdChainExrLevels(OutputSet& outputs, const CubeMapChain& chain, MipMap
             exr.attributes = {
                 {"iblbake:layout", "horizontal strip +X,-X,+Y,-Y,+Z,-Z, OpenGL face orientation"},
                 {"iblbake:level", std::to_string(m)},
-                {"iblbake:roughnessMapping", mipMappingName(mapping)},
-                {"iblbake:roughnessMappingMeaning", mipMappingMeaning(mapping)}};
+                {"iblbake:roughnessMapping",
+                 engineLevels ? kFilamentLodRuleName : mipMappingName(product.mapping)},
+                {"iblbake:roughnessMappingMeaning",
+                 engineLevels ? kFilamentLodRuleMeaning : mipMappingMeaning(product.mapping)}};
+            if (engineLevels)
+                exr.attributes.emplace_back("iblbake:levelRoughness",
+                                            nlohmann::json(product.levelRoughness.at(m)).dump());
             writeExr(temporary / ("level_" + std::to_string(m) + ".exr"), strip, exr);
         }
     });

@@ -3,6 +3,7 @@
 
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/atomic_file.h"
+#include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/output_set.h"
 #include "scene_stages.h"
 #include "stage_cache.h"
@@ -147,9 +148,16 @@ ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& j
                        "the LD chain"};
     // Level 0 keeps the sun's pixels where the format holds them: the cube from before the extraction too.
     if (environment.extractSun) specular.dependsOn.push_back("environment");
+    // An engine profile with its own level rule (three: FilamentLod) fixes the chain's length and roughness.
+    const EngineProfile& engine = engineProfile(job.profile);
+    if (engine.levelRule != LevelRule::Baked && s.levels > 0)
+        throw SettingError("levels", "the " + job.profile + " profile's chain runs down to " +
+                                         std::to_string(engine.smallestFace) +
+                                         "-px faces; leave --levels out");
     specular.settings = {
         {"faceSize", environment.faceSize},
-        {"levels", levelCountFor(environment.faceSize, s)},
+        {"levels", engine.levelRule == LevelRule::Baked ? levelCountFor(environment.faceSize, s)
+                                                        : engineLevelCount(engine, environment.faceSize)},
         {"mipMapping", mipMappingName(s.mapping)},
         {"quality", qualityName(s.quality)},
         {"samples", s.samples},
@@ -162,6 +170,7 @@ ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& j
         {"roughLayers", job.roughLayers.empty() ? json::array() : json(roughLayerRoughnessValues())},
         {"exrLevels", !job.exrDirectory.empty()},
         {"preview", !job.preview.empty()}};
+    if (engine.levelRule == LevelRule::FilamentLod) specular.settings["levelRule"] = kFilamentLodRuleName;
     p.files["specular.ktx2"] = job.chain;
     if (!job.roughLayers.empty()) {
         specular.products.push_back(kRoughLayersFile);

@@ -266,6 +266,13 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     settings.integratedLevels = s.value("integratedLevels", 0);
     settings.samples = s.value("samples", 0u);
     settings.lodBias = s.value("lodBias", settings.lodBias);
+    // `iblbake specular --profile three`: every level holds the roughness three.js reads there.
+    if (s.value("levelRule", "") == kFilamentLodRuleName) {
+        const EngineProfile& engine = engineProfile(s.at("profile").get<std::string>());
+        for (int m = 0; m < settings.levels; ++m)
+            settings.levelRoughness.push_back(
+                engineLevelRoughness(engine, m, settings.levels, s.at("faceSize").get<int>()));
+    }
     LdChainWriteSettings write;
     write.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());
     if (visibility && !ktx2::formatInfo(write.format).hasAlpha)
@@ -290,6 +297,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     write.product.product = product;
     write.product.mapping = settings.mapping;
     write.product.levelCount = int(baked.chain.levels.size());
+    write.product.levelRoughness = settings.levelRoughness;
     if (s.contains("integratedLevels")) write.product.integratedLevels = settings.integratedLevels;
     write.product.colorSpace = calibration.colorSpace();
     write.product.source = calibration.sourceFile();
@@ -307,7 +315,7 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                             roughLayersFile ? *roughLayersFile : fs::path());
     // A command's extra views of the chain (`iblbake specular --exr, --preview`).
     if (s.value("exrLevels", false))
-        writeLdChainExrLevels(outputs, baked.chain, settings.mapping, c.outputDirectory / kLdExrDirectory);
+        writeLdChainExrLevels(outputs, baked.chain, write.product, c.outputDirectory / kLdExrDirectory);
     if (s.value("preview", false))
         outputs.writeFile(c.outputDirectory / kLdPreviewFile,
                           [&](const fs::path& temporary) { writeChainPreview(temporary, baked.chain); });

@@ -101,8 +101,9 @@ void writeCalibratedEnvironment(OutputSet& outputs, const CalibratedImage& calib
                                 const std::filesystem::path& file);
 
 // One OpenEXR per level into `directory`: the six faces side by side in +X, -X, +Y, -Y, +Z, -Z order
-// (OpenGL orientation), named level_<m>.exr.
-void writeLdChainExrLevels(OutputSet& outputs, const CubeMapChain& chain, MipMapping mapping,
+// (OpenGL orientation), named level_<m>.exr, with the chain's roughness mapping (ldChainKeyValues': the
+// product's mapping, or filament-lod and the level's r when its levels follow an engine profile's rule).
+void writeLdChainExrLevels(OutputSet& outputs, const CubeMapChain& chain, const LdChainProduct& product,
                            const std::filesystem::path& directory);
 
 } // namespace ibl

@@ -80,8 +80,12 @@ struct LdChainProduct {
     bool sunInLevel0 = false;                   // specular.h keepSunInLevel0
     // With sunInLevel0: the detection limit the sun was extracted with (`iblbake gltf` finds it again).
     std::optional<double> sunMaxSolidAngle;
+    // An engine profile's own level rule (cube_profile.h FilamentLod), when the levels follow it instead of
+    // `mapping`: the perceptual roughness of every level (level 0: 0).
+    std::vector<float> levelRoughness;
 };
-// "iblbake.product", "iblbake.roughnessMapping" (mipMappingName: frostbite | linear),
+// "iblbake.product", "iblbake.roughnessMapping" (mipMappingName: frostbite | linear; with levelRoughness
+// the rule's name, filament-lod, and "iblbake.levelRoughness" the levels' roughness, comma-separated),
 // "iblbake.roughnessMappingMeaning" (mipMappingMeaning), "iblbake.levelCount", "iblbake.integratedLevels",
 // "iblbake.colorSpace", "iblbake.source", "iblbake.latlongPixels", "iblbake.settings", calibrationKeyValues,
 // "iblbake.sunInLevel0" = "true" and "iblbake.sunMaxSolidAngle" when level 0 kept the sun.
