@@ -73,9 +73,7 @@ Action addSpecularCommand(CLI::App& app) {
     cmd->add_option("--format", o->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
-    cmd->add_option("--profile", o->profile,
-                    "chain for the engine: standard (OpenGL faces, --mip-mapping), three (what three.js r187 "
-                    "samples as is: mirrored in x, its roughnessToMip per level, down to 8 px)")
+    cmd->add_option("--profile", o->profile, "standard (OpenGL faces) or three (three.js r187's own PMREM)")
         ->capture_default_str()
         ->check(CLI::IsMember(kCubeProfileNames));
     cmd->add_option("--exr", o->exrDir, "also write every level as OpenEXR into this directory");
