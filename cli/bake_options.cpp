@@ -7,13 +7,12 @@
 namespace ibl::cli {
 
 BakeOptions BakeRunOptions::bakeOptions() const {
-    BakeOptions options;
-    options.cacheDirectory = cache;
-    options.force = force;
-    options.backend = parseBackend(backend);
-    options.device = device;
-    options.warnings = &std::cerr;
-    return options;
+    return {.cacheDirectory = cache,
+            .force = force,
+            .backend = parseBackend(backend),
+            .device = device,
+            .warnings = &std::cerr,
+            .outputRoot = outputRoot};
 }
 
 void BakeRunOptions::addTo(CLI::App& command, const char* forceHelp, const char* cacheHelp) {
@@ -21,6 +20,8 @@ void BakeRunOptions::addTo(CLI::App& command, const char* forceHelp, const char*
     command.add_flag("--quiet", quiet, "no progress output (failures still go to stderr)");
     command.add_flag("--force", force, forceHelp);
     command.add_option("--cache", cache, cacheHelp);
+    command.add_option("--output-root", outputRoot, "write only below this directory (docs/scenes.md)")
+        ->envname("IBLBAKE_OUTPUT_ROOT");
     addBackendAndDevice(command, backend, device);
 }
 

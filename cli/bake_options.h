@@ -20,9 +20,10 @@ struct BakeRunOptions {
     std::string cache;
     std::string backend = "auto";
     std::string device;
+    std::string outputRoot; // --output-root, else $IBLBAKE_OUTPUT_ROOT
 
     BakeOptions bakeOptions() const; // warnings to stderr
-    // --json, --quiet, --force, --cache, --backend, --device on `command`.
+    // --json, --quiet, --force, --cache, --output-root, --backend, --device on `command`.
     void addTo(CLI::App& command, const char* forceHelp, const char* cacheHelp);
 };
 

@@ -84,13 +84,14 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/bake_summary.cpp baker/src/scene/bake_report.cpp baker/src/scene/console_progress.cpp
     baker/src/scene/content_hash.cpp baker/src/scene/scene_parse.cpp
     baker/src/scene/scene_plan.cpp baker/src/scene/stage_keys.cpp baker/src/scene/stage_keys.h
-    baker/src/scene/up_to_date.cpp
+    baker/src/scene/up_to_date.cpp baker/src/scene/output_root_check.cpp
     baker/src/scene/product_plans.cpp baker/src/scene/product_run_text.cpp # a command's plan, its files' delivery, its report
     baker/src/batch baker/src/accuracy
     baker/src/light_preview # `iblbake preview --lights`: no stage renders it
     baker/src/flows # `iblbake inspect` and `calibrate`: no stage runs them
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
+    baker/src/io/output_root.cpp # where outputs may go, decides no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
     baker/src/io/shipped_file.cpp baker/src/io/shipped_file.h # where shipped files are, not what they hold
     baker/src/io/process_memory.cpp # where freed memory goes, decides no bytes

@@ -91,6 +91,7 @@ BatchItem parseItem(const json& v, std::size_t index, const std::string& name, c
                            " leaves the manifest's directory: a relative output must stay inside it "
                            "(an absolute path may name any)");
             item.output = resolve(output, base);
+            item.outputAbsolute = fs::path(output).is_absolute();
         } else {
             item.output = base / item.hdri.stem();
         }
@@ -166,6 +167,7 @@ Scene batchItemScene(const BatchManifest& manifest, const BatchItem& item) {
     scene.name = manifest.name + ": " + item.keyPath;
     scene.environment.files = {item.hdri};
     scene.outputs.directory = item.output;
+    scene.outputs.directoryAbsolute = item.outputAbsolute;
     scene.outputs.quality = item.preset;
     scene.outputs.faceSize = item.faceSize;
     scene.outputs.probeFaceSize = item.faceSize;

@@ -50,7 +50,17 @@ class BatchRun {
     BatchRun(const BatchManifest& manifest, const Shard& shard, const BatchRunOptions& options,
              const BatchBakeFunction& bake, BatchObserver& observer, const KnownUpToDate& known)
         : manifest_(manifest), shard_(shard), options_(options), bake_(bake), observer_(observer),
-          known_(known) {
+          known_(known), summaryTarget_(options.summaryFile) {
+        // Below an output root the summary is confined as the items' outputs are: it must lie below the root,
+        // and is written through its directory opened from the root without following links.
+        if (!options.bake.outputRoot.empty()) try {
+                root_.emplace(options.bake.outputRoot);
+                const fs::path relative = root_->below(options.summaryFile);
+                std::vector<fs::path> created;
+                summaryTarget_ = root_->openDirectory(relative.parent_path(), created) / relative.filename();
+            } catch (const OutputError& e) {
+                throw OutputError(std::string("the batch summary: ") + e.what());
+            }
         summary_.manifest = manifest.name;
         summary_.shard = shard;
         summary_.jobs = options.jobs;
@@ -147,7 +157,7 @@ class BatchRun {
         summary_.complete = complete;
         summary_.ok = complete && summary_.count(BatchItemStatus::Failed) == 0;
         summary_.seconds = secondsSince(start_);
-        AtomicFile file(options_.summaryFile);
+        AtomicFile file(summaryTarget_);
         writeFileBytes(file.tempPath(), batchSummaryJson(summary_).dump(2) + '\n',
                        options_.summaryFile.string());
         file.commit();
@@ -159,6 +169,8 @@ class BatchRun {
     const BatchBakeFunction& bake_;
     BatchObserver& observer_;
     const KnownUpToDate& known_;
+    std::optional<OutputRoot> root_;
+    fs::path summaryTarget_; // the summary file, or below an output root the path it is written through
     const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
     std::mutex mutex_; // guards summary_ and the summary file
     BatchSummary summary_;

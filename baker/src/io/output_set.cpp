@@ -43,6 +43,15 @@ void OutputSet::createDirectories(const fs::path& directory, const std::string& 
         throw OutputError(what + ": " + directory.string() + ": is not a directory");
 }
 
+fs::path OutputSet::createDirectoriesBelow(OutputRoot& root, const fs::path& relative,
+                                           const std::string& what) {
+    try {
+        return root.openDirectory(relative, createdDirectories_);
+    } catch (const OutputError& e) {
+        throw OutputError(what + ": " + e.what());
+    }
+}
+
 void OutputSet::run(const Staged& staged, const std::function<void(const fs::path&)>& write) {
     const std::string temporary = staged.temporary.string(), target = staged.target.string();
     try {

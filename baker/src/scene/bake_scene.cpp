@@ -27,6 +27,19 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A path that messages show as another: below an output root, the /proc/self/fd path a bake writes through
+// is shown as the scene's output directory.
+struct ShownPath {
+    std::string path, shownAs;
+    std::string shown(std::string text) const {
+        if (path.empty()) return text;
+        for (std::size_t at = text.find(path); at != std::string::npos;
+             at = text.find(path, at + shownAs.size()))
+            text.replace(at, path.size(), shownAs);
+        return text;
+    }
+};
+
 bool needsBackend(const Plan& plan) {
     for (const PlanStage& s : plan.stages)
         if (s.usesBackend) return true;
@@ -59,7 +72,8 @@ void checkOutputPaths(const Scene& scene, const Plan& plan) {
 // left alone) and returns their hashes; `outputs` moves them into place on commit.
 std::map<std::string, std::string> stageProducts(const Plan& plan,
                                                  const std::map<std::string, fs::path>& entries,
-                                                 const fs::path& outputDirectory, OutputSet& outputs,
+                                                 const fs::path& outputDirectory,
+                                                 const fs::path& shownDirectory, OutputSet& outputs,
                                                  BakeSummary& summary) {
     std::map<std::string, std::string> hashes;
     for (const PlanStage& stage : plan.stages)
@@ -76,7 +90,7 @@ std::map<std::string, std::string> stageProducts(const Plan& plan,
             if (!same)
                 outputs.writeFile(to, [&](const fs::path& temporary) { copyProductFile(from, temporary); });
             hashes[product] = hash;
-            summary.products.push_back(to);
+            summary.products.push_back(shownDirectory / product);
         }
     return hashes;
 }
@@ -95,6 +109,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
     for (const PlanStage& s : plan.stages)
         summary.stages.push_back({s.id, s.kind, StageStatus::Pending, "", 0.0, s.products});
     std::size_t current = 0;
+    ShownPath shownPath; // below an output root: the opened directory's path, as the scene names it
     try {
         checkOutputPaths(scene, plan);
         // Every input is read (hashed) before anything is written: a missing file fails the bake here.
@@ -117,8 +132,17 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
 
         // Declared first, destroyed last: the staged entries are gone before it removes the directories it
         // made.
+        std::optional<OutputRoot> root;
         OutputSet outputs;
-        const fs::path outputDirectory = scene.outputs.directory;
+        // Where the bake writes: the scene's directory, or below an output root the path that names the
+        // directory opened from the root without following links (reported as the scene's directory).
+        fs::path outputDirectory = scene.outputs.directory;
+        if (!options.outputRoot.empty()) {
+            root.emplace(options.outputRoot);
+            outputDirectory = outputs.createDirectoriesBelow(*root, outputDirectoryBelowRoot(scene, *root),
+                                                             scene.name + ": outputs.directory");
+            shownPath = {outputDirectory.string(), scene.outputs.directory.string()};
+        }
         const fs::path cacheDirectory =
             options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache" : options.cacheDirectory;
         outputs.createDirectories(cacheDirectory, scene.name + ": cache");
@@ -142,7 +166,8 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         ManifestInputs manifest{scene, plan, entries, keys, {}, summary.backend};
         const fs::path manifestPath = outputDirectory / "manifest.json";
         try {
-            manifest.productHashes = stageProducts(plan, entries, outputDirectory, outputs, summary);
+            manifest.productHashes =
+                stageProducts(plan, entries, outputDirectory, scene.outputs.directory, outputs, summary);
             const nlohmann::json document = buildManifest(manifest);
             summary.storage = storedProductsFromManifest(document);
             outputs.writeFile(manifestPath, [&](const fs::path& temporary) {
@@ -157,13 +182,13 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             throw OutputError(scene.name + ": " + e.what());
         }
         if (executor && executor->usesOpenCL()) executor->cl().storeProgramBinaries();
-        summary.products.push_back(manifestPath);
-        summary.manifest = manifestPath;
+        summary.products.push_back(scene.outputs.directory / "manifest.json");
+        summary.manifest = scene.outputs.directory / "manifest.json";
         summary.ok = true;
         addManifestReport(summary);
     } catch (const std::exception& e) { // ibl::Error, and anything a library throws: one line, no crash
         summary.ok = false;
-        summary.error = e.what();
+        summary.error = shownPath.shown(e.what());
         if (current < summary.stages.size() && summary.stages[current].status == StageStatus::Pending &&
             !summary.stages[current].key.empty())
             summary.stages[current].status = StageStatus::Failed;
@@ -177,6 +202,15 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
 
 BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress) {
     const auto start = std::chrono::steady_clock::now();
+    if (!options.outputRoot.empty()) try { // refused before anything is read
+            outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
+        } catch (const Error& e) {
+            BakeSummary refused;
+            refused.error = e.what();
+            refused.seconds = secondsSince(start);
+            progress.done(refused);
+            return refused;
+        }
     const UpToDate checked = checkBakeUpToDate(scene, options); // "--force" when forced: never up to date
     if (checked.upToDate) return reportUpToDateBake(scene, checked, progress, start);
     return bakeStages(scene, options, progress, checked.inputHashes, start);

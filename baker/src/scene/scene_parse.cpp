@@ -426,6 +426,7 @@ SceneOutputs outputs(const json& v, const fs::path& base, const Fail& fail) {
                                      " leaves the scene's directory: a relative output directory must stay "
                                      "inside it (an absolute path may name any)");
     o.directory = resolve(directory, base);
+    o.directoryAbsolute = fs::path(directory).is_absolute();
     o.ktx2Format = r.choice("ktx2Format", "rgba16f", kKtx2FormatNames);
     o.profile = r.choice("profile", "standard", kCubeProfileNames);
     o.quality = r.choice("quality", "production", {"draft", "production", "reference"});

@@ -96,6 +96,9 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options) {
         out.reason = "--force";
     } else {
         try {
+            // Below an output root a scene that may not write where it names is not answered from its old
+            // bake: the bake refuses it.
+            if (!options.outputRoot.empty()) outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
             out.reason = check(scene, options, out);
         } catch (const std::exception& e) { // a missing product or input, a malformed manifest
             out.reason = e.what();

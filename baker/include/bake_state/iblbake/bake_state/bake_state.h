@@ -5,6 +5,7 @@
 #pragma once
 
 #include "iblbake/core/backend.h"
+#include "iblbake/core/output_root.h"
 #include "iblbake/scene/scene.h"
 #include "iblbake/scene/scene_plan.h"
 
@@ -24,6 +25,11 @@ struct BakeOptions {
     Backend backend = Backend::Auto;
     std::string device;               // OpenCL device selector (executor.h)
     std::ostream* warnings = nullptr; // backend warnings (e.g. the CPU fallback); nullptr = dropped
+    // Non-empty: the output root (docs/scenes.md "Confined output"): outputs.directory must be written as a
+    // relative path and lie below the root once links are resolved, and is reached from the root without
+    // following links when the bake writes (iblbake/core/output_root.h). The cache follows it unless
+    // cacheDirectory (the operator's) is given.
+    std::filesystem::path outputRoot;
 };
 
 enum class StageStatus { Pending, Ran, Cached, Failed };
@@ -107,7 +113,8 @@ class ProgressSink {
 // manifest.json parses, lists exactly the plan's stages with the keys the current inputs and settings give
 // (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
 // every product the plan names holds the bytes of the contentHash the manifest records. Reads the inputs
-// and products, never the cache; starts no backend and never throws.
+// and products, never the cache; starts no backend and never throws. Below an output root, a scene whose
+// outputs.directory the root refuses (outputDirectoryBelowRoot) is not up to date.
 struct UpToDate {
     bool upToDate = false;
     std::string reason;                          // why not (the first reason found)
@@ -120,6 +127,11 @@ struct UpToDate {
     std::map<std::string, std::string> inputHashes;
 };
 UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
+
+// Below an output root (BakeOptions::outputRoot): the scene's outputs.directory relative to the root. Throws
+// ibl::OutputError "<scene>: outputs.directory: <directory> is written as an absolute path ..." or "...:
+// <directory> is outside the output root <root> ..." before anything is read or written.
+std::filesystem::path outputDirectoryBelowRoot(const Scene& scene, const OutputRoot& root);
 
 // The summary of a bake found up to date, as bakeScene reports it: every stage of the plan cached, with its
 // key, no time spent in it; `progress` sees each stage start and end, then done. `start` is when the caller

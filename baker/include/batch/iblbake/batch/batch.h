@@ -23,6 +23,7 @@ struct BatchItem {
     // An HDRI item: baked as the default scene (specular, Lambert diffuse, no probes, relative units).
     std::filesystem::path hdri;
     std::filesystem::path output;      // default: <manifest dir>/<HDRI file stem>
+    bool outputAbsolute = false;       // written as an absolute path (refused below an output root)
     std::string preset = "production"; // draft, production, reference (outputs.quality)
     int faceSize = 256;                // outputs.faceSize
     bool isScene() const { return !sceneFile.empty(); }

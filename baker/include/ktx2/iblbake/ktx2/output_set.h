@@ -4,6 +4,8 @@
 // and every directory it created, so a failed command leaves the tree as it was.
 #pragma once
 
+#include "iblbake/core/output_root.h"
+
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -21,6 +23,12 @@ class OutputSet {
     // Creates `directory` and its missing parents, keeping them only if the set is committed. Throws
     // ibl::OutputError "<what>: <directory>: cannot create it: <reason>".
     void createDirectories(const std::filesystem::path& directory, const std::string& what);
+
+    // The same below an output root: `relative` (OutputRoot::below) opened from the root without following
+    // links (OutputRoot::openDirectory), the directories it makes kept only if the set is committed. Returns
+    // the path that names the opened directory (write below it). Throws ibl::OutputError "<what>: ...".
+    std::filesystem::path createDirectoriesBelow(OutputRoot& root, const std::filesystem::path& relative,
+                                                 const std::string& what);
 
     // Runs `write` on a temporary file beside `target` (same extension, so writers pick the same format);
     // an ibl::Error it throws is rethrown naming `target` instead of the temporary. The target is checked as

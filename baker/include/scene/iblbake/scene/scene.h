@@ -114,6 +114,7 @@ inline constexpr double kPreviewReferenceTargetError = 0.005;
 
 struct SceneOutputs {
     std::filesystem::path directory;
+    bool directoryAbsolute = false;       // written as an absolute path (refused below an output root)
     std::string ktx2Format = "rgba16f";   // rgba16f, rgba32f, b10g11r11, e5b9g9r9
     std::string profile = "standard";     // cube layout for the engine (iblbake/ktx2/cube_profile.h)
     std::string quality = "production";   // draft, production, reference

@@ -1,0 +1,20 @@
+// A scene's output directory below an output root (iblbake/bake_state/bake_state.h outputDirectoryBelowRoot).
+#include "iblbake/bake_state/bake_state.h"
+#include "iblbake/core/error.h"
+
+namespace ibl {
+
+std::filesystem::path outputDirectoryBelowRoot(const Scene& scene, const OutputRoot& root) {
+    const std::string key = scene.name + ": outputs.directory: ";
+    if (scene.outputs.directoryAbsolute)
+        throw OutputError(key + scene.outputs.directory.string() +
+                          " is written as an absolute path, which an output root refuses: name it relative "
+                          "to the scene");
+    try {
+        return root.below(scene.outputs.directory);
+    } catch (const OutputError& e) {
+        throw OutputError(key + e.what());
+    }
+}
+
+} // namespace ibl
