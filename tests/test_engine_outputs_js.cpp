@@ -2,7 +2,8 @@
 // every KTX2 iblbake writes through ktx-parse (tests/js/check_ktx2.mjs), and the glTF export through
 // Khronos' glTF-Validator (tests/js/validate_gltf.mjs); and the consumers users run, in headless Chromium:
 // the glTF in Babylon.js (tests/js/babylon_gltf.mjs), the cube KTX2 in three.js through the shipped loader
-// helper (tests/js/three_cube.mjs). Skipped, with the reason, without Node.js.
+// helper (tests/js/three_cube.mjs); the Filament export through Filament's own KTX1 reader
+// (tests/js/check_filament_ktx1.mjs). Skipped, with the reason, without Node.js.
 #include "bake_dir_support.h"
 
 #include <iblbake/ktx2/ktx2.h>
@@ -284,6 +285,27 @@ TEST_F(IndependentParser, GltfPassesKhronosValidator) {
     EXPECT_EQ(missing.exitCode, 1) << missing.out;
     fs::remove_all(bake);
     fs::remove_all(out);
+}
+
+// `iblbake export-filament`'s files read by Filament 1.53.4's Ktx1Bundle / Ktx1Reader (its WebAssembly build
+// in Node.js): cube, R11F_G11F_B10F / RGB / UINT_10F_11F_11F_REV, levels and face sizes down to 16 px, the
+// skybox, the "sh" key equal to sh.txt. The checker fails on a wrong expectation and on a truncated file.
+TEST_F(IndependentParser, FilamentReadsTheKtx1AndSh) {
+    const fs::path bake = ibl::test::makeBakeDir("filament_reader_bake");
+    const fs::path deploy = bake / "park";
+    CliRun r = runCli("export-filament " + bake.string() + " -o " + deploy.string() +
+                      " --quality draft --intensity 4");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const std::string args = deploy.string() + " park ";
+    NodeRun ok = runNode("check_filament_ktx1.mjs", args + quoted({{"size", 32}, {"levels", 2}}));
+    std::printf("%s", ok.out.c_str());
+    EXPECT_EQ(ok.exitCode, 0) << ok.out;
+    NodeRun wrong = runNode("check_filament_ktx1.mjs", args + quoted({{"size", 32}, {"levels", 3}}));
+    EXPECT_EQ(wrong.exitCode, 1) << wrong.out;
+    fs::resize_file(deploy / "park_ibl.ktx", fs::file_size(deploy / "park_ibl.ktx") - 64);
+    NodeRun truncated = runNode("check_filament_ktx1.mjs", args + quoted({{"size", 32}, {"levels", 2}}));
+    EXPECT_EQ(truncated.exitCode, 1) << truncated.out;
+    fs::remove_all(bake);
 }
 
 // The consumer pages need headless Chromium (Debian `chromium`, .ci/install-deps; IBLBAKE_CHROMIUM

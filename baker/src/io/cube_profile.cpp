@@ -21,11 +21,13 @@ const char* cubeProfileName(CubeProfile profile) {
 const EngineProfile& engineProfile(const std::string& name) {
     for (const EngineProfile& profile : kEngineProfiles)
         if (name == profile.name) return profile;
-    throw Error(valueForMessage(name) + " is not one of standard, three, babylon");
+    throw Error(valueForMessage(name) + " is not one of standard, three, babylon, filament");
 }
 
 float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize) {
-    if (profile.levelRule != LevelRule::BabylonLodFromAlphaG || level <= 0 || levelCount < 2) return 0.0f;
+    if (profile.levelRule == LevelRule::Baked || level <= 0 || levelCount < 2) return 0.0f;
+    if (profile.levelRule == LevelRule::FilamentLod) // lod = (N - 1) r (2 - r) solved for r
+        return float(1.0 - std::sqrt(std::max(1.0 - double(level) / double(levelCount - 1), 0.0)));
     const double alphaG =
         std::pow(double(baseFaceSize), double(level) / double(levelCount - 1) - 1.0); // 1 at the last level
     return float(std::sqrt(std::max(alphaG - profile.minimumVariance, 0.0)));

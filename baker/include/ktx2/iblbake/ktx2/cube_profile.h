@@ -32,6 +32,10 @@ inline constexpr const char* kCubeProfileKey = "iblbake.profile";
 //   sets lodGenerationScale = (N - 1) / log2(S) and offset 0 (RawCubeTexture.updateRGBDAsync), and leaves
 //   linearSpecularLOD false. So level m (m >= 1) holds alphaG = S^(m / (N - 1) - 1), r = sqrt(alphaG -
 //   MINIMUMVARIANCE); level 0 is the unconvolved source, which Babylon reads for every r up to level 0's.
+//   FilamentLod: Filament 1.53 reads lod = (N - 1) r (2 - r) (surface_light_indirect.fs
+//   perceptualRoughnessToLod, with iblRoughnessOneLevel = the reflections' level count - 1 set per view from
+//   the IndirectLight); three.js r187 reads the same lookup with its maxLod. So level m holds
+//   r = 1 - sqrt(1 - m / (N - 1)): 0 at level 0, 1 at the last.
 // - smallestFace: the default face size of the chain's last level (the extension suggests 16).
 // - mirrorX: the stored cube is ours mirrored in x (three.js samples a cube texture at (-x, y, z)).
 // - decodeGamma: the engine raises decoded texels to this power before use. Babylon's glTF loader leaves
@@ -40,7 +44,7 @@ inline constexpr const char* kCubeProfileKey = "iblbake.profile";
 // - shIntensityPower: how many times the engine multiplies the SH by the light's intensity. Babylon's loader
 //   scales the harmonics by `intensity` and its PBR shader multiplies the irradiance by the texture's level
 //   (= intensity) again (computeEnvironmentIrradiance): the file divides the coefficients by intensity^2.
-enum class LevelRule { Baked, BabylonLodFromAlphaG };
+enum class LevelRule { Baked, BabylonLodFromAlphaG, FilamentLod };
 struct EngineProfile {
     const char* name;
     const char* consumer;
@@ -61,12 +65,15 @@ inline constexpr EngineProfile kEngineProfiles[] = {
     {"babylon", "Babylon.js 9.28 glTF loader (EXT_lights_image_based)", LevelRule::BabylonLodFromAlphaG,
      0.0005, 16, false, 2.2, 2, "RGBD PNG of value^(1/2.2) / intensity",
      "irradianceCoefficients: Babylon's basis and frame, E_i / intensity^2"},
+    {"filament", "Filament 1.53 (Ktx1Reader, IndirectLight; cmgen --deploy's files)", LevelRule::FilamentLod,
+     0.0, 16, false, 1.0, 1, "R11G11B10F cube KTX1, linear radiance (0..65,024 R, G; 0..64,512 B)",
+     "KTX1 key sh and sh.txt: A_l k_i L_i / pi, Filament's polynomial basis"},
 };
 
-// The row named `name`; throws ibl::Error "'<name>' is not one of standard, three, babylon".
+// The row named `name`; throws ibl::Error "'<name>' is not one of standard, three, babylon, filament".
 const EngineProfile& engineProfile(const std::string& name);
 // The perceptual roughness level m of a chain of levelCount levels on level-0 faces of baseFaceSize texels
-// must hold for the profile's engine (BabylonLodFromAlphaG; 0 for level 0 and for other rules).
+// must hold for the profile's engine (BabylonLodFromAlphaG, FilamentLod; 0 for level 0 and for Baked).
 float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize);
 
 // Throws ibl::Error "'<name>' is not one of standard, three" for any other name.
