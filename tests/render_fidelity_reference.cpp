@@ -9,14 +9,19 @@
 // x^2 + y^2 < maskRadius^2 sees the point p = normal = (x, y, -sqrt(1 - x^2 - y^2)). The view is toward the
 // camera's position, normalize((0, 0, -3) - p), not the projection's direction: Babylon's PBR shader takes
 // V from the eye position under an orthographic projection too. Babylon's default left-handed scene shows
-// glTF (x, y, z) at its (-x, y, z): the harness reads its columns mirrored.
+// glTF (x, y, z) at its (-x, y, z): the harness reads its columns mirrored. With --projection-view the view
+// is the projection's direction, (0, 0, -1) at every pixel: Filament's shaders take V so under an
+// orthographic projection (shading_view = the camera's backward axis; tests/js/filament_fidelity.mjs); each
+// metal sphere then also carries compensatedLuminance, the same integral with Filament's multiple-scattering
+// compensation 1 + f0 (1 / E - 1) (RuntimeOptions::energyCompensation, E the exact directional albedo), and
+// there are no dielectric spheres.
 //
 // The split-sum floor: what a pre-filtered cube read in the mirror direction R (as Babylon reads it) shows
 // at best, the same integral for the normal and view R (the lobe such a cube can hold at R) times
 // E(n.v, alpha) / E(1, alpha) (the directional albedo, the part a DFG term restores). Its error against the
 // reference is the split sum's own, which no cube can remove.
 //
-// Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json
+// Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json [--projection-view]
 // Writes { pixels, maskRadius, faceSize, roughness: [...], spheres: [{ roughness, luminance: [per masked
 // pixel, rows bottom to top], splitSumLuminance [the same pixels], meanLuminance, errorEstimate (relative,
 // of the mean) }], dielectricSpheres: [the same without splitSumLuminance] }. The dielectric spheres: base
@@ -47,8 +52,10 @@ double luminance(const glm::dvec3& c) {
 } // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 6) {
-        std::fprintf(stderr, "usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json\n");
+    const bool projectionView = argc == 7 && std::string(argv[6]) == "--projection-view";
+    if (argc != 6 && !projectionView) {
+        std::fprintf(stderr, "usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json "
+                             "[--projection-view]\n");
         return 2;
     }
     try {
@@ -62,6 +69,8 @@ int main(int argc, char** argv) {
         ibl::RuntimeOptions options;
         options.diffuse = false; // white metal: specular only
         options.energyCompensation = false;
+        ibl::RuntimeOptions compensatedOptions = options;
+        compensatedOptions.energyCompensation = true;
         ibl::RuntimeOptions dielectricOptions = options;
         dielectricOptions.diffuse = true;
         nlohmann::json out = {
@@ -77,7 +86,8 @@ int main(int argc, char** argv) {
                     ibl::ShadingPoint p{};
                     p.normal = {float(x), float(y), float(-std::sqrt(1.0 - x * x - y * y))};
                     p.position = p.normal;
-                    p.view = glm::vec3(0.0f, 0.0f, -float(kEyeDistance)) - p.position;
+                    p.view = projectionView ? glm::vec3(0.0f, 0.0f, -1.0f)
+                                            : glm::vec3(0.0f, 0.0f, -float(kEyeDistance)) - p.position;
                     p.baseColor = {1.0f, 1.0f, 1.0f};
                     p.metallic = 1.0f;
                     p.perceptualRoughness = roughness;
@@ -115,6 +125,15 @@ int main(int argc, char** argv) {
                                       {"errorEstimate", error / sum}});
             std::printf("reference r = %.1f: %zu pixels, mean luminance %.6g, estimated error %.4f%%\n",
                         roughness, points.size(), sum / double(points.size()), 100.0 * error / sum);
+            if (projectionView) {
+                const ibl::ConvergedReference compensated =
+                    ibl::renderConvergedReference(environment, points, compensatedOptions);
+                nlohmann::json compensatedValues = nlohmann::json::array();
+                for (const ibl::ReferenceResult& result : compensated.results)
+                    compensatedValues.push_back(luminance(result.total()));
+                out["spheres"].back()["compensatedLuminance"] = compensatedValues;
+            }
+            if (projectionView) continue; // the Filament harness renders metal only
             for (ibl::ShadingPoint& p : points)
                 p.metallic = 0.0f;
             const ibl::ConvergedReference dielectric =
