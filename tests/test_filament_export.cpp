@@ -9,6 +9,7 @@
 #include <iblbake/ktx2/storage_scale.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdint>
@@ -209,6 +210,13 @@ TEST(ExportFilament, WritesCmgenDeployFiles) {
     ASSERT_EQ(fromKey.size(), 27u) << h.keyValues.at("sh");
     for (std::size_t i = 0; i < 27; ++i)
         EXPECT_NEAR(fromKey[i], fromText[i], 1e-7 * std::abs(fromText[i]) + 1e-12) << i;
+    // ... which are the bake's diffuse.json sh.irradianceOverPi / intensity (Filament's pre-scaled SH).
+    std::ifstream diffuseFile(bake / "diffuse.json");
+    const nlohmann::json overPi = nlohmann::json::parse(diffuseFile).at("sh").at("irradianceOverPi");
+    for (std::size_t i = 0; i < 27; ++i) {
+        const double expected = overPi.at(i / 3).at(i % 3).get<double>() / 4.0;
+        EXPECT_NEAR(fromKey[i], expected, 1e-6 * std::abs(expected) + 1e-9) << i;
+    }
     EXPECT_GT(fromKey[0], 0.0); // L00 of a lit scene
     fs::remove_all(bake);
 }

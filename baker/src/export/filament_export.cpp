@@ -49,13 +49,12 @@ void checkIntensity(const CubeMap& level0, double storageScale, double intensity
         throw SettingError("intensity", std::to_string(intensity) + " is not a positive number");
     double worst = 0.0; // the largest channel / its largest value
     double brightest = 0.0;
-    const glm::dvec3 largest(65024.0, 65024.0, 64512.0); // R11G11B10F: (2 - 2^-6) 2^15, (2 - 2^-5) 2^15
     for (const ImageRGBA& face : level0.faces)
         for (const glm::vec4& texel : face.pixels)
             for (int c = 0; c < 3; ++c) {
                 const double radiance = double(texel[c]) / storageScale;
-                if (std::isfinite(radiance) && radiance / largest[c] > worst) {
-                    worst = radiance / largest[c];
+                if (std::isfinite(radiance) && radiance / kR11G11B10fLargest[c] > worst) {
+                    worst = radiance / kR11G11B10fLargest[c];
                     brightest = radiance;
                 }
             }

@@ -72,7 +72,8 @@ std::string encodeKtx1R11G11B10fCube(const Ktx1Cube& cube) {
     appendU32(out, std::uint32_t(keyValueData.size()));
     out += keyValueData;
 
-    const glm::vec3 largest(smallfloat::kFloat11Max, smallfloat::kFloat11Max, smallfloat::kFloat10Max);
+    static_assert(kR11G11B10fLargest[0] == smallfloat::kFloat11Max &&
+                  kR11G11B10fLargest[2] == smallfloat::kFloat10Max);
     for (std::size_t m = 0; m < cube.levels.size(); ++m) {
         const int size = cube.levels[m].front().width;
         // For a cube that is not an array, imageSize is the bytes of one face (KTX 1.1, "imageSize"); rows of
@@ -84,7 +85,7 @@ std::string encodeKtx1R11G11B10fCube(const Ktx1Cube& cube) {
                 for (int x = 0; x < size; ++x) {
                     const glm::vec4& texel = face.at(x, y);
                     for (int c = 0; c < 3; ++c)
-                        checkRange(texel[c], largest[c], int(m), f, x, y);
+                        checkRange(texel[c], kR11G11B10fLargest[c], int(m), f, x, y);
                     appendU32(out, smallfloat::packB10G11R11(texel.r, texel.g, texel.b));
                 }
         }

@@ -18,6 +18,9 @@ namespace ibl {
 // maps only the former to its packed type; its loaders refuse the latter.
 inline constexpr std::uint32_t kKtx1R11fG11fB10f = 0x8C3A;
 inline constexpr std::uint32_t kKtx1Rgb = 0x1907;
+// The largest finite values R11G11B10F holds, per channel: (2 - 2^-6) 2^15 for the 11-bit R and G,
+// (2 - 2^-5) 2^15 for the 10-bit B (OpenGL ES 3.0, 2.1.3 and 2.1.4).
+inline constexpr float kR11G11B10fLargest[3] = {65024.0f, 65024.0f, 64512.0f};
 
 // Every level's six faces (+X, -X, +Y, -Y, +Z, -Z, first row t = 0), levels[0] the largest, each level half
 // the previous one's size; `keyValues` in key order. The texels' RGB are packed as R11G11B10F (R bits 0..10,
