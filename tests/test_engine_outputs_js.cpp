@@ -396,8 +396,8 @@ TEST_F(IndependentParser, FilamentRendersTheKtx1AsTheReference) {
                                 " 128 32 0.9 " + reference + " --projection-view > " +
                                 (dir / "reference.log").string() + " 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    NodeRun r = runNode("filament_fidelity.mjs",
-                        (dir / "potsdamer" / "potsdamer_ibl.ktx").string() + " 1 " + reference + " --check");
+    NodeRun r = runNode("filament_fidelity.mjs", (dir / "potsdamer" / "potsdamer_ibl.ktx").string() + " 1 " +
+                                                     reference + " " + IBLBAKE_SCREENSHOT_DIR + " --check");
     std::printf("%s", r.out.c_str());
     EXPECT_EQ(r.exitCode, 0) << r.out;
     fs::remove_all(dir);

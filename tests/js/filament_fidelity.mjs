@@ -6,18 +6,19 @@
 // sum |engine - reference| / sum reference, beside the split-sum floor. Filament's output is linear with
 // post-processing off, but the WebGL default framebuffer holds 8 bits: each pixel is read at the largest of
 // several scales of the light's intensity that does not clip it.
-// Usage: node filament_fidelity.mjs NAME_ibl.ktx INTENSITY REFERENCE.json [--check]
+// Usage: node filament_fidelity.mjs NAME_ibl.ktx INTENSITY REFERENCE.json ARTIFACT_DIR [--check]
 //   REFERENCE.json: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json --projection-view
 //   (Filament's V under an orthographic projection; with compensatedLuminance, Filament's multiple-scattering
-//   compensation, which its lit materials apply).
+//   compensation, which its lit materials apply). ARTIFACT_DIR receives filament_fidelity.png.
 //   --check: exit 1 unless, against the reference with compensation, the ratio of means is within 3% of 1 at
 //   every r, the error at r >= 0.4 is within 3 points of the split-sum floor's, and at r <= 0.2 at most 20%
 //   (Filament clamps r to 0.089 on WebGL, which reads lod 0.5 of a 4-level chain: half the r = 0.18 level).
-import { readFileSync } from 'node:fs';
+import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
-import { here, launchBrowser, luminance, openPage, startServer } from './consumer_common.mjs';
+import { here, launchBrowser, luminance, openPage, startServer, writeToneMappedPng } from './consumer_common.mjs';
 
-const [iblFile, intensityText, referenceFile, mode] = process.argv.slice(2);
+const [iblFile, intensityText, referenceFile, artifactDir, mode] = process.argv.slice(2);
+mkdirSync(artifactDir, { recursive: true });
 const reference = JSON.parse(readFileSync(referenceFile, 'utf8'));
 const pixels = reference.pixels, maskRadius = reference.maskRadius;
 const roughness = reference.spheres.map((s) => s.roughness);
@@ -85,6 +86,31 @@ const table = roughness.map((r, k) => {
   return { roughness: r, ours, compensated, floor };
 });
 console.log(`Filament renders ${((Date.now() - start) / 1000).toFixed(1)} s`);
+
+// The renders as an image: per roughness (columns) ours in Filament, the reference with compensation, and the
+// error of ours (|ours - reference| / reference, x 2), through one tone curve.
+{
+  const width = pixels * roughness.length, height = pixels * 3;
+  const image = new Float32Array(width * height * 4);
+  roughness.forEach((r, column) => {
+    const ours = maskedLuminance(result.renders[column]), ref = reference.spheres[column].compensatedLuminance;
+    let m = 0;
+    for (let row = 0; row < pixels; ++row)
+      for (let c = 0; c < pixels; ++c) {
+        const x = ((c + 0.5) / pixels) * 2 - 1, y = ((row + 0.5) / pixels) * 2 - 1;
+        if (x * x + y * y >= maskRadius * maskRadius) continue;
+        [ours[m], ref[m], (2 * Math.abs(ours[m] - ref[m])) / ref[m]].forEach((value, band) => {
+          const i = 4 * (((2 - band) * pixels + row) * width + column * pixels + c);
+          image[i] = image[i + 1] = image[i + 2] = value;
+          image[i + 3] = 1;
+        });
+        ++m;
+      }
+  });
+  const file = path.join(artifactDir, 'filament_fidelity.png');
+  writeToneMappedPng(file, width, height, image, 1);
+  console.log(`image ${file} (rows: ours in Filament, reference with compensation, error of ours x 2)`);
+}
 
 if (mode === '--check') {
   const failures = [];

@@ -62,7 +62,7 @@ void checkIntensity(const CubeMap& level0, double storageScale, double intensity
     char message[256];
     std::snprintf(message, sizeof message,
                   "%g leaves level 0's brightest channel at %g (%g / %g), beyond the filament profile's "
-                  "R11G11B10F (65,024); give at least %g",
+                  "R11G11B10F (65,024; 64,512 in blue); give at least %g",
                   intensity, brightest / intensity, brightest, intensity,
                   std::exp2(std::ceil(std::log2(worst))));
     throw SettingError("intensity", message);
