@@ -21,6 +21,7 @@ Action addBakeCommand(CLI::App& app);
 Action addBatchCommand(CLI::App& app);
 Action addGltfCommand(CLI::App& app);
 Action addExportShCommand(CLI::App& app);
+Action addExportFilamentCommand(CLI::App& app);
 Action addAccuracyCommand(CLI::App& app);
 Action addLightCardCommand(CLI::App& app);
 

@@ -38,6 +38,7 @@ int main(int argc, char** argv) {
     add(ibl::cli::addBatchCommand(app));
     add(ibl::cli::addGltfCommand(app));
     add(ibl::cli::addExportShCommand(app));
+    add(ibl::cli::addExportFilamentCommand(app));
     add(ibl::cli::addAccuracyCommand(app));
     add(ibl::cli::addLightCardCommand(app));
 

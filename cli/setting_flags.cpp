@@ -23,6 +23,7 @@ std::string flagOf(const std::string& setting) {
                                                              {"dfgSamples", "--samples"},
                                                              {"backend", "--backend"},
                                                              {"minFaceSize", "--min-face-size"},
+                                                             {"intensity", "--intensity"},
                                                              {"faceSize", "--size"},
                                                              {"levels", "--levels"},
                                                              {"samples", "--samples"}};

@@ -88,6 +88,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/scene/product_plans.cpp baker/src/scene/product_run_text.cpp # a command's plan, its files' delivery, its report
     baker/src/batch baker/src/accuracy
     baker/src/light_preview # `iblbake preview --lights`: no stage renders it
+    baker/src/export/filament_export.cpp baker/src/io/ktx1_writer.cpp # `iblbake export-filament`: no stage writes it
     baker/src/flows # `iblbake inspect` and `calibrate`: no stage runs them
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes

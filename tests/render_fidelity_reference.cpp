@@ -9,7 +9,12 @@
 // x^2 + y^2 < maskRadius^2 sees the point p = normal = (x, y, -sqrt(1 - x^2 - y^2)). The view is toward the
 // camera's position, normalize((0, 0, -3) - p), not the projection's direction: Babylon's PBR shader takes
 // V from the eye position under an orthographic projection too. Babylon's default left-handed scene shows
-// glTF (x, y, z) at its (-x, y, z): the harness reads its columns mirrored.
+// glTF (x, y, z) at its (-x, y, z): the harness reads its columns mirrored. With --projection-view the view
+// is the projection's direction, (0, 0, -1) at every pixel: Filament's shaders take V so under an
+// orthographic projection (shading_view = the camera's backward axis; tests/js/filament_fidelity.mjs); each
+// metal sphere then also carries compensatedLuminance, the same integral with Filament's multiple-scattering
+// compensation 1 + f0 (1 / E - 1) (RuntimeOptions::energyCompensation, E the exact directional albedo), and
+// there are no dielectric spheres.
 //
 // The split-sum floor: what a pre-filtered cube read in the mirror direction R (as Babylon reads it) shows
 // at best, the same integral for the normal and view R (the lobe such a cube can hold at R) times
@@ -23,7 +28,7 @@
 // integral for the normal and view D times E(n.v) / E(1). three's camera at (0, 0, -3) looking along +z shows
 // world +x on the left, as the harness's mirrored columns expect.
 //
-// Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json [three]
+// Usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json [three | --projection-view]
 // Writes { pixels, maskRadius, faceSize, roughness: [...], spheres: [{ roughness, luminance: [per masked
 // pixel, rows bottom to top], splitSumLuminance [the same pixels], directionalAlbedo [E(n.v, alpha) of the
 // same pixels, the floor's factor over E(1, alpha)], meanLuminance, errorEstimate (relative, of the mean) }],
@@ -55,10 +60,12 @@ double luminance(const glm::dvec3& c) {
 } // namespace
 
 int main(int argc, char** argv) {
-    const bool three = argc == 7 && std::string(argv[6]) == "three";
-    if (argc != 6 && !three) {
-        std::fprintf(stderr,
-                     "usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json [three]\n");
+    const std::string mode = argc == 7 ? argv[6] : "";
+    const bool three = mode == "three", filament = mode == "--projection-view";
+    const bool projectionView = three || filament;
+    if (argc != 6 && !projectionView) {
+        std::fprintf(stderr, "usage: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json "
+                             "[three | --projection-view]\n");
         return 2;
     }
     try {
@@ -72,12 +79,14 @@ int main(int argc, char** argv) {
         ibl::RuntimeOptions options;
         options.diffuse = false; // white metal: specular only
         options.energyCompensation = false;
+        ibl::RuntimeOptions compensatedOptions = options;
+        compensatedOptions.energyCompensation = true;
         ibl::RuntimeOptions dielectricOptions = options;
         dielectricOptions.diffuse = true;
         nlohmann::json out = {{"pixels", pixels},
                               {"maskRadius", maskRadius},
                               {"faceSize", ingest.sourceFaceSize},
-                              {"engine", three ? "three" : "babylon"}};
+                              {"engine", three ? "three" : filament ? "filament" : "babylon"}};
         for (int step = 0; step <= 5; ++step) {
             const float roughness = float(step) / 5.0f;
             std::vector<ibl::ShadingPoint> points;
@@ -89,8 +98,8 @@ int main(int argc, char** argv) {
                     ibl::ShadingPoint p{};
                     p.normal = {float(x), float(y), float(-std::sqrt(1.0 - x * x - y * y))};
                     p.position = p.normal;
-                    p.view = three ? glm::vec3(0.0f, 0.0f, -1.0f)
-                                   : glm::vec3(0.0f, 0.0f, -float(kEyeDistance)) - p.position;
+                    p.view = projectionView ? glm::vec3(0.0f, 0.0f, -1.0f)
+                                            : glm::vec3(0.0f, 0.0f, -float(kEyeDistance)) - p.position;
                     p.baseColor = {1.0f, 1.0f, 1.0f};
                     p.metallic = 1.0f;
                     p.perceptualRoughness = roughness;
@@ -131,6 +140,15 @@ int main(int argc, char** argv) {
                                       {"errorEstimate", error / sum}});
             std::printf("reference r = %.1f: %zu pixels, mean luminance %.6g, estimated error %.4f%%\n",
                         roughness, points.size(), sum / double(points.size()), 100.0 * error / sum);
+            if (filament) {
+                const ibl::ConvergedReference compensated =
+                    ibl::renderConvergedReference(environment, points, compensatedOptions);
+                nlohmann::json compensatedValues = nlohmann::json::array();
+                for (const ibl::ReferenceResult& result : compensated.results)
+                    compensatedValues.push_back(luminance(result.total()));
+                out["spheres"].back()["compensatedLuminance"] = compensatedValues;
+            }
+            if (filament) continue; // the Filament harness renders metal only
             for (ibl::ShadingPoint& p : points)
                 p.metallic = 0.0f;
             const ibl::ConvergedReference dielectric =

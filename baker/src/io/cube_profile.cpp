@@ -21,7 +21,7 @@ const char* cubeProfileName(CubeProfile profile) {
 const EngineProfile& engineProfile(const std::string& name) {
     for (const EngineProfile& profile : kEngineProfiles)
         if (name == profile.name) return profile;
-    throw Error(valueForMessage(name) + " is not one of standard, three, babylon");
+    throw Error(valueForMessage(name) + " is not one of standard, three, babylon, filament");
 }
 
 float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize) {

@@ -19,4 +19,15 @@ std::string filamentShText(const ShRgb& prescaledIrradiance) {
     return text;
 }
 
+std::string filamentShMetadata(const ShRgb& prescaledIrradiance) {
+    std::string text;
+    for (const glm::dvec3& irradiance : prescaledIrradiance) {
+        const glm::dvec3 c = irradiance / kPi;
+        char line[96];
+        std::snprintf(line, sizeof line, "%.9g %.9g %.9g\n", c.x, c.y, c.z);
+        text += line;
+    }
+    return text;
+}
+
 } // namespace ibl

@@ -17,4 +17,9 @@ namespace ibl {
 // base", as cmgen writes them.
 std::string filamentShText(const ShRgb& prescaledIrradiance);
 
+// The same coefficients as the value of the KTX1 key "sh" cmgen writes into <name>_ibl.ktx: nine lines
+// "r g b", which Filament's Ktx1Bundle::getSphericalHarmonics and filament.js createIblFromKtx1 read as 27
+// numbers separated by white space.
+std::string filamentShMetadata(const ShRgb& prescaledIrradiance);
+
 } // namespace ibl

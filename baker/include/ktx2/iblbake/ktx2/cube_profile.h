@@ -30,7 +30,9 @@ inline constexpr const char* kCubeProfileKey = "iblbake.profile";
 //   runtime and probe.glsl read the mapping from the file). FilamentLod: lod = maxLod r (2 - r), so level m
 //   holds r = 1 - sqrt(1 - m / (N - 1)): three.js r187's roughnessToMip (envmap_common_pars_fragment,
 //   "Matches Filament's perceptualRoughnessToLod()"; PMREMGenerator.lodToRoughness is its inverse), with
-//   ENVMAP_MAX_LOD = the texture's mip count - 1 (WebGLPrograms). BabylonLodFromAlphaG:
+//   ENVMAP_MAX_LOD = the texture's mip count - 1 (WebGLPrograms), and Filament 1.53's lookup
+//   (surface_light_indirect.fs perceptualRoughnessToLod, iblRoughnessOneLevel = the reflections' level count
+//   - 1, set per view from the IndirectLight). BabylonLodFromAlphaG:
 //   Babylon.js 9.28's PBR shader reads lod = log2(S alphaG) x lodGenerationScale + lodGenerationOffset
 //   (pbrBlockReflection sampleReflectionTexture, getLodFromAlphaG) with alphaG = r^2 + MINIMUMVARIANCE
 //   (convertRoughnessToAverageSlope) and S the level-0 face size; its glTF loader's EXT_lights_image_based
@@ -39,7 +41,7 @@ inline constexpr const char* kCubeProfileKey = "iblbake.profile";
 //   MINIMUMVARIANCE); level 0 is the unconvolved source, which Babylon reads for every r up to level 0's.
 // - smallestFace: the default face size of the chain's last level (the extension suggests 16; three's
 //   PMREMGenerator stops at 8-px faces, LOD_MIN = 3, and its shader reads the last level as irradiance / pi,
-//   getIBLIrradiance).
+//   getIBLIrradiance; Filament's cmgen stops at 16).
 // - mirrorX: the stored cube is ours mirrored in x (three.js samples a cube texture at (-x, y, z)).
 // - decodeGamma: the engine raises decoded texels to this power before use. Babylon's glTF loader leaves
 //   its RawCubeTexture's gammaSpace true, so its shaders run toLinearSpace (pow 2.2, GAMMAREFLECTION)
@@ -78,9 +80,12 @@ inline constexpr EngineProfile kEngineProfiles[] = {
     {"babylon", "Babylon.js 9.28 glTF loader (EXT_lights_image_based)", LevelRule::BabylonLodFromAlphaG,
      0.0005, 16, false, 2.2, 2, "RGBD PNG of value^(1/2.2) / intensity",
      "irradianceCoefficients: Babylon's basis and frame, E_i / intensity^2"},
+    {"filament", "Filament 1.53 (Ktx1Reader, IndirectLight; cmgen --deploy's files)", LevelRule::FilamentLod,
+     0.0, 16, false, 1.0, 1, "R11G11B10F cube KTX1, linear radiance (0..65,024 R, G; 0..64,512 B)",
+     "KTX1 key sh and sh.txt: A_l k_i L_i / pi, Filament's polynomial basis"},
 };
 
-// The row named `name`; throws ibl::Error "'<name>' is not one of standard, three, babylon".
+// The row named `name`; throws ibl::Error "'<name>' is not one of standard, three, babylon, filament".
 const EngineProfile& engineProfile(const std::string& name);
 // The perceptual roughness level m of a chain of levelCount levels on level-0 faces of baseFaceSize texels
 // must hold for the profile's engine (FilamentLod, BabylonLodFromAlphaG; 0 for level 0 and for Baked).
