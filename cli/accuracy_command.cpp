@@ -6,6 +6,7 @@
 
 #include <iblbake/accuracy/accuracy.h>
 #include <iblbake/baker/ingest.h>
+#include <iblbake/baker/inspect.h>
 #include <iblbake/core/error.h>
 
 #include <chrono>
@@ -56,7 +57,7 @@ Action addAccuracyCommand(CLI::App& app) {
             throw Error(o->output + ": exists and is not a directory");
         const SweepPlan plan = o->quick ? SweepPlan::quick() : SweepPlan::full();
         SourceEnvironment env = ingestEnvironment(o->input.files(), o->input.settings(plan.sourceFaceSize));
-        printIngestReport(env.report);
+        std::printf("%s", ingestReportText(env.report).c_str());
         const AccuracyInput input{
             fs::path(env.report.file).filename().string(), std::move(env.cube), [&](int faceSize) {
                 return ingestEnvironment(o->input.files(), o->input.settings(faceSize)).cube;

@@ -5,7 +5,6 @@
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
 
-
 namespace ibl::cli {
 
 void CalibrationOptions::addTo(CLI::App& command) {

@@ -31,10 +31,6 @@ void BackendOptions::storeBuiltKernels(const Executor& executor) {
     if (executor.usesOpenCL()) executor.cl().storeProgramBinaries();
 }
 
-std::future<Executor> BackendOptions::startExecutor() const {
-    return startExecutor(parseBackend(backend));
-}
-
 std::future<Executor> BackendOptions::startExecutor(Backend chosen) const {
     return std::async(std::launch::async, [options = *this, chosen] { return options.makeExecutor(chosen); });
 }

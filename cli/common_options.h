@@ -23,10 +23,9 @@ struct BackendOptions {
     void addTo(CLI::App& command);
     Executor makeExecutor() const;               // warnings go to stderr
     Executor makeExecutor(Backend chosen) const; // `chosen` instead of --backend's
-    // makeExecutor() on its own thread, so that the OpenCL set-up (PoCL loads LLVM: ~40 ms) overlaps the
-    // ingest; get() rethrows its error.
-    std::future<Executor> startExecutor() const;
-    std::future<Executor> startExecutor(Backend chosen) const; // `chosen` instead of --backend's
+    // makeExecutor(chosen) on its own thread, so that the OpenCL set-up (PoCL loads LLVM: ~40 ms) overlaps
+    // the ingest; get() rethrows its error.
+    std::future<Executor> startExecutor(Backend chosen) const;
     // Writes the OpenCL programs the command built from source to the user's kernel cache
     // (ocl::userProgramBinaryDirectory), which makeExecutor gave the executor: called once the command's
     // outputs are complete, so a failed command adds nothing to it.

@@ -2,8 +2,6 @@
 
 #include <iblbake/core/limits.h>
 
-#include <cstdio>
-
 namespace ibl::cli {
 
 void InputOptions::addTo(CLI::App& command) {
@@ -57,10 +55,6 @@ IngestSettings InputOptions::settings(int sourceFaceSize) const {
     s.sourceFaceSize = sourceFaceSize;
     s.latLongPixels = parseLatLongPixels(latLongPixels);
     return s;
-}
-
-void printIngestReport(const IngestReport& r) {
-    std::printf("%s", ingestReportText(r).c_str());
 }
 
 } // namespace ibl::cli

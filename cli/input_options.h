@@ -42,7 +42,4 @@ struct OneInputOptions {
 // --latlong-pixels, for the commands that take the input options one by one (preview, OneInputOptions).
 void addLatLongPixelsOption(CLI::App& command, std::string& latLongPixels);
 
-// The two report lines every baking command prints about its input.
-void printIngestReport(const IngestReport& report);
-
 } // namespace ibl::cli

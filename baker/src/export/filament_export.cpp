@@ -4,6 +4,7 @@
 #include "iblbake/baker/filament_sh.h"
 #include "iblbake/baker/gltf_export.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx1.h"
@@ -144,6 +145,16 @@ FilamentExported exportFilament(const fs::path& bakeDirectory, const FilamentExp
     exported.lowestFaceSize = chain.levels.back().faceSize;
     exported.levelRoughness = refilter.levelRoughness;
     return exported;
+}
+
+std::string filamentExportText(const FilamentExported& exported, const std::string& executorDescription,
+                               double intensity) {
+    return formatText("refilter %zu levels %d..%d px, %s: %.1f ms\n", exported.levelRoughness.size(),
+                      exported.baseFaceSize, exported.lowestFaceSize, executorDescription.c_str(),
+                      exported.refilterMilliseconds) +
+           formatText("wrote   %s (R11G11B10F, Filament's roughness per level), %s, %s: set the IndirectLight's "
+                      "intensity to %g\n",
+                      exported.ibl.c_str(), exported.skybox.c_str(), exported.shText.c_str(), intensity);
 }
 
 } // namespace ibl
