@@ -14,8 +14,6 @@
 #include <new>
 #include <string>
 
-namespace {} // namespace
-
 int main(int argc, char** argv) {
     ibl::reuseFreedBlocks();
     CLI::App app{"iblbake: image-based-lighting and light-probe baker", "iblbake"};
@@ -26,21 +24,12 @@ int main(int argc, char** argv) {
 
     std::map<const CLI::App*, ibl::cli::Action> actions;
     auto add = [&](ibl::cli::Action action) { actions[app.get_subcommands({}).back()] = std::move(action); };
-    add(ibl::cli::addDevicesCommand(app));
-    add(ibl::cli::addDfgCommand(app));
-    add(ibl::cli::addSpecularCommand(app));
-    add(ibl::cli::addDiffuseCommand(app));
-    add(ibl::cli::addInspectCommand(app));
-    add(ibl::cli::addCalibrateCommand(app));
-    add(ibl::cli::addPreviewCommand(app));
-    add(ibl::cli::addPlanCommand(app));
-    add(ibl::cli::addBakeCommand(app));
-    add(ibl::cli::addBatchCommand(app));
-    add(ibl::cli::addGltfCommand(app));
-    add(ibl::cli::addExportShCommand(app));
-    add(ibl::cli::addExportFilamentCommand(app));
-    add(ibl::cli::addAccuracyCommand(app));
-    add(ibl::cli::addLightCardCommand(app));
+    using namespace ibl::cli;
+    for (auto addCommand : {addDevicesCommand, addDfgCommand, addSpecularCommand, addDiffuseCommand,
+                            addInspectCommand, addCalibrateCommand, addPreviewCommand, addPlanCommand,
+                            addBakeCommand, addBatchCommand, addGltfCommand, addExportShCommand,
+                            addExportFilamentCommand, addAccuracyCommand, addLightCardCommand})
+        add(addCommand(app));
 
     try {
         app.parse(argc, argv);

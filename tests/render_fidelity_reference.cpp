@@ -12,9 +12,10 @@
 // glTF (x, y, z) at its (-x, y, z): the harness reads its columns mirrored. With --projection-view the view
 // is the projection's direction, (0, 0, -1) at every pixel: Filament's shaders take V so under an
 // orthographic projection (shading_view = the camera's backward axis; tests/js/filament_fidelity.mjs); each
-// metal sphere then also carries compensatedLuminance, the same integral with Filament's multiple-scattering
-// compensation 1 + f0 (1 / E - 1) (RuntimeOptions::energyCompensation, E the exact directional albedo), and
-// there are no dielectric spheres.
+// metal sphere then also carries compensatedLuminance, the same integral for Filament's material as it
+// shades it: its multiple-scattering compensation 1 + f0 (1 / E - 1) (RuntimeOptions::energyCompensation, E
+// the exact directional albedo) and its roughness floor (kFilamentMinPerceptualRoughness); there are no
+// dielectric spheres.
 //
 // The split-sum floor: what a pre-filtered cube read in the mirror direction R (as Babylon reads it) shows
 // at best, the same integral for the normal and view R (the lobe such a cube can hold at R) times
@@ -56,6 +57,11 @@ constexpr std::uint32_t kAlbedoSamples = 1024;
 double luminance(const glm::dvec3& c) {
     return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
 }
+
+// Filament's shaders for TARGET_MOBILE, which its WebGL build runs, clamp the perceptual roughness to 0.089
+// (common_material.fs MIN_PERCEPTUAL_ROUGHNESS: the smallest r with r^4 > 0 in fp16): its r = 0 sphere is an
+// r = 0.089 one.
+constexpr float kFilamentMinPerceptualRoughness = 0.089f;
 
 } // namespace
 
@@ -141,8 +147,11 @@ int main(int argc, char** argv) {
             std::printf("reference r = %.1f: %zu pixels, mean luminance %.6g, estimated error %.4f%%\n",
                         roughness, points.size(), sum / double(points.size()), 100.0 * error / sum);
             if (filament) {
+                std::vector<ibl::ShadingPoint> material = points;
+                for (ibl::ShadingPoint& p : material)
+                    p.perceptualRoughness = std::max(p.perceptualRoughness, kFilamentMinPerceptualRoughness);
                 const ibl::ConvergedReference compensated =
-                    ibl::renderConvergedReference(environment, points, compensatedOptions);
+                    ibl::renderConvergedReference(environment, material, compensatedOptions);
                 nlohmann::json compensatedValues = nlohmann::json::array();
                 for (const ibl::ReferenceResult& result : compensated.results)
                     compensatedValues.push_back(luminance(result.total()));

@@ -9,7 +9,8 @@
 // Usage: node filament_fidelity.mjs NAME_ibl.ktx INTENSITY REFERENCE.json ARTIFACT_DIR [--check]
 //   REFERENCE.json: render_fidelity_reference HDRI FACE_SIZE PIXELS MASK_RADIUS OUT.json --projection-view
 //   (Filament's V under an orthographic projection; with compensatedLuminance, Filament's multiple-scattering
-//   compensation, which its lit materials apply). ARTIFACT_DIR receives filament_fidelity.png.
+//   compensation, which its lit materials apply, at its WebGL roughness floor of 0.089). ARTIFACT_DIR receives
+//   filament_fidelity.png.
 //   --check: exit 1 unless, against the reference with compensation, the ratio of means is within 3% of 1 at
 //   every r, the error at r >= 0.4 is within 3 points of the split-sum floor's, and at r <= 0.2 at most 20%
 //   (Filament clamps r to 0.089 on WebGL, which reads lod 0.5 of a 4-level chain: half the r = 0.18 level).
