@@ -16,7 +16,8 @@
 //   (Filament clamps r to 0.089 on WebGL, which reads lod 0.5 of a 4-level chain: half the r = 0.18 level).
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
-import { here, launchBrowser, luminance, openPage, startServer, writeToneMappedPng } from './consumer_common.mjs';
+import { here, launchBrowser, openPage, startServer, writeToneMappedPng } from './consumer_common.mjs';
+import { cell, compare, maskedLuminance as maskedLuminanceOf } from './fidelity_common.mjs';
 
 const [iblFile, intensityText, referenceFile, artifactDir, mode] = process.argv.slice(2);
 mkdirSync(artifactDir, { recursive: true });
@@ -26,30 +27,10 @@ const roughness = reference.spheres.map((s) => s.roughness);
 const version = JSON.parse(readFileSync(path.join(here, 'node_modules', 'filament', 'package.json'), 'utf8')).version;
 
 // The camera at (0, 0, -3) looks along +z with +y up in Filament's right-handed frame (ours), so the screen's
-// right is our -x: Filament's column c is the reference's column pixels - 1 - c (rows bottom to top in both).
-function maskedLuminance(rgba) {
-  const values = [];
-  for (let row = 0; row < pixels; ++row)
-    for (let column = 0; column < pixels; ++column) {
-      const x = ((column + 0.5) / pixels) * 2 - 1, y = ((row + 0.5) / pixels) * 2 - 1;
-      if (x * x + y * y >= maskRadius * maskRadius) continue;
-      const i = 4 * (row * pixels + (pixels - 1 - column));
-      values.push(luminance(rgba[i], rgba[i + 1], rgba[i + 2]));
-    }
-  return values;
-}
-
-function compare(engine, ref) {
-  if (engine.length !== ref.length) throw new Error(`${engine.length} pixels against ${ref.length}`);
-  let sumEngine = 0, sumReference = 0, sumError = 0;
-  for (let k = 0; k < ref.length; ++k) {
-    if (!Number.isFinite(engine[k])) throw new Error('a sphere pixel clipped at every exposure');
-    sumEngine += engine[k];
-    sumReference += ref[k];
-    sumError += Math.abs(engine[k] - ref[k]);
-  }
-  return { ratio: sumEngine / sumReference, error: sumError / sumReference };
-}
+// right is our -x: Filament's column c is the reference's column pixels - 1 - c (rows bottom to top in both),
+// as fidelity_common.mjs maskedLuminance reads it. A pixel that clipped at every exposure is read as
+// non-finite, which compare refuses.
+const maskedLuminance = (rgba) => maskedLuminanceOf(rgba, pixels, maskRadius);
 
 const server = await startServer({ '/node_modules/': path.join(here, 'node_modules'), '/tests/': here,
                                    '/out/': path.dirname(path.resolve(iblFile)) });
@@ -81,7 +62,6 @@ const table = roughness.map((r, k) => {
   const ours = compare(rendered, sphere.luminance);
   const compensated = compare(rendered, sphere.compensatedLuminance);
   const floor = compare(sphere.splitSumLuminance, sphere.luminance);
-  const cell = (c) => `${c.ratio.toFixed(3)}  ${(100 * c.error).toFixed(1).padStart(5)}%`;
   console.log(`  ${r.toFixed(1)}  |                    ${cell(ours)}  |                                 ` +
               `${cell(compensated)}  |                  ${cell(floor)}`);
   return { roughness: r, ours, compensated, floor };
