@@ -150,3 +150,30 @@ TEST(Cli, FrontEndAsksTheEngineForHugePagesUnlessTheCallerChose) {
 }
 
 } // namespace
+
+// A command writes one container per output; a file named for another (a .dds holding KTX2) is refused in one
+// line naming the file and the container it would be, before any work, and nothing is written.
+TEST(Cli, AnOutputNamedForAnotherContainerIsRefused) {
+    const fs::path dir = ibl::test::freshTempDir("cli_extensions");
+    const std::string hdri = std::string(IBLBAKE_SOURCE_DIR) + "/data/rooitou_park_1k.hdr";
+    const struct {
+        std::string args, file, container;
+    } cases[] = {
+        {"specular " + hdri + " --size 16 --quality draft -o", "chain.dds", "KTX2 (.ktx2)"},
+        {"specular " + hdri + " --size 16 --quality draft -o chain.ktx2 --rough-layers", "rough.exr",
+         "KTX2 (.ktx2)"},
+        {"dfg --size 8 --samples 8 -o", "lut.ktx2", "OpenEXR (.exr)"},
+        {"diffuse " + hdri + " --size 16 -o", "d.txt", "JSON (.json)"},
+        {"diffuse " + hdri + " --size 16 -o d.json --irradiance-cube", "irr.png", "KTX2 (.ktx2)"},
+        {"calibrate " + hdri + " --scale 2 -o", "cal.hdr", "OpenEXR (.exr)"},
+        {"lightcard " + hdri + " --size 4 -o", "card", "KTX2 (.ktx2)"},
+    };
+    for (const auto& c : cases) {
+        const CliRun r = run(c.args + " " + (dir / c.file).string());
+        EXPECT_EQ(r.exitCode, 1) << c.args;
+        EXPECT_EQ(lineCount(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find(c.file + ": written as " + c.container), std::string::npos) << r.err;
+        EXPECT_EQ(entryCount(dir), 0u) << c.args;
+    }
+    fs::remove_all(dir);
+}

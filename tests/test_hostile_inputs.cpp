@@ -361,7 +361,7 @@ TEST_F(FullAndReadOnlyDisks, WriteFailuresNameTheOutputAndTheSystemsReason) {
     const std::string noSpace = "No space left on device", readOnly = "Read-only file system";
     expectRefused("diffuse sky.exr --backend cpu -o full/d.json", {"full/d.json: cannot write", noSpace});
     expectRefused("calibrate sky.exr --scale 2 -o full/c.exr", {"full/c.exr: cannot write", noSpace});
-    expectRefused("dfg --size 8 --samples 16 --backend cpu -o full/dfg.ktx2", {"full/dfg.ktx2", noSpace});
+    expectRefused("dfg --size 8 --samples 16 --backend cpu -o full/dfg.exr", {"full/dfg.exr", noSpace});
     expectRefused("specular --size 8 --quality draft --backend cpu -o ro/s.ktx2 sky.exr",
                   {"ro/s.ktx2", readOnly});
     // Every output of a command or none: the first output fits, a later one does not.

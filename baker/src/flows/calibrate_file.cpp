@@ -14,7 +14,11 @@ namespace fs = std::filesystem;
 CalibratedImage calibrateToFiles(const fs::path& input, const EnvironmentSettings& settings,
                                  const fs::path& output, const fs::path& sunJson) {
     checkOutputFile(output);
-    if (!sunJson.empty()) checkOutputFile(sunJson);
+    checkOutputExtension(output, ".exr", "OpenEXR");
+    if (!sunJson.empty()) {
+        checkOutputFile(sunJson);
+        checkOutputExtension(sunJson, ".json", "JSON");
+    }
     CalibratedImage calibrated = calibrateInInputLayout(input, settings);
     OutputSet outputs;
     writeCalibratedEnvironment(outputs, calibrated, output);

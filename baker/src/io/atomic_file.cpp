@@ -2,6 +2,7 @@
 #include "iblbake/core/error.h"
 #include "iblbake/core/temporary_path.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -20,6 +21,15 @@ void checkOutputFile(const fs::path& target) {
         throw OutputError(target.string() + ": cannot write to directory " + dir.string() + ": " +
                           std::strerror(errno));
     if (fs::is_directory(target, ec)) throw OutputError(target.string() + ": is a directory");
+}
+
+void checkOutputExtension(const fs::path& target, std::string_view extension, std::string_view container) {
+    std::string got = target.extension().string();
+    for (char& c : got)
+        c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (got == extension) return;
+    throw OutputError(target.string() + ": written as " + std::string(container) + " (" +
+                      std::string(extension) + "), not " + (got.empty() ? "a name without an extension" : got));
 }
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {

@@ -12,6 +12,12 @@ namespace ibl {
 // is a directory: what AtomicFile checks, for a command to check every output before any work.
 void checkOutputFile(const std::filesystem::path& target);
 
+// Throws ibl::OutputError "<target>: written as <container> (<extension>), not <its extension>" unless
+// `target` ends in `extension` (any case): a writer makes one container, and a file named for another would
+// hold bytes its name does not say (a .dds holding KTX2).
+void checkOutputExtension(const std::filesystem::path& target, std::string_view extension,
+                          std::string_view container);
+
 class AtomicFile {
   public:
     // Throws ibl::Error naming `target` when its directory does not exist or is not writable.
