@@ -6,6 +6,7 @@
 
 #include "iblbake/core/backend.h"
 #include "iblbake/core/output_root.h"
+#include "iblbake/scene/plan_budget.h"
 #include "iblbake/scene/scene.h"
 #include "iblbake/scene/scene_plan.h"
 
@@ -30,6 +31,9 @@ struct BakeOptions {
     // following links when the bake writes (iblbake/core/output_root.h). The cache follows it unless
     // cacheDirectory (the operator's) is given.
     std::filesystem::path outputRoot;
+    // --max-memory, --max-work (docs/scenes.md "Budget"): a plan whose estimate exceeds either is refused
+    // before any input is read past its header.
+    BudgetLimits budget;
 };
 
 enum class StageStatus { Pending, Ran, Cached, Failed };
