@@ -176,6 +176,22 @@ TEST(PlanBudget, BatchItemOverBudgetFailsAlone) {
         << summary.dump();
     EXPECT_TRUE(fs::exists(dir / "small" / "manifest.json"));
     EXPECT_FALSE(fs::exists(dir / "large"));
+    // A finished bake is not answered up to date once over a budget given later: refused, by the front end
+    // as by the engine.
+    writeText(dir / "small.json",
+              json{{"environment", {{"file", "sky.exr"}}},
+                   {"outputs", {{"directory", "small_scene"}, {"quality", "draft"}, {"faceSize", 16}}}}
+                  .dump());
+    ASSERT_EQ(runCli("bake " + (dir / "small.json").string() + " --backend cpu --quiet").exitCode, 0);
+    for (const std::string& program : {std::string(IBLBAKE_CLI), enginePath()}) {
+        const CliRun refused =
+            runProgram(program, "bake " + (dir / "small.json").string() + " --max-memory 1M");
+        EXPECT_EQ(refused.exitCode, 1) << program;
+        EXPECT_NE(refused.err.find("small.json: outputs.dfgSize: the plan needs an estimated "),
+                  std::string::npos)
+            << refused.err;
+        EXPECT_NE(refused.err.find(", over --max-memory 1.0 MiB"), std::string::npos) << refused.err;
+    }
     fs::remove_all(dir);
 }
 
@@ -217,5 +233,7 @@ TEST(PlanBudget, SourceSizeFromTheHeaderDrivesTheEnvironmentStage) {
     EXPECT_EQ(environment(wide).drivingKey, "environment.file");
     EXPECT_EQ(environment(wide).what, "524,288-pixel source");
     EXPECT_EQ(environment(small).drivingKey, "outputs.faceSize");
+    scene.environment.files = {kSampleHdri}; // Radiance: "-Y 512 +X 1024"
+    EXPECT_EQ(environment(estimatePlan(scene, planScene(scene))).what, "524,288-pixel source");
     fs::remove_all(dir);
 }

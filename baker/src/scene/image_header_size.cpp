@@ -11,6 +11,9 @@ namespace ibl {
 
 namespace {
 
+// Sides past 2^31 (more than any reader takes) count as unknown, so that no product of them wraps.
+constexpr unsigned long kMostSide = 1ul << 31;
+
 std::uint32_t littleEndian32(const unsigned char* at) {
     return std::uint32_t(at[0]) | std::uint32_t(at[1]) << 8 | std::uint32_t(at[2]) << 16 |
            std::uint32_t(at[3]) << 24;
@@ -28,7 +31,8 @@ std::optional<std::uint64_t> radiancePixels(const std::string& header) {
     if (blank == std::string::npos) return std::nullopt;
     char axis0[3] = {}, axis1[3] = {};
     unsigned long size0 = 0, size1 = 0;
-    if (std::sscanf(header.c_str() + blank + 2, "%2s %lu %2s %lu", axis0, &size0, axis1, &size1) != 4)
+    if (std::sscanf(header.c_str() + blank + 2, "%2s %lu %2s %lu", axis0, &size0, axis1, &size1) != 4 ||
+        size0 > kMostSide || size1 > kMostSide)
         return std::nullopt;
     return std::uint64_t(size0) * size1;
 }

@@ -167,8 +167,10 @@ StageEstimate estimateStage(const Scene& scene, const PlanStage& stage) {
         const std::uint64_t ball = std::uint64_t(o.preview ? o.preview->sphereSize : 64);
         e.work = 2 * 11 * ball * ball * (1 + scene.probes.size());
         e.drivingKey = scene.probes.empty() ? "outputs.preview" : "probes";
-        e.what = scene.probes.empty() ? facesText(face)
-                                      : grouped(scene.probes.size()) + " probes of " + facesText(probeFace);
+        e.what = scene.probes.empty()
+                     ? facesText(face)
+                     : grouped(scene.probes.size()) +
+                           (scene.probes.size() == 1 ? " probe of " : " probes of ") + facesText(probeFace);
     } else if (kind == "light-card") {
         const std::uint64_t size = setting(stage, "size"), layers = setting(stage, "layers");
         const std::uint64_t pixels =

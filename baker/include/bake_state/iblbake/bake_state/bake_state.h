@@ -118,7 +118,8 @@ class ProgressSink {
 // (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
 // every product the plan names holds the bytes of the contentHash the manifest records. Reads the inputs
 // and products, never the cache; starts no backend and never throws. Below an output root, a scene whose
-// outputs.directory the root refuses (outputDirectoryBelowRoot) is not up to date.
+// outputs.directory the root refuses (outputDirectoryBelowRoot) is not up to date, nor is one over
+// options.budget (plan_budget.h budgetRefusal).
 struct UpToDate {
     bool upToDate = false;
     std::string reason;                          // why not (the first reason found)
