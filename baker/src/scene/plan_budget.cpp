@@ -41,9 +41,11 @@ std::uint64_t pyramidBytes(std::uint64_t faceSize) {
 }
 
 // An LD bake (specular.cpp bakeChain, LdBake) of an n-px source: the source (which becomes level 0), the
-// residual's pyramid and the backend's copy of it (Dispatcher::share), the levels below 0 (a third of the
-// source) and the level in flight (a quarter); with the sun kept for level 0, that cube too. Measured:
-// HDRI items of 256, 512 and 1,024-px faces peaked at 77 MB + 4.2 x the source cube.
+// residual's bordered pyramid, the levels below 0 (a third of the source) and the level in flight (a
+// quarter); with the sun kept for level 0, that cube too. A second pyramid's worth is measured, not derived:
+// on OpenCL the device's copy (Dispatcher::share); on the CPU backend, which shares the host pyramid, the
+// product writer's encoded copy of the chain and the bright split come to about as much. HDRI items of 256,
+// 512, 1,024 and 2,048-px faces (CPU backend) peaked at 77 MB + 4.2 x the source cube; this gives 4.25.
 std::uint64_t ldBakeBytes(std::uint64_t faceSize, bool withSun) {
     const std::uint64_t cube = cubeBytes(faceSize);
     return cube + 2 * pyramidBytes(faceSize) + cube / 3 + cube / 4 + (withSun ? cube : 0);
