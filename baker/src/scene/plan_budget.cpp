@@ -8,6 +8,7 @@
 #include "image_header_size.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <unistd.h>
