@@ -12,7 +12,9 @@ BakeOptions BakeRunOptions::bakeOptions() const {
             .backend = parseBackend(backend),
             .device = device,
             .warnings = &std::cerr,
-            .outputRoot = outputRoot};
+            .outputRoot = outputRoot,
+            .budget = {maxMemory.empty() ? 0 : parseByteSize(maxMemory, "--max-memory"),
+                       maxWork.empty() ? 0 : parseWorkCount(maxWork, "--max-work")}};
 }
 
 void BakeRunOptions::addTo(CLI::App& command, const char* forceHelp, const char* cacheHelp) {
@@ -22,6 +24,9 @@ void BakeRunOptions::addTo(CLI::App& command, const char* forceHelp, const char*
     command.add_option("--cache", cache, cacheHelp);
     command.add_option("--output-root", outputRoot, "write only below this directory (docs/scenes.md)")
         ->envname("IBLBAKE_OUTPUT_ROOT");
+    command.add_option("--max-memory", maxMemory,
+                       "refuse a bake estimated over this (4G; default 75% of RAM)");
+    command.add_option("--max-work", maxWork, "refuse a bake estimated over this many texel-samples (2e12)");
     addBackendAndDevice(command, backend, device);
 }
 

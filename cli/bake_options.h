@@ -20,10 +20,11 @@ struct BakeRunOptions {
     std::string cache;
     std::string backend = "auto";
     std::string device;
-    std::string outputRoot; // --output-root, else $IBLBAKE_OUTPUT_ROOT
+    std::string outputRoot;         // --output-root, else $IBLBAKE_OUTPUT_ROOT
+    std::string maxMemory, maxWork; // --max-memory, --max-work (parsed by the library: plan_budget.h)
 
     BakeOptions bakeOptions() const; // warnings to stderr
-    // --json, --quiet, --force, --cache, --output-root, --backend, --device on `command`.
+    // --json, --quiet, --force, --cache, --output-root, --max-memory, --max-work, --backend, --device.
     void addTo(CLI::App& command, const char* forceHelp, const char* cacheHelp);
 };
 

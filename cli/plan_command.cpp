@@ -1,5 +1,6 @@
 #include "plan_command.h"
 
+#include <iblbake/scene/plan_budget.h>
 #include <iblbake/scene/scene.h>
 #include <iblbake/scene/scene_plan.h>
 
@@ -17,10 +18,14 @@ CLI::App* addPlanSubcommand(CLI::App& app, PlanOptions& o) {
 int runPlan(const PlanOptions& o) {
     const Scene scene = loadSceneFile(o.scene);
     const Plan plan = planScene(scene);
-    if (o.json)
-        std::printf("%s\n", planToJson(plan).dump(2).c_str());
-    else
-        std::printf("%s", planText(scene, plan).c_str());
+    const PlanBudget budget = estimatePlan(scene, plan);
+    if (o.json) {
+        nlohmann::json document = planToJson(plan);
+        document["budget"] = budgetToJson(budget, {});
+        std::printf("%s\n", document.dump(2).c_str());
+    } else {
+        std::printf("%s%s", planText(scene, plan).c_str(), budgetText(budget, {}).c_str());
+    }
     return 0;
 }
 

@@ -93,6 +93,7 @@ set(IBLBAKE_CODE_NOT_IN_STAGES
     baker/src/io/atomic_file.cpp baker/src/io/filament_sh.cpp baker/src/io/muted_stderr.h
     baker/src/io/output_set.cpp baker/src/io/temporary_path.cpp # move finished files into place, decide no bytes
     baker/src/io/output_root.cpp # where outputs may go, decides no bytes
+    baker/src/scene/plan_budget.cpp baker/src/scene/image_header_size.cpp baker/src/scene/image_header_size.h # refuse a plan over budget, decide no bytes
     baker/src/io/input_file.cpp baker/src/io/limits.cpp # refuse inputs before work, decide no bytes
     baker/src/io/shipped_file.cpp baker/src/io/shipped_file.h # where shipped files are, not what they hold
     baker/src/io/process_memory.cpp # where freed memory goes, decides no bytes

@@ -27,6 +27,16 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// A bake refused before any work: the summary's one line, nothing read past a header, nothing written.
+BakeSummary refused(const std::string& error, ProgressSink& progress,
+                    std::chrono::steady_clock::time_point start) {
+    BakeSummary summary;
+    summary.error = error;
+    summary.seconds = secondsSince(start);
+    progress.done(summary);
+    return summary;
+}
+
 // A path that messages show as another: below an output root, the /proc/self/fd path a bake writes through
 // is shown as the scene's output directory.
 struct ShownPath {
@@ -105,6 +115,8 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
                        std::chrono::steady_clock::time_point start) {
     BakeSummary summary;
     const Plan plan = planScene(scene);
+    if (std::optional<std::string> refusal = budgetRefusal(scene, estimatePlan(scene, plan), options.budget))
+        return refused(*refusal, progress, start);
     summary.skipped = plan.skipped;
     for (const PlanStage& s : plan.stages)
         summary.stages.push_back({s.id, s.kind, StageStatus::Pending, "", 0.0, s.products});
@@ -205,12 +217,13 @@ BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSi
     if (!options.outputRoot.empty()) try { // refused before anything is read
             outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
         } catch (const Error& e) {
-            BakeSummary refused;
-            refused.error = e.what();
-            refused.seconds = secondsSince(start);
-            progress.done(refused);
-            return refused;
+            return refused(e.what(), progress, start);
         }
+    // Over budget: refused before the up-to-date check hashes the inputs (bakeStages checks again for the
+    // batch, which calls it after its own check).
+    if (std::optional<std::string> refusal =
+            budgetRefusal(scene, estimatePlan(scene, planScene(scene)), options.budget))
+        return refused(*refusal, progress, start);
     const UpToDate checked = checkBakeUpToDate(scene, options); // "--force" when forced: never up to date
     if (checked.upToDate) return reportUpToDateBake(scene, checked, progress, start);
     return bakeStages(scene, options, progress, checked.inputHashes, start);

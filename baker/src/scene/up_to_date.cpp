@@ -99,7 +99,11 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options) {
             // Below an output root a scene that may not write where it names is not answered from its old
             // bake: the bake refuses it.
             if (!options.outputRoot.empty()) outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
-            out.reason = check(scene, options, out);
+            // Nor is one over its budget (docs/scenes.md "Budget"), so that the front end and the engine
+            // refuse it alike.
+            const std::optional<std::string> overBudget =
+                budgetRefusal(scene, estimatePlan(scene, planScene(scene)), options.budget);
+            out.reason = overBudget ? *overBudget : check(scene, options, out);
         } catch (const std::exception& e) { // a missing product or input, a malformed manifest
             out.reason = e.what();
         }

@@ -6,6 +6,7 @@
 
 #include "iblbake/core/backend.h"
 #include "iblbake/core/output_root.h"
+#include "iblbake/scene/plan_budget.h"
 #include "iblbake/scene/scene.h"
 #include "iblbake/scene/scene_plan.h"
 
@@ -30,6 +31,9 @@ struct BakeOptions {
     // following links when the bake writes (iblbake/core/output_root.h). The cache follows it unless
     // cacheDirectory (the operator's) is given.
     std::filesystem::path outputRoot;
+    // --max-memory, --max-work (docs/scenes.md "Budget"): a plan whose estimate exceeds either is refused
+    // before any input is read past its header.
+    BudgetLimits budget;
 };
 
 enum class StageStatus { Pending, Ran, Cached, Failed };
@@ -114,7 +118,8 @@ class ProgressSink {
 // (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
 // every product the plan names holds the bytes of the contentHash the manifest records. Reads the inputs
 // and products, never the cache; starts no backend and never throws. Below an output root, a scene whose
-// outputs.directory the root refuses (outputDirectoryBelowRoot) is not up to date.
+// outputs.directory the root refuses (outputDirectoryBelowRoot) is not up to date, nor is one over
+// options.budget (plan_budget.h budgetRefusal).
 struct UpToDate {
     bool upToDate = false;
     std::string reason;                          // why not (the first reason found)
