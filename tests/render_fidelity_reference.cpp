@@ -92,7 +92,9 @@ int main(int argc, char** argv) {
         nlohmann::json out = {{"pixels", pixels},
                               {"maskRadius", maskRadius},
                               {"faceSize", ingest.sourceFaceSize},
-                              {"engine", three ? "three" : filament ? "filament" : "babylon"}};
+                              {"engine", three      ? "three"
+                                         : filament ? "filament"
+                                                    : "babylon"}};
         for (int step = 0; step <= 5; ++step) {
             const float roughness = float(step) / 5.0f;
             std::vector<ibl::ShadingPoint> points;

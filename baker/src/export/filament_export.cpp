@@ -5,6 +5,7 @@
 #include "iblbake/baker/gltf_export.h"
 #include "iblbake/core/error.h"
 #include "iblbake/core/format_text.h"
+#include "iblbake/core/gltf_names.h"
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/cube_profile.h"
 #include "iblbake/ktx2/ktx1.h"
@@ -12,7 +13,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 
 namespace ibl {
 
@@ -60,13 +60,12 @@ void checkIntensity(const CubeMap& level0, double storageScale, double intensity
                 }
             }
     if (worst <= intensity) return;
-    char message[256];
-    std::snprintf(message, sizeof message,
-                  "%g leaves level 0's brightest channel at %g (%g / %g), beyond the filament profile's "
-                  "R11G11B10F (65,024; 64,512 in blue); give at least %g",
-                  intensity, brightest / intensity, brightest, intensity,
-                  std::exp2(std::ceil(std::log2(worst))));
-    throw SettingError("intensity", message);
+    throw SettingError("intensity",
+                       formatText("%g leaves level 0's brightest channel at %g (%g / %g), beyond the "
+                                  "filament profile's R11G11B10F (65,024; 64,512 in blue); give "
+                                  "at least %g",
+                                  intensity, brightest / intensity, brightest, intensity,
+                                  std::exp2(std::ceil(std::log2(worst)))));
 }
 
 // cmgen names the files after the deploy directory's last component.
@@ -116,11 +115,8 @@ FilamentExported exportFilament(const fs::path& bakeDirectory, const FilamentExp
 
     SpecularSettings refilter;
     refilter.quality = parseQuality(settings.quality);
-    refilter.levels = 1;
-    for (int size = base; size > settings.minFaceSize; size /= 2)
-        ++refilter.levels;
-    for (int m = 0; m < refilter.levels; ++m)
-        refilter.levelRoughness.push_back(engineLevelRoughness(profile, m, refilter.levels, base));
+    refilter.levels = gltfRefilteredLevels(base, settings.minFaceSize); // as the glTF export's chain
+    refilter.levelRoughness = engineChainRoughness(profile, refilter.levels, base);
     const auto start = std::chrono::steady_clock::now();
     const CubeMapChain chain = bakeSpecular(level0, refilter, executor());
     exported.refilterMilliseconds =
@@ -152,9 +148,10 @@ std::string filamentExportText(const FilamentExported& exported, const std::stri
     return formatText("refilter %zu levels %d..%d px, %s: %.1f ms\n", exported.levelRoughness.size(),
                       exported.baseFaceSize, exported.lowestFaceSize, executorDescription.c_str(),
                       exported.refilterMilliseconds) +
-           formatText("wrote   %s (R11G11B10F, Filament's roughness per level), %s, %s: set the IndirectLight's "
-                      "intensity to %g\n",
-                      exported.ibl.c_str(), exported.skybox.c_str(), exported.shText.c_str(), intensity);
+           formatText(
+               "wrote   %s (R11G11B10F, Filament's roughness per level), %s, %s: set the IndirectLight's "
+               "intensity to %g\n",
+               exported.ibl.c_str(), exported.skybox.c_str(), exported.shText.c_str(), intensity);
 }
 
 } // namespace ibl

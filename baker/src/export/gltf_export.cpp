@@ -135,11 +135,10 @@ GltfExport readBakeForGltf(const GltfExportSource& source, const GltfExportSetti
     SpecularSettings refilter;
     refilter.levels = gltfRefilteredLevels(base, settings.minFaceSize);
     refilter.quality = parseQuality(settings.quality);
+    refilter.levelRoughness = engineChainRoughness(profile, refilter.levels, base);
     std::string roughnessList;
-    for (int m = 0; m < refilter.levels; ++m) {
-        refilter.levelRoughness.push_back(engineLevelRoughness(profile, m, refilter.levels, base));
-        roughnessList += (m ? ", " : "") + nlohmann::json(refilter.levelRoughness.back()).dump();
-    }
+    for (const float r : refilter.levelRoughness)
+        roughnessList += (roughnessList.empty() ? "" : ", ") + nlohmann::json(r).dump();
     out.refilter = refilter;
     out.baseFaceSize = base;
     out.lowestFaceSize = lowest;

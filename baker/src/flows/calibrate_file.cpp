@@ -14,10 +14,10 @@ namespace fs = std::filesystem;
 CalibratedImage calibrateToFiles(const fs::path& input, const EnvironmentSettings& settings,
                                  const fs::path& output, const fs::path& sunJson) {
     checkOutputFile(output);
-    checkOutputExtension(output, ".exr", "OpenEXR");
+    checkOutputExtension(output, ".exr");
     if (!sunJson.empty()) {
         checkOutputFile(sunJson);
-        checkOutputExtension(sunJson, ".json", "JSON");
+        checkOutputExtension(sunJson, ".json");
     }
     CalibratedImage calibrated = calibrateInInputLayout(input, settings);
     OutputSet outputs;

@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
+#include <map>
 #include <unistd.h>
 
 namespace ibl {
@@ -23,13 +24,16 @@ void checkOutputFile(const fs::path& target) {
     if (fs::is_directory(target, ec)) throw OutputError(target.string() + ": is a directory");
 }
 
-void checkOutputExtension(const fs::path& target, std::string_view extension, std::string_view container) {
+void checkOutputExtension(const fs::path& target, std::string_view extension) {
     std::string got = target.extension().string();
     for (char& c : got)
         c = char(std::tolower(static_cast<unsigned char>(c)));
     if (got == extension) return;
-    throw OutputError(target.string() + ": written as " + std::string(container) + " (" +
-                      std::string(extension) + "), not " + (got.empty() ? "a name without an extension" : got));
+    static const std::map<std::string_view, std::string_view> containers = {
+        {".ktx2", "KTX2"}, {".exr", "OpenEXR"}, {".json", "JSON"}, {".png", "PNG"}};
+    throw OutputError(target.string() + ": written as " + std::string(containers.at(extension)) + " (" +
+                      std::string(extension) + "), not " +
+                      (got.empty() ? "a name without an extension" : got));
 }
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {

@@ -33,6 +33,13 @@ float engineLevelRoughness(const EngineProfile& profile, int level, int levelCou
     return float(std::sqrt(std::max(alphaG - profile.minimumVariance, 0.0)));
 }
 
+std::vector<float> engineChainRoughness(const EngineProfile& profile, int levelCount, int baseFaceSize) {
+    std::vector<float> roughness;
+    for (int m = 0; m < levelCount; ++m)
+        roughness.push_back(engineLevelRoughness(profile, m, levelCount, baseFaceSize));
+    return roughness;
+}
+
 int engineLevelCount(const EngineProfile& profile, int baseFaceSize) {
     int levels = 1;
     while ((baseFaceSize >> levels) >= profile.smallestFace)

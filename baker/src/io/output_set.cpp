@@ -1,21 +1,12 @@
 #include "iblbake/ktx2/output_set.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/core/temporary_path.h"
 #include "iblbake/ktx2/atomic_file.h"
 
 namespace ibl {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
-    for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
-        text.replace(at, from.size(), to);
-    return text;
-}
-
-} // namespace
 
 OutputSet::~OutputSet() {
     if (committed_) return;

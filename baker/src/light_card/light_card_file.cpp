@@ -1,7 +1,7 @@
 // The light card's document (its KTX2 keys) and the flow of `iblbake lightcard` (iblbake/baker/light_card.h).
 #include "iblbake/baker/light_card.h"
-#include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/core/numeric.h"
+#include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/runtime/runtime_light_card.h"
 
 namespace ibl {
@@ -34,7 +34,7 @@ Ktx2WriteStats bakeLightCardFile(const std::filesystem::path& texture, const std
                                  const LightCardSettings& settings, const Executor& executor,
                                  const std::string& workingColorSpace) {
     checkOutputFile(output); // before the work
-    checkOutputExtension(output, ".ktx2", "KTX2");
+    checkOutputExtension(output, ".ktx2");
     const LightCardTexture emission = readLightCardTexture(texture, settings, "", workingColorSpace);
     const LightCard card = bakeLightCard(emission.emission, emission.aspect, settings, executor);
     return writeKtx2Array(output, card.levels, settings.format, lightCardKeyValues(card, emission));

@@ -3,6 +3,7 @@
 
 #include "iblbake/bake_state/content_hash.h"
 #include "iblbake/core/error.h"
+#include "iblbake/core/format_text.h"
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/output_set.h"
 #include "iblbake/opencl/executor.h"
@@ -36,19 +37,6 @@ BakeSummary refused(const std::string& error, ProgressSink& progress,
     progress.done(summary);
     return summary;
 }
-
-// A path that messages show as another: below an output root, the /proc/self/fd path a bake writes through
-// is shown as the scene's output directory.
-struct ShownPath {
-    std::string path, shownAs;
-    std::string shown(std::string text) const {
-        if (path.empty()) return text;
-        for (std::size_t at = text.find(path); at != std::string::npos;
-             at = text.find(path, at + shownAs.size()))
-            text.replace(at, path.size(), shownAs);
-        return text;
-    }
-};
 
 bool needsBackend(const Plan& plan) {
     for (const PlanStage& s : plan.stages)
@@ -115,13 +103,15 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
                        std::chrono::steady_clock::time_point start) {
     BakeSummary summary;
     const Plan plan = planScene(scene);
-    if (std::optional<std::string> refusal = budgetRefusal(scene, estimatePlan(scene, plan), options.budget))
+    if (std::optional<std::string> refusal = refusalBeforeWork(scene, plan, options))
         return refused(*refusal, progress, start);
     summary.skipped = plan.skipped;
     for (const PlanStage& s : plan.stages)
         summary.stages.push_back({s.id, s.kind, StageStatus::Pending, "", 0.0, s.products});
     std::size_t current = 0;
-    ShownPath shownPath; // below an output root: the opened directory's path, as the scene names it
+    // Below an output root the bake writes through the /proc/self/fd path of the directory it opened; its
+    // messages show the scene's output directory instead.
+    std::string openedDirectory;
     try {
         checkOutputPaths(scene, plan);
         // Every input is read (hashed) before anything is written: a missing file fails the bake here.
@@ -153,7 +143,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
             root.emplace(options.outputRoot);
             outputDirectory = outputs.createDirectoriesBelow(*root, outputDirectoryBelowRoot(scene, *root),
                                                              scene.name + ": outputs.directory");
-            shownPath = {outputDirectory.string(), scene.outputs.directory.string()};
+            openedDirectory = outputDirectory.string();
         }
         const fs::path cacheDirectory =
             options.cacheDirectory.empty() ? outputDirectory / ".iblbake-cache" : options.cacheDirectory;
@@ -200,7 +190,7 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
         addManifestReport(summary);
     } catch (const std::exception& e) { // ibl::Error, and anything a library throws: one line, no crash
         summary.ok = false;
-        summary.error = shownPath.shown(e.what());
+        summary.error = replaceAll(e.what(), openedDirectory, scene.outputs.directory.string());
         if (current < summary.stages.size() && summary.stages[current].status == StageStatus::Pending &&
             !summary.stages[current].key.empty())
             summary.stages[current].status = StageStatus::Failed;
@@ -214,16 +204,8 @@ BakeSummary bakeStages(const Scene& scene, const BakeOptions& options, ProgressS
 
 BakeSummary bakeScene(const Scene& scene, const BakeOptions& options, ProgressSink& progress) {
     const auto start = std::chrono::steady_clock::now();
-    if (!options.outputRoot.empty()) try { // refused before anything is read
-            outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
-        } catch (const Error& e) {
-            return refused(e.what(), progress, start);
-        }
-    // Over budget: refused before the up-to-date check hashes the inputs (bakeStages checks again for the
-    // batch, which calls it after its own check).
-    if (std::optional<std::string> refusal =
-            budgetRefusal(scene, estimatePlan(scene, planScene(scene)), options.budget))
-        return refused(*refusal, progress, start);
+    // A scene refused before any work is found not up to date without its inputs hashed, and bakeStages
+    // refuses it (refusalBeforeWork).
     const UpToDate checked = checkBakeUpToDate(scene, options); // "--force" when forced: never up to date
     if (checked.upToDate) return reportUpToDateBake(scene, checked, progress, start);
     return bakeStages(scene, options, progress, checked.inputHashes, start);

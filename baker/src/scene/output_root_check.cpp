@@ -1,4 +1,5 @@
-// A scene's output directory below an output root (iblbake/bake_state/bake_state.h outputDirectoryBelowRoot).
+// What refuses a bake before any work (iblbake/bake_state/bake_state.h outputDirectoryBelowRoot,
+// refusalBeforeWork).
 #include "iblbake/bake_state/bake_state.h"
 #include "iblbake/core/error.h"
 
@@ -15,6 +16,16 @@ std::filesystem::path outputDirectoryBelowRoot(const Scene& scene, const OutputR
     } catch (const OutputError& e) {
         throw OutputError(key + e.what());
     }
+}
+
+std::optional<std::string> refusalBeforeWork(const Scene& scene, const Plan& plan,
+                                             const BakeOptions& options) {
+    if (!options.outputRoot.empty()) try {
+            outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
+        } catch (const Error& e) {
+            return e.what();
+        }
+    return budgetRefusal(scene, estimatePlan(scene, plan), options.budget);
 }
 
 } // namespace ibl

@@ -37,13 +37,10 @@ class PrivateCache {
 // Every file the plan delivers, checked before any work (a directory output: its first file): where it can be
 // written, and named for the container its product is (specular.ktx2: KTX2).
 void checkDeliveries(const ProductPlan& plan) {
-    static const std::map<std::string, std::string> containers = {
-        {".ktx2", "KTX2"}, {".exr", "OpenEXR"}, {".json", "JSON"}, {".png", "PNG"}};
     for (const auto& [product, file] : plan.files) {
         if (product != kLdExrDirectory) {
-            const std::string extension = fs::path(product).extension().string();
             checkOutputFile(file);
-            checkOutputExtension(file, extension, containers.at(extension));
+            checkOutputExtension(file, fs::path(product).extension().string());
         } else if (fs::exists(file) && !fs::is_directory(file)) {
             throw Error(file.string() + ": is not a directory (--exr)");
         } else {

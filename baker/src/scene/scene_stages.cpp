@@ -268,10 +268,8 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
     settings.lodBias = s.value("lodBias", settings.lodBias);
     // `iblbake specular --profile three`: every level holds the roughness three.js reads there.
     if (s.value("levelRule", "") == kFilamentLodRuleName) {
-        const EngineProfile& engine = engineProfile(s.at("profile").get<std::string>());
-        for (int m = 0; m < settings.levels; ++m)
-            settings.levelRoughness.push_back(
-                engineLevelRoughness(engine, m, settings.levels, s.at("faceSize").get<int>()));
+        settings.levelRoughness = engineChainRoughness(engineProfile(s.at("profile").get<std::string>()),
+                                                       settings.levels, s.at("faceSize").get<int>());
     }
     LdChainWriteSettings write;
     write.format = parseKtx2Format(s.at("ktx2Format").get<std::string>());

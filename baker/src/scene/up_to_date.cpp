@@ -96,14 +96,9 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options) {
         out.reason = "--force";
     } else {
         try {
-            // Below an output root a scene that may not write where it names is not answered from its old
-            // bake: the bake refuses it.
-            if (!options.outputRoot.empty()) outputDirectoryBelowRoot(scene, OutputRoot(options.outputRoot));
-            // Nor is one over its budget (docs/scenes.md "Budget"), so that the front end and the engine
-            // refuse it alike.
-            const std::optional<std::string> overBudget =
-                budgetRefusal(scene, estimatePlan(scene, planScene(scene)), options.budget);
-            out.reason = overBudget ? *overBudget : check(scene, options, out);
+            // A scene the bake would refuse is not answered from its old bake.
+            const std::optional<std::string> refusal = refusalBeforeWork(scene, planScene(scene), options);
+            out.reason = refusal ? *refusal : check(scene, options, out);
         } catch (const std::exception& e) { // a missing product or input, a malformed manifest
             out.reason = e.what();
         }

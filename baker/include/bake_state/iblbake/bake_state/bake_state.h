@@ -117,9 +117,8 @@ class ProgressSink {
 // manifest.json parses, lists exactly the plan's stages with the keys the current inputs and settings give
 // (under the backend the manifest records, which must be the one options.backend forces unless Auto), and
 // every product the plan names holds the bytes of the contentHash the manifest records. Reads the inputs
-// and products, never the cache; starts no backend and never throws. Below an output root, a scene whose
-// outputs.directory the root refuses (outputDirectoryBelowRoot) is not up to date, nor is one over
-// options.budget (plan_budget.h budgetRefusal).
+// and products, never the cache; starts no backend and never throws. A scene `options` refuse before any work
+// (refusalBeforeWork) is not up to date, its inputs not hashed.
 struct UpToDate {
     bool upToDate = false;
     std::string reason;                          // why not (the first reason found)
@@ -137,6 +136,13 @@ UpToDate checkBakeUpToDate(const Scene& scene, const BakeOptions& options);
 // ibl::OutputError "<scene>: outputs.directory: <directory> is written as an absolute path ..." or "...:
 // <directory> is outside the output root <root> ..." before anything is read or written.
 std::filesystem::path outputDirectoryBelowRoot(const Scene& scene, const OutputRoot& root);
+
+// Why `options` refuse to bake `scene` (planned as `plan`) before any work, reading no input past its header:
+// below an output root, its outputs.directory (outputDirectoryBelowRoot); then its plan over options.budget
+// (plan_budget.h budgetRefusal). Nothing when it may be baked. The up-to-date check and the bake both ask, so
+// the front end, the engine and batch refuse a scene alike.
+std::optional<std::string> refusalBeforeWork(const Scene& scene, const Plan& plan,
+                                             const BakeOptions& options);
 
 // The summary of a bake found up to date, as bakeScene reports it: every stage of the plan cached, with its
 // key, no time spent in it; `progress` sees each stage start and end, then done. `start` is when the caller

@@ -43,8 +43,8 @@ FilamentExported exportFilament(const std::filesystem::path& bakeDirectory,
                                 const std::filesystem::path& outputDirectory,
                                 const std::function<const Executor&()>& executor);
 
-// `iblbake export-filament`'s report: the re-filter (on `executorDescription`), the files and the intensity to
-// set in Filament.
+// `iblbake export-filament`'s report: the re-filter (on `executorDescription`), the files and the intensity
+// to set in Filament.
 std::string filamentExportText(const FilamentExported& exported, const std::string& executorDescription,
                                double intensity);
 

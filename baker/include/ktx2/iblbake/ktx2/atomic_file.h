@@ -13,10 +13,9 @@ namespace ibl {
 void checkOutputFile(const std::filesystem::path& target);
 
 // Throws ibl::OutputError "<target>: written as <container> (<extension>), not <its extension>" unless
-// `target` ends in `extension` (any case): a writer makes one container, and a file named for another would
-// hold bytes its name does not say (a .dds holding KTX2).
-void checkOutputExtension(const std::filesystem::path& target, std::string_view extension,
-                          std::string_view container);
+// `target` ends in `extension` (any case): a writer makes one container (.ktx2 KTX2, .exr OpenEXR, .json
+// JSON, .png PNG), and a file named for another would hold bytes its name does not say (a .dds holding KTX2).
+void checkOutputExtension(const std::filesystem::path& target, std::string_view extension);
 
 class AtomicFile {
   public:

@@ -90,6 +90,8 @@ const EngineProfile& engineProfile(const std::string& name);
 // The perceptual roughness level m of a chain of levelCount levels on level-0 faces of baseFaceSize texels
 // must hold for the profile's engine (FilamentLod, BabylonLodFromAlphaG; 0 for level 0 and for Baked).
 float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize);
+// The same for every level of the chain (SpecularSettings::levelRoughness of a chain baked for the engine).
+std::vector<float> engineChainRoughness(const EngineProfile& profile, int levelCount, int baseFaceSize);
 // The levels of the profile's chain on level-0 faces of baseFaceSize texels: down to its smallestFace, at
 // least its minLevels, at most the full chain down to 1 x 1.
 int engineLevelCount(const EngineProfile& profile, int baseFaceSize);
