@@ -12,7 +12,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 
 namespace fs = std::filesystem;
 
@@ -39,12 +38,10 @@ void printStage(const AccuracyStage& stage) {
 } // namespace
 
 Action addAccuracyCommand(CLI::App& app) {
-    auto o = std::make_shared<AccuracyOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "accuracy", "sweep every stage's quality knobs: time and error against the brute-force reference");
-    o->input.addTo(*cmd);
-    cmd->add_option("-o,--output", o->output, "report directory (report.json, report.md, report.html)")
-        ->required();
+    auto [o, cmd] = addInputSubcommand<AccuracyOptions>(
+        app, "accuracy",
+        "sweep every stage's quality knobs: time and error against the brute-force reference",
+        "report directory (report.json, report.md, report.html)");
     cmd->add_option("--repeats", o->repeats, "timed runs per setting (the median is reported)")
         ->capture_default_str()
         ->check(CLI::Range(1, 100));

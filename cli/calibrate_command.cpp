@@ -15,7 +15,6 @@
 #include <iblbake/core/error.h>
 
 #include <cstdio>
-#include <memory>
 
 namespace ibl::cli {
 
@@ -30,9 +29,8 @@ struct CalibrateOptions {
 } // namespace
 
 Action addCalibrateCommand(CLI::App& app) {
-    auto o = std::make_shared<CalibrateOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "calibrate",
+    auto [o, cmd] = addSubcommand<CalibrateOptions>(
+        app, "calibrate",
         "scale an HDRI to absolute luminance (cd/m2), optionally extracting the sun as a disk light");
     o->input.addTo(*cmd, "face size of the source cube the factor is measured on (default: from the input); "
                          "also the output's for cube inputs");

@@ -5,6 +5,8 @@
 #include <iblbake/core/error.h>
 #include <iblbake/core/limits.h>
 
+#include <cstdio>
+
 namespace ibl::cli {
 
 void CalibrationOptions::addTo(CLI::App& command) {
@@ -56,27 +58,19 @@ bool CalibrationOptions::anySource() const {
 }
 
 CalibrationSettings CalibrationOptions::settings() const {
-    CalibrationSettings s;
-    int count = 0;
-    auto take = [&](const std::optional<double>& v, CalibrationSource source) {
-        if (!v) return;
-        ++count;
-        s.source = source;
-        s.value = *v;
+    CalibrationSettings s; // at most one source: the flags exclude each other (addTo)
+    const auto take = [&](const std::optional<double>& v, CalibrationSource source) {
+        if (v) {
+            s.source = source;
+            s.value = *v;
+        }
     };
     take(scale, CalibrationSource::Scale);
     take(ev100, CalibrationSource::Ev100);
     take(illuminance, CalibrationSource::Illuminance);
     take(sunIlluminance, CalibrationSource::SunIlluminance);
     take(skyLuminance, CalibrationSource::SkyLuminance);
-    if (radiometric) {
-        ++count;
-        s.source = CalibrationSource::Radiometric;
-    }
-    if (count > 1)
-        throw Error(
-            "give at most one calibration source (--scale, --ev100, --illuminance, --sun-illuminance, "
-            "--sky-luminance, --radiometric)");
+    if (radiometric) s.source = CalibrationSource::Radiometric;
     return s;
 }
 
@@ -113,13 +107,34 @@ EnvironmentJob environmentJob(const InputOptions& input, const CalibrationOption
     return job;
 }
 
-ProductRun runCalibrated(const ProductPlan& plan, const CalibrationOptions& calibration,
-                         const std::function<const Executor*()>& executor) {
+int runProductCommand(const ProductPlan& plan, const CalibrationOptions& calibration,
+                      const BackendOptions& backendOptions, std::optional<Backend> backend,
+                      const std::string& timedStage,
+                      const std::function<std::string(const ProductRun&)>& productText,
+                      std::chrono::steady_clock::time_point start) {
+    std::future<Executor> pendingExecutor;
+    if (backend) pendingExecutor = backendOptions.startExecutor(*backend);
+    std::optional<Executor> executor;
+    ProductRun run;
     try {
-        return runProductPlan(plan, executor);
+        run = runProductPlan(plan, [&] { return &executor.emplace(pendingExecutor.get()); });
     } catch (const SettingError& e) {
         throw withFlag(e, calibration);
     }
+    std::printf("%s", environmentRunText(run).c_str());
+    if (executor) {
+        backendOptions.printTiming(*executor, timedStage.c_str(), 1000.0 * run.stageSeconds(timedStage));
+        BackendOptions::storeBuiltKernels(*executor);
+    }
+    std::printf("%s", productText(run).c_str());
+    std::printf("time    ingest %.1f ms",
+                1000.0 * (run.stageSeconds("environment") + run.stageSeconds("sun")));
+    for (const StageResult& stage : run.stages)
+        if (stage.id != "environment" && stage.id != "sun")
+            std::printf(", %s %.1f ms", stage.id.c_str(), 1000.0 * stage.seconds);
+    std::printf(", total %.1f ms (%s)\n", millisecondsSince(start),
+                executor ? executor->description().c_str() : "cpu");
+    return 0;
 }
 
 } // namespace ibl::cli

@@ -4,6 +4,8 @@
 // (iblbake/baker/product_plans.h); these turn the options into its settings and its errors into flag wording.
 #pragma once
 
+#include "common_options.h"
+
 #include <iblbake/baker/calibration.h>
 #include <iblbake/baker/environment.h>
 #include <iblbake/baker/ingest.h>
@@ -13,12 +15,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <functional>
-#include <memory>
 #include <optional>
 #include <string>
-#include <utility>
-#include <vector>
 
 namespace ibl::cli {
 
@@ -34,7 +34,7 @@ struct CalibrationOptions {
     // --sun-max-solid-angle.
     void addTo(CLI::App& command);
     bool anySource() const;
-    CalibrationSettings settings() const; // throws ibl::Error on > 1 source
+    CalibrationSettings settings() const;
     // The library's settings: `ingest` and these options.
     EnvironmentSettings environmentSettings(const IngestSettings& ingest) const;
 };
@@ -49,8 +49,14 @@ struct InputOptions;
 EnvironmentJob environmentJob(const InputOptions& input, const CalibrationOptions& calibration,
                               int sourceFaceSize);
 
-// runProductPlan, a calibration error named by its source's flag (withFlag).
-ProductRun runCalibrated(const ProductPlan& plan, const CalibrationOptions& calibration,
-                         const std::function<const Executor*()>& executor);
+// Runs a single-product command's plan (specular, diffuse) and prints it: the executor is made on its own
+// thread while the input is read (`backend` nullopt: the plan needs none), a calibration error is named by
+// its source's flag (withFlag); then the input's lines, --timing of `timedStage`, `productText` of the run
+// and one time line (the ingest, each product stage, the total since `start`).
+int runProductCommand(const ProductPlan& plan, const CalibrationOptions& calibration,
+                      const BackendOptions& backendOptions, std::optional<Backend> backend,
+                      const std::string& timedStage,
+                      const std::function<std::string(const ProductRun&)>& productText,
+                      std::chrono::steady_clock::time_point start);
 
 } // namespace ibl::cli

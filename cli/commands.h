@@ -4,10 +4,20 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
+#include <utility>
 
 namespace ibl::cli {
 
 using Action = std::function<int()>;
+
+// A subcommand and the options its flags parse into: CLI11 keeps pointers into the options until the action
+// runs, so they live in a shared object that the action holds.
+template <class Options>
+std::pair<std::shared_ptr<Options>, CLI::App*> addSubcommand(CLI::App& app, const char* name,
+                                                             const char* description) {
+    return {std::make_shared<Options>(), app.add_subcommand(name, description)};
+}
 
 Action addDevicesCommand(CLI::App& app);
 Action addDfgCommand(CLI::App& app);

@@ -1,6 +1,7 @@
 #include "common_options.h"
 
 #include <iblbake/bake_state/bake_state.h>
+#include <iblbake/ktx2/cube_profile.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -45,6 +46,29 @@ void BackendOptions::printTiming(const Executor& executor, const char* stage, do
                     builds.fromBinary);
     }
     std::printf("timing: stage  %-24s %10.3f ms (%s)\n", stage, wallMs, executor.description().c_str());
+}
+
+void CubeStorageOptions::addTo(CLI::App& command, const std::string& product) {
+    std::string formats;
+    for (const std::string& name : kKtx2FormatNames)
+        formats += (formats.empty() ? "" : ", ") + name;
+    command.add_option("--format", format, product + " format: " + formats)
+        ->capture_default_str()
+        ->check(CLI::IsMember(kKtx2FormatNames));
+    command.add_flag("--clamp-to-format", clampToFormat,
+                     "clamp the " + product +
+                         " to its format's range (energy lost is reported) instead of "
+                         "storing it with a storage scale");
+    command
+        .add_option("--profile", profile, product + " layout: standard (OpenGL faces), three (three.js r187)")
+        ->capture_default_str()
+        ->check(CLI::IsMember(kCubeProfileNames));
+}
+
+void addQualityOption(CLI::App& command, std::string& quality, const std::string& what) {
+    command.add_option("--quality", quality, "sample preset of " + what + ": draft, production, reference")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"draft", "production", "reference"}));
 }
 
 double millisecondsSince(std::chrono::steady_clock::time_point start) {

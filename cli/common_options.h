@@ -34,6 +34,18 @@ struct BackendOptions {
     void printTiming(const Executor& executor, const char* stage, double wallMs) const;
 };
 
+// How a command stores its cube product: --format, --clamp-to-format, --profile.
+struct CubeStorageOptions {
+    std::string format = "rgba16f";
+    bool clampToFormat = false;
+    std::string profile = "standard";
+
+    void addTo(CLI::App& command, const std::string& product);
+};
+
+// --quality: the sample preset (draft, production, reference) of `what`.
+void addQualityOption(CLI::App& command, std::string& quality, const std::string& what);
+
 double millisecondsSince(std::chrono::steady_clock::time_point start);
 
 } // namespace ibl::cli

@@ -6,7 +6,6 @@
 #include <iblbake/baker/product_plans.h>
 
 #include <cstdio>
-#include <memory>
 #include <optional>
 
 namespace ibl::cli {
@@ -21,9 +20,8 @@ struct DfgOptions {
 } // namespace
 
 Action addDfgCommand(CLI::App& app) {
-    auto opts = std::make_shared<DfgOptions>();
-    CLI::App* cmd =
-        app.add_subcommand("dfg", "bake the DFG / diffuse LUT (R = DFG1, G = DFG2, B = Disney diffuse)");
+    auto [opts, cmd] = addSubcommand<DfgOptions>(
+        app, "dfg", "bake the DFG / diffuse LUT (R = DFG1, G = DFG2, B = Disney diffuse)");
     cmd->add_option("-o,--output", opts->output, "output OpenEXR file")->required();
     cmd->add_option("--size", opts->settings.size, "texels per side (x: NoV, y: perceptual roughness)")
         ->capture_default_str()

@@ -12,7 +12,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <optional>
 
 namespace ibl::cli {
@@ -33,11 +32,7 @@ struct EngineExportOptions {
             ->required();
         command.add_option("-o,--output", output, outputHelp)->required();
         command.add_option("--min-face-size", minFaceSize, minFaceSizeHelp)->capture_default_str();
-        command
-            .add_option("--quality", quality,
-                        "sample preset of the re-filtered chain: draft, production, reference")
-            ->capture_default_str()
-            ->check(CLI::IsMember({"draft", "production", "reference"}));
+        addQualityOption(command, quality, "the re-filtered chain");
         backend.addTo(command);
     }
     // Runs an export given the executor it asks for, naming the flag of a refused setting; then keeps the
@@ -63,9 +58,8 @@ struct EngineExportOptions {
 } // namespace
 
 Action addGltfCommand(CLI::App& app) {
-    auto o = std::make_shared<EngineExportOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "gltf",
+    auto [o, cmd] = addSubcommand<EngineExportOptions>(
+        app, "gltf",
         "export a bake as glTF 2.0: EXT_lights_image_based (RGBD PNG) and the sun as KHR_lights_punctual");
     o->addTo(*cmd, "output .gltf; its images are written beside it",
              "face size of the roughness-1 level when the chain is re-filtered (the extension suggests 16)");
@@ -84,9 +78,8 @@ Action addGltfCommand(CLI::App& app) {
 }
 
 Action addExportFilamentCommand(CLI::App& app) {
-    auto o = std::make_shared<EngineExportOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "export-filament",
+    auto [o, cmd] = addSubcommand<EngineExportOptions>(
+        app, "export-filament",
         "export a bake as Filament's NAME_ibl.ktx, NAME_skybox.ktx and sh.txt (cmgen --deploy)");
     o->addTo(*cmd, "output directory; its name NAME names the KTX1 files",
              "face size of the roughness-1 level (the filament profile's smallest: 16)");

@@ -1,14 +1,10 @@
 // iblbake export-sh BAKE_DIR --profile filament -o sh.txt: the bake's diffuse SH in an engine's own
-// convention (iblbake/baker/filament_sh.h).
+// convention (iblbake/baker/filament_export.h exportFilamentSh).
 #include "commands.h"
 
-#include <iblbake/baker/filament_sh.h>
-#include <iblbake/baker/gltf_export.h>
-#include <iblbake/core/error.h>
-#include <iblbake/ktx2/atomic_file.h>
+#include <iblbake/baker/filament_export.h>
 
 #include <cstdio>
-#include <memory>
 
 namespace ibl::cli {
 namespace {
@@ -22,8 +18,8 @@ struct ExportShOptions {
 } // namespace
 
 Action addExportShCommand(CLI::App& app) {
-    auto o = std::make_shared<ExportShOptions>();
-    CLI::App* cmd = app.add_subcommand("export-sh", "write a bake's diffuse SH in an engine's convention");
+    auto [o, cmd] = addSubcommand<ExportShOptions>(app, "export-sh",
+                                                   "write a bake's diffuse SH in an engine's convention");
     cmd->add_option("bake", o->bakeDir, "bake directory holding diffuse.json")->required();
     cmd->add_option("-o,--output", o->output, "output file")->required();
     cmd->add_option("--profile", o->profile,
@@ -32,11 +28,7 @@ Action addExportShCommand(CLI::App& app) {
         ->check(CLI::IsMember({"filament"}));
 
     return [o] {
-        const std::filesystem::path diffuse = std::filesystem::path(o->bakeDir) / "diffuse.json";
-        const std::string text = filamentShText(readPrescaledIrradiance(diffuse));
-        AtomicFile file(o->output);
-        writeFileBytes(file.tempPath(), text, o->output);
-        file.commit();
+        const std::filesystem::path diffuse = exportFilamentSh(o->bakeDir, o->output);
         std::printf("wrote   %s (Filament sh.txt from %s)\n", o->output.c_str(), diffuse.c_str());
         return 0;
     };

@@ -2,6 +2,8 @@
 // lat-long pixel placement.
 #pragma once
 
+#include "commands.h"
+
 #include <iblbake/baker/ingest.h>
 #include <iblbake/baker/inspect.h>
 
@@ -38,6 +40,16 @@ struct OneInputOptions {
     void addTo(CLI::App& command, const char* sizeHelp);
     IngestSettings settings() const;
 };
+
+// A subcommand that reads HDRIs (options.input: InputOptions) and writes options.output (-o, required).
+template <class Options>
+std::pair<std::shared_ptr<Options>, CLI::App*>
+addInputSubcommand(CLI::App& app, const char* name, const char* description, const char* outputHelp) {
+    auto [options, command] = addSubcommand<Options>(app, name, description);
+    options->input.addTo(*command);
+    command->add_option("-o,--output", options->output, outputHelp)->required();
+    return {options, command};
+}
 
 // --latlong-pixels, for the commands that take the input options one by one (preview, OneInputOptions).
 void addLatLongPixelsOption(CLI::App& command, std::string& latLongPixels);

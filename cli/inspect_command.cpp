@@ -8,7 +8,6 @@
 #include <iblbake/baker/inspect.h>
 
 #include <cstdio>
-#include <memory>
 
 namespace ibl::cli {
 
@@ -22,19 +21,15 @@ struct InspectOptions {
 } // namespace
 
 Action addInspectCommand(CLI::App& app) {
-    auto o = std::make_shared<InspectOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "inspect", "print an HDRI's luminance statistics, upward illuminance, suggested EV100 and sun");
+    auto [o, cmd] = addSubcommand<InspectOptions>(
+        app, "inspect", "print an HDRI's luminance statistics, upward illuminance, suggested EV100 and sun");
     o->input.addTo(*cmd, "face size of the source cube measured (default: from the input)");
     cmd->add_flag("--json", o->json, "print one JSON object (schema in iblbake/baker/inspect.h)");
 
     return [o] {
         const EnvironmentInspection inspection = inspectEnvironment(o->input.input, o->input.settings());
-        if (o->json) {
-            std::printf("%s\n", inspectionJson(inspection).dump(2).c_str());
-            return 0;
-        }
-        std::printf("%s", inspectionText(inspection).c_str());
+        std::printf("%s", o->json ? (inspectionJson(inspection).dump(2) + "\n").c_str()
+                                  : inspectionText(inspection).c_str());
         return 0;
     };
 }

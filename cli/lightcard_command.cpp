@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <memory>
 
 namespace ibl::cli {
 
@@ -19,10 +18,10 @@ struct LightCardOptions {
 } // namespace
 
 Action addLightCardCommand(CLI::App& app) {
-    auto opts = std::make_shared<LightCardOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "lightcard", "bake a texture into a light card (layer 0: specular mips by footprint, layers 1..K: "
-                     "diffuse by distance)");
+    auto [opts, cmd] = addSubcommand<LightCardOptions>(
+        app, "lightcard",
+        "bake a texture into a light card (layer 0: specular mips by footprint, layers 1..K: "
+        "diffuse by distance)");
     cmd->add_option("TEXTURE", opts->texture, "the light's emission (any image format; 8-bit files are sRGB)")
         ->required();
     cmd->add_option("-o,--output", opts->output, "output KTX2 file")->required();

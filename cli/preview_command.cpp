@@ -13,7 +13,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <optional>
 
 namespace fs = std::filesystem;
@@ -33,30 +32,11 @@ struct PreviewOptions {
     BackendOptions backend;
 };
 
-int previewLights(PreviewOptions& o) {
-    if (!o.bakeDir.empty() || !o.reference.empty())
-        throw Error("preview --lights takes no bake directory and no --reference");
-    const auto start = std::chrono::steady_clock::now();
-    Executor executor = o.backend.makeExecutor();
-    LightPreviewSettings settings;
-    settings.sphereSize = o.sphereSize;
-    settings.exposureEV = o.exposure;
-    const fs::path exrPath = fs::path(o.output).replace_extension(".exr");
-    const LightPreview preview = renderLightPreviewFile(o.card, executor, settings, o.output, exrPath);
-    BackendOptions::storeBuiltKernels(executor);
-    std::printf("wrote   %s (%d x %d) and %s (%s)\n", o.output.c_str(), preview.width, preview.height,
-                exrPath.c_str(), executor.description().c_str());
-    std::printf("%s", lightPreviewErrorText(preview).c_str());
-    std::printf("time    %.1f ms\n", millisecondsSince(start));
-    return 0;
-}
-
 } // namespace
 
 Action addPreviewCommand(CLI::App& app) {
-    auto o = std::make_shared<PreviewOptions>();
-    CLI::App* cmd =
-        app.add_subcommand("preview", "render material balls lit by a bake (and the reference beside it)");
+    auto [o, cmd] = addSubcommand<PreviewOptions>(
+        app, "preview", "render material balls lit by a bake (and the reference beside it)");
     cmd->add_option("bake", o->bakeDir,
                     "bake directory: manifest.json (iblbake bake), else specular.ktx2, dfg_lut.exr, "
                     "diffuse.json [, sun.json] [, irradiance.ktx2: diffuse from it instead of the SH]; "
@@ -81,22 +61,32 @@ Action addPreviewCommand(CLI::App& app) {
         auto start = std::chrono::steady_clock::now();
         if (fs::path(o->output).extension() != ".png")
             throw Error(o->output + ": the preview is written as .png");
-        if (o->lights) return previewLights(*o);
-        if (!o->card.empty()) throw Error("preview: --card " + o->card + " needs --lights");
-        if (o->bakeDir.empty()) throw Error("preview: a bake directory, or --lights");
+        if (o->lights && !(o->bakeDir.empty() && o->reference.empty()))
+            throw Error("preview --lights takes no bake directory and no --reference");
+        if (!o->lights && !o->card.empty()) throw Error("preview: --card " + o->card + " needs --lights");
+        if (!o->lights && o->bakeDir.empty()) throw Error("preview: a bake directory, or --lights");
         std::optional<Executor> executor;
-        MaterialPreviewSettings settings;
-        settings.sphereSize = o->sphereSize;
-        settings.exposureEV = o->exposure;
+        const auto makeExecutor = [&]() -> const Executor& {
+            return executor.emplace(o->backend.makeExecutor());
+        };
         const fs::path exrPath = fs::path(o->output).replace_extension(".exr");
-        const BakeDirectoryPreview p = previewBakeDirectory(
-            o->bakeDir, o->reference, parseLatLongPixels(o->latLongPixels),
-            [&]() -> const Executor& { return executor.emplace(o->backend.makeExecutor()); }, settings,
-            o->output, exrPath);
+        int width = 0, height = 0;
+        std::string text;
+        if (o->lights) {
+            const LightPreview p = renderLightPreviewFile(
+                o->card, makeExecutor(), {.sphereSize = o->sphereSize, .exposureEV = o->exposure}, o->output,
+                exrPath);
+            width = p.width, height = p.height, text = lightPreviewErrorText(p);
+        } else {
+            const BakeDirectoryPreview p = previewBakeDirectory(
+                o->bakeDir, o->reference, parseLatLongPixels(o->latLongPixels), makeExecutor,
+                {.sphereSize = o->sphereSize, .exposureEV = o->exposure}, o->output, exrPath);
+            width = p.preview.width, height = p.preview.height, text = p.text;
+        }
         BackendOptions::storeBuiltKernels(*executor);
-        std::printf("wrote   %s (%d x %d) and %s (%s)\n", o->output.c_str(), p.preview.width,
-                    p.preview.height, exrPath.c_str(), executor->description().c_str());
-        std::printf("%s", p.text.c_str());
+        std::printf("wrote   %s (%d x %d) and %s (%s)\n", o->output.c_str(), width, height, exrPath.c_str(),
+                    executor->description().c_str());
+        std::printf("%s", text.c_str());
         std::printf("time    %.1f ms\n", millisecondsSince(start));
         return 0;
     };

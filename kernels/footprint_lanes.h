@@ -68,11 +68,9 @@ IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, in
     int brightFace = (int)e[7];
     float bu0 = -1.0f + e[8] * sourceTexelSize, bv0 = -1.0f + e[9] * sourceTexelSize;
     float8 sum = 0.0f;
-    int count = S * S;
-    for (int first = 0; first < count; first += (int)IBL_LANES) {
-        int8 patch = first + laneIndices();
-        PatchLanes p = patchLanes(face, u0, v0, step, S, patch);
-        float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
+    for (int first = 0; first < S * S; first += (int)IBL_LANES) {
+        PatchLanes p = patchLanes(face, u0, v0, step, S, first);
+        float8 nx = p.nx, ny = p.ny, nz = p.nz;
         // brightTexelWeight(n, ..., e): the point value where one sub-patch suffices or e is behind n.
         float8 cosAngle = nx * e[0] + ny * e[1] + nz * e[2];
         float8 angle, subdivisions;
@@ -89,9 +87,7 @@ IBL_FN float footprintPatchesWeight(int face, float u0, float v0, float step, in
                                                   bv0 + (float)j * subStep, subStep, alpha);
                 subWeight += select((float8)0.0f, w, ((int8)j < sub) & ((int8)k < sub));
             }
-        float8 weight =
-            cubePatchSolidAngleLanes(pu, pv, (float8)step) * select(subWeight, pointWeight, point);
-        sum += select((float8)0.0f, weight, patch < count);
+        sum += select((float8)0.0f, p.solidAngle * select(subWeight, pointWeight, point), p.inGrid);
     }
     return sumLanes(sum);
 }

@@ -78,26 +78,6 @@ IBL_FN void cubeFaceDirectionLanes(int face, float8 s, float8 t, float8* x, floa
     }
 }
 
-// Patches first .. first + 7 of an S x S grid of step `step` from (u0, v0) on `face` (row-major; lanes past
-// the grid's S * S patches repeat its pattern and are the caller's to mask): their corners (pu, pv) and
-// the unit directions through their centres.
-typedef struct {
-    float8 pu, pv;
-    float8 nx, ny, nz;
-} PatchLanes;
-
-IBL_FN PatchLanes patchLanes(int face, float u0, float v0, float step, int S, int8 patch) {
-    PatchLanes p;
-    p.pu = u0 + convert_float8(patch % S) * step;
-    p.pv = v0 + convert_float8(patch / S) * step;
-    float8 dx, dy, dz;
-    cubeFaceDirectionLanes(face, 0.5f * (p.pu + 0.5f * step + 1.0f), 0.5f * (p.pv + 0.5f * step + 1.0f), &dx,
-                           &dy, &dz);
-    float8 inv = 1.0f / sqrt(dx * dx + dy * dy + dz * dz);
-    p.nx = dx * inv, p.ny = dy * inv, p.nz = dz * inv;
-    return p;
-}
-
 // cubePatchSolidAngle in every lane.
 IBL_FN float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float8 step) {
     float8 u = u0 + 0.5f * step, v = v0 + 0.5f * step;
@@ -110,6 +90,31 @@ IBL_FN float8 cubePatchSolidAngleLanes(float8 u0, float8 v0, float8 step) {
         fabs(atan2(u0 * v0, sqrt(u0 * u0 + v0 * v0 + 1.0f)) - atan2(u0 * v1, sqrt(u0 * u0 + v1 * v1 + 1.0f)) -
              atan2(u1 * v0, sqrt(u1 * u1 + v0 * v0 + 1.0f)) + atan2(u1 * v1, sqrt(u1 * u1 + v1 * v1 + 1.0f)));
     return select(midpoint, area, exact);
+}
+
+// Patches first .. first + 7 of an S x S grid of step `step` from (u0, v0) on `face` (row-major): their
+// corners (pu, pv), the unit directions through their centres, their solid angles and which lanes lie in
+// the grid (lanes past its S * S patches repeat its pattern; their sums are the caller's to mask).
+typedef struct {
+    float8 pu, pv;
+    float8 nx, ny, nz;
+    float8 solidAngle;
+    int8 inGrid;
+} PatchLanes;
+
+IBL_FN PatchLanes patchLanes(int face, float u0, float v0, float step, int S, int first) {
+    int8 patch = first + laneIndices();
+    PatchLanes p;
+    p.pu = u0 + convert_float8(patch % S) * step;
+    p.pv = v0 + convert_float8(patch / S) * step;
+    float8 dx, dy, dz;
+    cubeFaceDirectionLanes(face, 0.5f * (p.pu + 0.5f * step + 1.0f), 0.5f * (p.pv + 0.5f * step + 1.0f), &dx,
+                           &dy, &dz);
+    float8 inv = 1.0f / sqrt(dx * dx + dy * dy + dz * dz);
+    p.nx = dx * inv, p.ny = dy * inv, p.nz = dz * inv;
+    p.solidAngle = cubePatchSolidAngleLanes(p.pu, p.pv, (float8)step);
+    p.inGrid = patch < S * S;
+    return p;
 }
 
 IBL_END_NAMESPACE

@@ -45,11 +45,9 @@ IBL_FN float8 lobeTriangleIntegralLanes(float8 ax, float8 ay, float8 bx, float8 
 IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFace, float bu, float bv,
                                           float step, int S, float alpha) {
     float8 sum = 0.0f;
-    int count = S * S;
-    for (int first = 0; first < count; first += (int)IBL_LANES) {
-        int8 patch = first + laneIndices();
-        PatchLanes p = patchLanes(sourceFace, bu, bv, step, S, patch);
-        float8 pu = p.pu, pv = p.pv, nx = p.nx, ny = p.ny, nz = p.nz;
+    for (int first = 0; first < S * S; first += (int)IBL_LANES) {
+        PatchLanes p = patchLanes(sourceFace, bu, bv, step, S, first);
+        float8 nx = p.nx, ny = p.ny, nz = p.nz;
         // frameFromNormal(n): tangent (tx, ty, tz), bitangent (bx, by, bz).
         float8 s = copysign((float8)1.0f, nz);
         float8 a = -1.0f / (s + nz);
@@ -68,8 +66,7 @@ IBL_FN float narrowFootprintPatchesWeight(FaceSquareCorners texel, int sourceFac
         float8 triangles = 0.0f;
         for (int k = 0; k < 4; ++k)
             triangles += lobeTriangleIntegralLanes(qx[k], qy[k], qx[(k + 1) & 3], qy[(k + 1) & 3], alpha);
-        float8 weight = cubePatchSolidAngleLanes(pu, pv, (float8)step) * (4.0f * fabs(triangles));
-        sum += select((float8)0.0f, weight, patch < count);
+        sum += select((float8)0.0f, p.solidAngle * (4.0f * fabs(triangles)), p.inGrid);
     }
     return sumLanes(sum);
 }

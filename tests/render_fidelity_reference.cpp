@@ -51,7 +51,7 @@
 
 namespace {
 
-constexpr double kEyeDistance = 3.0; // render_fidelity_page.html's camera
+constexpr double kEyeDistance = 3.0; // render_fidelity_page.js's camera
 constexpr std::uint32_t kAlbedoSamples = 1024;
 
 double luminance(const glm::dvec3& c) {

@@ -9,7 +9,7 @@ import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import {
   angleDegrees, brightestSpot, cubeFaceDirection, cubeSamples, cubeTexel, here, launchBrowser, luminance,
-  normalize, openPage, ourIrradiance, pixelSamples, readKtx2Cube, reflection, startServer, unproject,
+  normalize, openEnginePage, ourIrradiance, pixelSamples, readKtx2Cube, reflection, startServer, unproject,
   writeToneMappedPng,
 } from './consumer_common.mjs';
 
@@ -42,7 +42,7 @@ const server = await startServer({ '/node_modules/': path.join(here, 'node_modul
 const browser = await launchBrowser();
 let b;
 try {
-  const page = await openPage(browser, `${server.url}/tests/babylon_page.html`);
+  const page = await openEnginePage(browser, server, 'babylon', 'babylon_page.js', 256);
   // The mirror camera looks at the sphere from above the sun's side, so the sun's reflection and the
   // horizon are both on the sphere.
   const sunWorld = gltfFromWorld(sunGltf); // both maps are their own inverse

@@ -15,11 +15,34 @@ const MIME = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/jav
                '.json': 'application/json', '.gltf': 'model/gltf+json', '.png': 'image/png',
                '.ktx2': 'image/ktx2' };
 
-// Serves each mount (URL prefix -> directory) read-only; anything else is 404. Resolves to
-// { url, close } once listening on an ephemeral port.
+// The engines' scripts, in the head of every page: three as an ES module (import map), Babylon.js and
+// Filament as the global scripts their packages ship.
+const ENGINE_HEADS = {
+  three: '<script type="importmap">{ "imports": { "three": "/node_modules/three/build/three.module.js" } }</script>',
+  babylon: '<script src="/node_modules/babylonjs/babylon.js"></script>\n' +
+           '<script src="/node_modules/babylonjs-loaders/babylonjs.loaders.js"></script>',
+  filament: '<script src="/node_modules/filament/filament.js"></script>',
+};
+
+// A consumer page: the engine's scripts, a canvas of `canvas` pixels and the page's own module script.
+function enginePage(engine, script, canvas) {
+  return `<!doctype html>\n<html>\n<head>\n<meta charset="utf-8">\n${ENGINE_HEADS[engine]}\n</head>\n<body>\n` +
+         `<canvas id="canvas" width="${canvas}" height="${canvas}"></canvas>\n` +
+         `<script type="module" src="/tests/${script}"></script>\n</body>\n</html>\n`;
+}
+
+// Serves /page?engine=E&script=S&canvas=N (enginePage) and each mount (URL prefix -> directory) read-only;
+// anything else is 404. Resolves to { url, close } once listening on an ephemeral port.
 export function startServer(mounts) {
   const server = createServer((req, res) => {
-    const urlPath = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    const url = new URL(req.url, 'http://x');
+    const urlPath = decodeURIComponent(url.pathname);
+    const engine = url.searchParams.get('engine');
+    if (urlPath === '/page' && engine in ENGINE_HEADS) {
+      res.writeHead(200, { 'Content-Type': 'text/html' });
+      res.end(enginePage(engine, path.basename(url.searchParams.get('script')), Number(url.searchParams.get('canvas'))));
+      return;
+    }
     for (const [prefix, dir] of Object.entries(mounts)) {
       if (!urlPath.startsWith(prefix)) continue;
       const file = path.join(dir, urlPath.slice(prefix.length));
@@ -56,6 +79,11 @@ export async function openPage(browser, url) {
   page.on('pageerror', (e) => console.log(`page error: ${e.message}`));
   await page.goto(url);
   return page;
+}
+
+// The page of `script` (a module in tests/js) inside enginePage, from `server`.
+export function openEnginePage(browser, server, engine, script, canvas) {
+  return openPage(browser, `${server.url}/page?engine=${engine}&script=${script}&canvas=${canvas}`);
 }
 
 // --- Directions ----------------------------------------------------------------------------------

@@ -16,7 +16,7 @@
 //   (Filament clamps r to 0.089 on WebGL, which reads lod 0.5 of a 4-level chain: half the r = 0.18 level).
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
-import { here, launchBrowser, openPage, startServer, writeToneMappedPng } from './consumer_common.mjs';
+import { here, launchBrowser, openEnginePage, startServer, writeToneMappedPng } from './consumer_common.mjs';
 import { cell, compare, maskedLuminance as maskedLuminanceOf } from './fidelity_common.mjs';
 
 const [iblFile, intensityText, referenceFile, artifactDir, mode] = process.argv.slice(2);
@@ -38,7 +38,7 @@ const browser = await launchBrowser();
 const start = Date.now();
 let result;
 try {
-  const page = await openPage(browser, `${server.url}/tests/filament_fidelity_page.html`);
+  const page = await openEnginePage(browser, server, 'filament', 'filament_fidelity_page.js', 32);
   // Scales by factors of 2: every pixel is read with its brightest channel in [125, 250) of 255 (0.4-0.8%
   // quantization) unless it is darker than 125/255 at the largest (the spheres' pixels span ~1:1000 here).
   const scales = Array.from({ length: 14 }, (_, k) => 2 ** (6 - k));

@@ -14,7 +14,7 @@
 //   10-21% at r >= 0.4 on potsdamer_platz, so the issue's 5% at r = 0.4 cannot be met by a cube).
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
-import { here, launchBrowser, openPage, startServer } from './consumer_common.mjs';
+import { here, launchBrowser, openEnginePage, startServer } from './consumer_common.mjs';
 import { cell, compare, maskedLuminance as masked, writeFidelityImage } from './fidelity_common.mjs';
 
 const [gltfFile, referenceFile, hdriFile, artifactDir, mode] = process.argv.slice(2);
@@ -46,7 +46,7 @@ try {
   for (const [name, source] of [
     ['our glTF', { gltf: `${server.url}/out/${path.basename(gltfFile)}` }],
     ['Babylon prefilter', { hdr: `${server.url}/hdri/${path.basename(hdriFile)}`, faceSize: reference.faceSize }]]) {
-    const page = await openPage(browser, `${server.url}/tests/render_fidelity_page.html`);
+    const page = await openEnginePage(browser, server, 'babylon', 'render_fidelity_page.js', 64);
     results[name] = await page.evaluate((s, o) => window.runFidelity(s, o), source, options);
     await page.close();
   }

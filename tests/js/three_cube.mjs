@@ -8,7 +8,7 @@
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
 import {
-  angleDegrees, brightestSpot, here, launchBrowser, luminance, normalize, openPage, pixelSamples,
+  angleDegrees, brightestSpot, here, launchBrowser, luminance, normalize, openEnginePage, pixelSamples,
   reflection, startServer, unproject, writeToneMappedPng,
 } from './consumer_common.mjs';
 
@@ -30,7 +30,7 @@ const runs = [
   { name: 'standard profile as stored', url: `/standard/${path.basename(standardFile)}`, asStored: true, shot: 'three_standard_as_stored' },
 ];
 try {
-  const page = await openPage(browser, `${server.url}/tests/three_page.html`);
+  const page = await openEnginePage(browser, server, 'three', 'three_page.js', 256);
   await page.waitForFunction(() => window.threeReady === true);
   for (const run of runs) {
     const t = await page.evaluate((options) => window.runThree(options),

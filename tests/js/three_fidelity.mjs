@@ -13,7 +13,7 @@
 //   below three's own PMREM's.
 import { mkdirSync, readFileSync } from 'node:fs';
 import path from 'node:path';
-import { halfToFloat, here, launchBrowser, openPage, startServer } from './consumer_common.mjs';
+import { halfToFloat, here, launchBrowser, openEnginePage, startServer } from './consumer_common.mjs';
 import { cell, compare, maskedLuminance, writeFidelityImage } from './fidelity_common.mjs';
 
 const [ktx2File, referenceFile, hdriFile, runtimeDir, artifactDir, mode] = process.argv.slice(2);
@@ -66,7 +66,7 @@ try {
   const options = { roughness, pixels, variants };
   for (const [name, source] of [[engines[0], { ktx2: `${server.url}/out/${path.basename(ktx2File)}` }],
                                 [engines[1], { hdr: `${server.url}/hdri/${path.basename(hdriFile)}` }]]) {
-    const page = await openPage(browser, `${server.url}/tests/three_fidelity_page.html`);
+    const page = await openEnginePage(browser, server, 'three', 'three_fidelity_page.js', 64);
     await page.waitForFunction(() => window.threeReady === true);
     results[name] = await page.evaluate((s, o) => window.runFidelity(s, o), source, options);
     await page.close();

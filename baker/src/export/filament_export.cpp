@@ -143,6 +143,15 @@ FilamentExported exportFilament(const fs::path& bakeDirectory, const FilamentExp
     return exported;
 }
 
+fs::path exportFilamentSh(const fs::path& bakeDirectory, const fs::path& output) {
+    const fs::path diffuse = bakeDirectory / "diffuse.json";
+    const std::string text = filamentShText(readPrescaledIrradiance(diffuse));
+    AtomicFile file(output);
+    writeFileBytes(file.tempPath(), text, output.string());
+    file.commit();
+    return diffuse;
+}
+
 std::string filamentExportText(const FilamentExported& exported, const std::string& executorDescription,
                                double intensity) {
     return formatText("refilter %zu levels %d..%d px, %s: %.1f ms\n", exported.levelRoughness.size(),

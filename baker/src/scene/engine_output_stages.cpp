@@ -24,10 +24,11 @@ void runGltfStage(const StageContext& c) {
     } catch (const SettingError& e) {
         throw Error(c.name + ": outputs.gltf.minFaceSize: " + e.what());
     }
-    writeJsonFile(c.outputDirectory / kGltfFacts, {{"levels", gltf.scene.specular.levels.size()},
-                                                   {"faceSize", gltf.scene.specular.levels.front().faceSize},
-                                                   {"intensity", gltfIblIntensity(gltf.scene)},
-                                                   {"sun", gltf.scene.sun.has_value()}});
+    writeJsonFile(c.outputDirectory / kEntryFiles.gltfFacts,
+                  {{"levels", gltf.scene.specular.levels.size()},
+                   {"faceSize", gltf.scene.specular.levels.front().faceSize},
+                   {"intensity", gltfIblIntensity(gltf.scene)},
+                   {"sun", gltf.scene.sun.has_value()}});
 }
 
 namespace {
@@ -44,7 +45,7 @@ RuntimeOptions previewOptions(const json& s) {
 void runPreviewReferenceStage(const StageContext& c) {
     const json& s = c.stage.settings;
     // The full calibrated environment (before any sun extraction), at the bake's face size.
-    const CubeMap environment = readCubeFile(c.dependencies.at("environment") / kCubeFile);
+    const CubeMap environment = readCubeFile(c.dependencies.at("environment") / kEntryFiles.cube);
     MaterialPreviewSettings settings;
     settings.sphereSize = s.at("sphereSize").get<int>();
     settings.referenceTargetError = s.at("targetError").get<double>();
@@ -58,8 +59,8 @@ void runPreviewReferenceStage(const StageContext& c) {
                           std::to_string(done) + " of " + std::to_string(columns) + " columns converged",
                           secondsLeft);
         });
-    writePreviewReference(c.outputDirectory / kPreviewReferenceFile,
-                          c.outputDirectory / kPreviewReferenceFacts, reference);
+    writePreviewReference(c.outputDirectory / kEntryFiles.previewReference,
+                          c.outputDirectory / kEntryFiles.previewReferenceFacts, reference);
 }
 
 void runPreviewStage(const StageContext& c) {
@@ -79,14 +80,14 @@ void runPreviewStage(const StageContext& c) {
     MaterialPreviewSettings settings;
     settings.sphereSize = s.at("sphereSize").get<int>();
     settings.exposureEV = s.at("exposure").get<float>();
-    const PreviewReference reference =
-        readPreviewReference(entry("preview-reference") / kPreviewReferenceFile,
-                             entry("preview-reference") / kPreviewReferenceFacts, settings.sphereSize);
+    const PreviewReference reference = readPreviewReference(
+        entry("preview-reference") / kEntryFiles.previewReference,
+        entry("preview-reference") / kEntryFiles.previewReferenceFacts, settings.sphereSize);
     const MaterialPreview preview = renderMaterialPreview(
         set, previewOptions(s), &reference, *c.executor, settings, c.outputDirectory / c.stage.products.at(0),
         c.outputDirectory / c.stage.products.at(1));
     writeJsonFile(
-        c.outputDirectory / kPreviewFacts,
+        c.outputDirectory / kEntryFiles.previewFacts,
         {{"width", preview.width},
          {"height", preview.height},
          {"roughness", preview.roughness},

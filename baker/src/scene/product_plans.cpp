@@ -37,8 +37,13 @@ class PrivateCache {
 // Every file the plan delivers, checked before any work (a directory output: its first file): where it can be
 // written, and named for the container its product is (specular.ktx2: KTX2).
 void checkDeliveries(const ProductPlan& plan) {
+    std::map<fs::path, std::string> productOf;
+    for (const auto& [product, file] : plan.files)
+        if (const auto [at, added] = productOf.emplace(fs::absolute(file).lexically_normal(), product);
+            !added)
+            throw Error(file.string() + ": given for two products, " + at->second + " and " + product);
     for (const auto& [product, file] : plan.files) {
-        if (product != kLdExrDirectory) {
+        if (product != kEntryFiles.ldExrDirectory) {
             checkOutputFile(file);
             checkOutputExtension(file, fs::path(product).extension().string());
         } else if (fs::exists(file) && !fs::is_directory(file)) {
@@ -179,12 +184,12 @@ ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& j
         p.files[kRoughLayersFile] = job.roughLayers;
     }
     if (!job.exrDirectory.empty()) {
-        specular.products.push_back(kLdExrDirectory);
-        p.files[kLdExrDirectory] = job.exrDirectory;
+        specular.products.push_back(kEntryFiles.ldExrDirectory);
+        p.files[kEntryFiles.ldExrDirectory] = job.exrDirectory;
     }
     if (!job.preview.empty()) {
-        specular.products.push_back(kLdPreviewFile);
-        p.files[kLdPreviewFile] = job.preview;
+        specular.products.push_back(kEntryFiles.ldPreview);
+        p.files[kEntryFiles.ldPreview] = job.preview;
     }
     p.plan.stages.push_back(std::move(specular));
     return p;
@@ -196,6 +201,8 @@ ProductPlan diffusePlan(const EnvironmentJob& environment, const DiffuseJob& job
     const std::string lightSource = environment.extractSun ? "sun" : "environment";
     const ShWindowSettings& w = job.window;
     PlanStage diffuse{"diffuse", "diffuse-sh", {lightSource}, {}, {}, {"diffuse.json"}, false, "the SH"};
+    if (w.parameter && (w.automatic || w.window == ShWindow::None))
+        throw SettingError("windowParameter", "needs a window: sloan, hanning or lanczos");
     diffuse.settings = {{"window", w.automatic ? "auto" : shWindowName(w.window)}};
     if (w.parameter) diffuse.settings["windowParameter"] = *w.parameter;
     p.plan.stages.push_back(std::move(diffuse));
@@ -203,6 +210,10 @@ ProductPlan diffusePlan(const EnvironmentJob& environment, const DiffuseJob& job
     if (!job.cube) return p;
     const IrradianceCubeJob& c = *job.cube;
     const bool sampled = c.method == IrradianceMethod::Sampled;
+    if (sampled && (environment.faceSize & (environment.faceSize - 1)) != 0)
+        throw SettingError("sourceFaceSize",
+                           std::to_string(environment.faceSize) +
+                               " is not a power of two (the sampled irradiance cube needs one)");
     PlanStage cube{"irradiance", "irradiance-cube",   {lightSource}, {},
                    {},           {"irradiance.ktx2"}, sampled,       "the irradiance cube"};
     if (!sampled) cube.dependsOn.push_back("diffuse"); // evaluated from its SH

@@ -1,6 +1,8 @@
 // What a single-product command prints of its run (iblbake/baker/product_plans.h), from its stages' facts.
 #include "iblbake/baker/product_plans.h"
 
+#include "entry_files.h"
+
 #include "iblbake/baker/inspect.h"
 #include "iblbake/baker/products.h"
 #include "iblbake/baker/sun.h"
@@ -15,7 +17,7 @@ std::string environmentRunText(const ProductRun& run) {
     std::optional<DiskLight> sun;
     if (const auto stage = run.facts.find("sun"); stage != run.facts.end())
         sun = diskLightFromJson(stage->second.at("calibration.json").at("sunLight").dump());
-    return environment.at(kIngestReportFile).at("text").get<std::string>() +
+    return environment.at(kEntryFiles.ingestReport).at("text").get<std::string>() +
            preparationText(calibrationRecordFromJson(environment.at("calibration.json").at("record")), sun);
 }
 
@@ -24,13 +26,13 @@ std::string specularRunText(const ProductPlan& plan, const ProductRun& run) {
     const std::string format = settings.at("ktx2Format").get<std::string>();
     const auto& facts = run.facts.at("specular");
     std::string text;
-    for (const json& t : facts.at(kChainReportFile).at("levels"))
+    for (const json& t : facts.at(kEntryFiles.chainReport).at("levels"))
         text += formatText("level %2d  r=%.4f  %4d px  %8.2f ms\n", t.at("level").get<int>(),
                            t.at("perceptualRoughness").get<double>(), t.at("faceSize").get<int>(),
                            t.at("milliseconds").get<double>());
     const LdManifestFacts written = ldManifestFactsFromJson(facts.at("manifest_facts.json"));
     const std::filesystem::path& chain = plan.files.at("specular.ktx2");
-    const json& stats = facts.at(kChainReportFile);
+    const json& stats = facts.at(kEntryFiles.chainReport);
     text += formatText("wrote   %s: %zu levels, %s, %llu clamped texels, %llu repaired non-finite\n",
                        chain.string().c_str(), std::size_t(written.levels), format.c_str(),
                        stats.at("clampedTexels").get<unsigned long long>(),
@@ -45,13 +47,13 @@ std::string specularRunText(const ProductPlan& plan, const ProductRun& run) {
 }
 
 std::string diffuseRunText(const ProductPlan& plan, const ProductRun& run) {
-    std::string text = run.facts.at("diffuse").at(kShReportFile).at("text").get<std::string>();
+    std::string text = run.facts.at("diffuse").at(kEntryFiles.shReport).at("text").get<std::string>();
     const std::filesystem::path& document = plan.files.at("diffuse.json");
     const auto cube = run.facts.find("irradiance");
     if (cube == run.facts.end()) return text + formatText("wrote   %s\n", document.string().c_str());
     const json& settings = plan.plan.stages.back().settings;
     const std::string format = settings.at("ktx2Format").get<std::string>();
-    const json& report = cube->second.at(kIrradianceReportFile);
+    const json& report = cube->second.at(kEntryFiles.irradianceReport);
     const std::filesystem::path& file = plan.files.at("irradiance.ktx2");
     text += formatText("cube    %d px %s, %s: %.1f ms, %llu clamped texels, %llu SH-negative texels\n",
                        settings.at("faceSize").get<int>(), settings.at("method").get<std::string>().c_str(),

@@ -141,7 +141,7 @@ json buildManifest(const ManifestInputs& in) {
     for (const PlanStage& s : in.plan.stages)
         stages[s.id] = &s;
     const std::string lightStage = stages.count("sun") ? "sun" : "environment";
-    const json calibration = readJsonFile(in.entries.at(lightStage) / kCalibrationFile);
+    const json calibration = readJsonFile(in.entries.at(lightStage) / kEntryFiles.calibration);
     const CalibrationRecord record = calibrationRecordFromJson(calibration.at("record"));
 
     json products = json::object();
@@ -154,11 +154,11 @@ json buildManifest(const ManifestInputs& in) {
     // How each KTX2 product was stored (its storage scale, or the clamp asked for), from its entry.
     auto addStorage = [&](json& entry, const std::string& stageId) {
         entry.update(productStorageToJson(
-            productStorageFromJson(readJsonFile(in.entries.at(stageId) / kStorageFile))));
+            productStorageFromJson(readJsonFile(in.entries.at(stageId) / kEntryFiles.storage))));
     };
     if (stages.count("specular")) {
         products["specular"] = ldManifestEntry(
-            ldManifestFactsFromJson(readJsonFile(in.entries.at("specular") / kLdManifestFacts)),
+            ldManifestFactsFromJson(readJsonFile(in.entries.at("specular") / kEntryFiles.ldManifestFacts)),
             in.productHashes.at("specular.ktx2"));
         addStorage(products["specular"], "specular");
         if (products["specular"].contains("roughLayers"))
@@ -183,8 +183,9 @@ json buildManifest(const ManifestInputs& in) {
         const std::string file = it->second->products.at(0);
         json probe = ldManifestEntry(probeFacts(*it->second, file), in.productHashes.at(file));
         addStorage(probe, it->first);
-        addProbeVisibilityToManifest(probe, probeVisibilityFactsFromJson(readJsonFile(
-                                                in.entries.at(it->first) / kProbeVisibilityFacts)));
+        addProbeVisibilityToManifest(
+            probe, probeVisibilityFactsFromJson(
+                       readJsonFile(in.entries.at(it->first) / kEntryFiles.probeVisibilityFacts)));
         probe["name"] = p.name;
         probe["position"] = vec3Json(p.position);
         probe["proxy"] = volumeJson(p.proxy);
@@ -221,16 +222,17 @@ json buildManifest(const ManifestInputs& in) {
         products["lightCards"] = lightCards;
     }
     if (stages.count("gltf"))
-        products["gltf"] =
-            gltfEntry(*stages["gltf"], readJsonFile(in.entries.at("gltf") / kGltfFacts), in.productHashes);
+        products["gltf"] = gltfEntry(
+            *stages["gltf"], readJsonFile(in.entries.at("gltf") / kEntryFiles.gltfFacts), in.productHashes);
     if (stages.count("preview"))
-        products["preview"] = previewEntry(
-            *stages["preview"], readJsonFile(in.entries.at("preview") / kPreviewFacts), in.productHashes);
+        products["preview"] =
+            previewEntry(*stages["preview"],
+                         readJsonFile(in.entries.at("preview") / kEntryFiles.previewFacts), in.productHashes);
 
     // What the user should know about the bake, one line each: a sun left in the probe (the check's facts).
     json warnings = json::array();
     if (stages.count("sun-check")) {
-        const json check = readJsonFile(in.entries.at("sun-check") / kSunInProbeFacts);
+        const json check = readJsonFile(in.entries.at("sun-check") / kEntryFiles.sunInProbeFacts);
         if (check.at("detected").get<bool>()) warnings.push_back(check.at("warning"));
     }
     for (const SceneLight& l : scene.lights)

@@ -85,7 +85,7 @@ struct CachedCalibration {
 };
 
 CachedCalibration readCalibration(const fs::path& entry) {
-    const fs::path file = entry / kCalibrationFile;
+    const fs::path file = entry / kEntryFiles.calibration;
     CachedCalibration c{readJsonFile(file), {}, {}};
     try {
         if (!c.document.contains("record"))
@@ -190,17 +190,17 @@ void runEnvironment(const StageContext& c) {
                                  {"inputColorSpace", env.report.inputColorSpace},
                                  {"rotateDegrees", s.at("rotation")}};
         addLatLongPixels(calibration["source"], env.report.latLongPixels);
-        writeCube(c.outputDirectory / kCubeFile, env.cube, "calibrated-environment");
-        writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
-        writeJsonFile(c.outputDirectory / kIngestReportFile,
+        writeCube(c.outputDirectory / kEntryFiles.cube, env.cube, "calibrated-environment");
+        writeJsonFile(c.outputDirectory / kEntryFiles.calibration, calibration);
+        writeJsonFile(c.outputDirectory / kEntryFiles.ingestReport,
                       {{"file", env.report.file}, {"text", ingestReportText(env.report)}});
     });
 }
 
 void runSun(const StageContext& c) {
     const fs::path from = c.dependencies.at("environment");
-    CubeMap cube = readCubeFile(from / kCubeFile);
-    json calibration = readJsonFile(from / kCalibrationFile);
+    CubeMap cube = readCubeFile(from / kEntryFiles.cube);
+    json calibration = readJsonFile(from / kEntryFiles.calibration);
     SunDetectSettings detection;
     detection.luminanceWeights = workingLuminanceWeights(calibration.at("colorSpace").get<std::string>());
     if (c.stage.settings.contains("sunMaxSolidAngle"))
@@ -211,8 +211,8 @@ void runSun(const StageContext& c) {
     } catch (const SettingError& e) {
         if (c.name.empty()) // a command's plan: the input file in front, as prepareEnvironment names it
             throw SettingError(e.setting(),
-                               readJsonFile(from / kIngestReportFile).at("file").get<std::string>() + ": " +
-                                   e.what());
+                               readJsonFile(from / kEntryFiles.ingestReport).at("file").get<std::string>() +
+                                   ": " + e.what());
         throw Error(c.name + ": environment.extractSun: " + e.what());
     }
     OutputSet outputs;
@@ -220,21 +220,21 @@ void runSun(const StageContext& c) {
                                                   c.outputDirectory / "sun.json");
     outputs.commit();
     calibration["sunLight"] = json::parse(lightJson);
-    writeCube(c.outputDirectory / kCubeFile, cube, "calibrated-environment-without-sun");
-    writeJsonFile(c.outputDirectory / kCalibrationFile, calibration);
+    writeCube(c.outputDirectory / kEntryFiles.cube, cube, "calibrated-environment-without-sun");
+    writeJsonFile(c.outputDirectory / kEntryFiles.calibration, calibration);
 }
 
 // What a detected sun left in the probe costs at runtime (environment.extractSun is false).
 void runSunInProbe(const StageContext& c) {
     const SunInProbe check =
-        measureSunInProbe(readCubeFile(c.dependencies.at("environment") / kCubeFile), *c.executor);
+        measureSunInProbe(readCubeFile(c.dependencies.at("environment") / kEntryFiles.cube), *c.executor);
     json facts = {{"detected", check.detected}};
     if (check.detected)
         facts.update({{"warning", check.warning},
                       {"roughness", check.roughness},
                       {"keptError", check.keptError},
                       {"extractedError", check.extractedError}});
-    writeJsonFile(c.outputDirectory / kSunInProbeFacts, facts);
+    writeJsonFile(c.outputDirectory / kEntryFiles.sunInProbeFacts, facts);
 }
 
 // The chain's record of what decided its texels (iblbake.settings): a scene's names its roughness range, a
@@ -313,16 +313,17 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
                             roughLayersFile ? *roughLayersFile : fs::path());
     // A command's extra views of the chain (`iblbake specular --exr, --preview`).
     if (s.value("exrLevels", false))
-        writeLdChainExrLevels(outputs, baked.chain, write.product, c.outputDirectory / kLdExrDirectory);
+        writeLdChainExrLevels(outputs, baked.chain, write.product,
+                              c.outputDirectory / kEntryFiles.ldExrDirectory);
     if (s.value("preview", false))
-        outputs.writeFile(c.outputDirectory / kLdPreviewFile,
+        outputs.writeFile(c.outputDirectory / kEntryFiles.ldPreview,
                           [&](const fs::path& temporary) { writeChainPreview(temporary, baked.chain); });
     outputs.commit();
-    writeJsonFile(c.outputDirectory / kChainReportFile,
+    writeJsonFile(c.outputDirectory / kEntryFiles.chainReport,
                   {{"levels", levels},
                    {"clampedTexels", written.chain.stats.clampedTexels},
                    {"repairedNonFinite", written.chain.stats.repairedNonFinite}});
-    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(written.chain.storage));
+    writeJsonFile(c.outputDirectory / kEntryFiles.storage, productStorageToJson(written.chain.storage));
     LdManifestFacts facts;
     facts.file = file.filename().string();
     facts.format = s.at("ktx2Format").get<std::string>();
@@ -341,17 +342,18 @@ LdManifestFacts writeLdChain(const StageContext& c, const CubeMap& source,
 
 void runSpecular(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    const CubeMap source = readCubeFile(from / kCubeFile);
+    const CubeMap source = readCubeFile(from / kEntryFiles.cube);
     // With the sun extracted (dependencies: sun, environment), level 0 may keep the sun's pixels.
     std::optional<CubeMap> withSun;
-    if (c.stage.dependsOn.size() > 1) withSun = readCubeFile(c.dependencies.at("environment") / kCubeFile);
+    if (c.stage.dependsOn.size() > 1)
+        withSun = readCubeFile(c.dependencies.at("environment") / kEntryFiles.cube);
     const fs::path roughLayersFile = c.outputDirectory / kRoughLayersFile;
     LdManifestFacts facts =
         writeLdChain(c, source, readCalibration(from), "specular-ld", c.outputDirectory / "specular.ktx2",
                      withSun ? &*withSun : nullptr, false,
                      c.stage.settings.at("roughLayers").empty() ? nullptr : &roughLayersFile);
     facts.sunInLevel0 = facts.sunInLevel0.value_or(false);
-    writeJsonFile(c.outputDirectory / kLdManifestFacts, ldManifestFactsToJson(facts));
+    writeJsonFile(c.outputDirectory / kEntryFiles.ldManifestFacts, ldManifestFactsToJson(facts));
 }
 
 // The SH window a diffuse stage's settings name: "window" auto or a family, "windowParameter" when given.
@@ -366,7 +368,7 @@ ShWindowSettings shWindowSettings(const json& s) {
 
 void runDiffuse(const StageContext& c) {
     const fs::path from = c.dependencies.at(c.stage.dependsOn.at(0));
-    const CubeMap cube = readCubeFile(from / kCubeFile);
+    const CubeMap cube = readCubeFile(from / kEntryFiles.cube);
     const CachedCalibration calibration = readCalibration(from);
     DiffuseSource source;
     if (calibration.document.contains("source")) {
@@ -386,7 +388,8 @@ void runDiffuse(const StageContext& c) {
                         calibration.colorSpace(), source, calibration.record, calibration.sun,
                         c.outputDirectory / "diffuse.json");
     outputs.commit();
-    writeJsonFile(c.outputDirectory / kShReportFile, {{"text", shWindowText(sh.window, cube.faceSize)}});
+    writeJsonFile(c.outputDirectory / kEntryFiles.shReport,
+                  {{"text", shWindowText(sh.window, cube.faceSize)}});
 }
 
 // The irradiance cube (E/pi), sampled from the environment on the backend, or evaluated from the SH of the
@@ -412,7 +415,7 @@ void runIrradiance(const StageContext& c) {
     std::uint64_t shNegativeTexels = 0;
     CubeMap cube;
     if (method == IrradianceMethod::Sampled) {
-        cube = bakeIrradianceCube(readCubeFile(from / kCubeFile), settings, *c.executor);
+        cube = bakeIrradianceCube(readCubeFile(from / kEntryFiles.cube), settings, *c.executor);
     } else {
         const json document = readJsonFile(c.dependencies.at("diffuse") / "diffuse.json");
         ShRgb irradiance;
@@ -425,8 +428,8 @@ void runIrradiance(const StageContext& c) {
         writeIrradianceCubeProduct(outputs, std::move(cube), write, calibration.record, calibration.sun,
                                    c.outputDirectory / "irradiance.ktx2");
     outputs.commit();
-    writeJsonFile(c.outputDirectory / kStorageFile, productStorageToJson(stored.storage));
-    writeJsonFile(c.outputDirectory / kIrradianceReportFile,
+    writeJsonFile(c.outputDirectory / kEntryFiles.storage, productStorageToJson(stored.storage));
+    writeJsonFile(c.outputDirectory / kEntryFiles.irradianceReport,
                   {{"clampedTexels", stored.stats.clampedTexels}, {"shNegativeTexels", shNegativeTexels}});
 }
 
@@ -438,7 +441,8 @@ void runProbe(const StageContext& c) {
         settings.ingest.readAlpha = true; // a capture's alpha is its visibility (Frostbite 2014 4.9.1.2)
         settings.ingest.visibilityMask = inputFiles(c.stage, ".visibilityMask");
         if (s.at("calibration").at("source") == "environment") {
-            const json envCalibration = readJsonFile(c.dependencies.at("environment") / kCalibrationFile);
+            const json envCalibration =
+                readJsonFile(c.dependencies.at("environment") / kEntryFiles.calibration);
             settings.calibration.source = CalibrationSource::Scale;
             settings.calibration.value = envCalibration.at("factor").get<double>();
         } else {
@@ -460,7 +464,8 @@ void runProbe(const StageContext& c) {
         facts.alphaNanRepaired = env.report.alphaNanRepaired;
         facts.alphaNegativeRepaired = env.report.alphaNegativeRepaired;
         facts.alphaOverOneRepaired = env.report.alphaOverOneRepaired;
-        writeJsonFile(c.outputDirectory / kProbeVisibilityFacts, probeVisibilityFactsToJson(facts));
+        writeJsonFile(c.outputDirectory / kEntryFiles.probeVisibilityFacts,
+                      probeVisibilityFactsToJson(facts));
     });
 }
 

@@ -43,6 +43,11 @@ FilamentExported exportFilament(const std::filesystem::path& bakeDirectory,
                                 const std::filesystem::path& outputDirectory,
                                 const std::function<const Executor&()>& executor);
 
+// `iblbake export-sh --profile filament`: BAKE_DIR's diffuse.json as cmgen's sh.txt (filament_sh.h), written
+// to `output` whole or not at all. Returns the diffuse.json it read.
+std::filesystem::path exportFilamentSh(const std::filesystem::path& bakeDirectory,
+                                       const std::filesystem::path& output);
+
 // `iblbake export-filament`'s report: the re-filter (on `executorDescription`), the files and the intensity
 // to set in Filament.
 std::string filamentExportText(const FilamentExported& exported, const std::string& executorDescription,

@@ -104,20 +104,4 @@ std::string environmentRunText(const ProductRun& run);
 std::string specularRunText(const ProductPlan& plan, const ProductRun& run);
 std::string diffuseRunText(const ProductPlan& plan, const ProductRun& run);
 
-// A command's views of the specular chain (`iblbake specular --exr, --preview`), products of its stage:
-// every level as OpenEXR in a directory, a tone-mapped PNG of every level.
-inline constexpr const char* kLdExrDirectory = "levels";
-inline constexpr const char* kLdPreviewFile = "preview.png";
-// Beside a chain of the specular stage, for printing: per level its face size and bake time ("levels"), and
-// what the writer repaired or clamped (ktx2.h Ktx2WriteStats: "clampedTexels", "repairedNonFinite").
-inline constexpr const char* kChainReportFile = "chain_report.json";
-// Beside the environment stage's cube: the input file as given ("file") and its report as the commands print
-// it (inspect.h ingestReportText, "text").
-inline constexpr const char* kIngestReportFile = "ingest_report.json";
-// Beside the diffuse stage's document: the SH window's report as the commands print it (sh.h shWindowText,
-// "text"). Beside an irradiance cube: its texels clamped to the format and, evaluated from the SH, those
-// clamped at 0 ("clampedTexels", "shNegativeTexels").
-inline constexpr const char* kShReportFile = "sh_report.json";
-inline constexpr const char* kIrradianceReportFile = "irradiance_report.json";
-
 } // namespace ibl

@@ -1,16 +1,9 @@
-<!doctype html>
-<!-- Filament side of filament_fidelity.mjs: white metal spheres (glTF metal-roughness materials through
-     gltfio's ubershaders) lit by our NAME_ibl.ktx through engine.createIblFromKtx1, each rendered head-on by an
-     orthographic camera with post-processing off (linear output) and read back at several scales of the light's
-     intensity, since the WebGL default framebuffer holds 8 bits per channel. -->
-<html>
-<head>
-<meta charset="utf-8">
-<script src="/node_modules/filament/filament.js"></script>
-</head>
-<body>
-<canvas id="canvas" width="32" height="32"></canvas>
-<script>
+// Filament side of filament_fidelity.mjs: white metal spheres (glTF metal-roughness materials through
+// gltfio's ubershaders) lit by our NAME_ibl.ktx through engine.createIblFromKtx1, each rendered head-on by an
+// orthographic camera with post-processing off (linear output) and read back at several scales of the light's
+// intensity, since the WebGL default framebuffer holds 8 bits per channel.
+// Served inside consumer_common.mjs enginePage (filament, a 32-px canvas).
+
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 // A unit UV sphere (positions = normals) with one glTF metal-roughness material, as a GLB.
@@ -120,6 +113,3 @@ window.runFilamentFidelity = async (options) => {
   }
   return { facts, renders };
 };
-</script>
-</body>
-</html>

@@ -1,51 +1,18 @@
-<!doctype html>
-<!-- Babylon.js side of babylon_gltf.mjs: loads an exported glTF as a user would (the glTF loader's
-     EXT_lights_image_based and KHR_lights_punctual), then hands back what Babylon decoded and rendered. -->
-<html>
-<head>
-<meta charset="utf-8">
-<script src="/node_modules/babylonjs/babylon.js"></script>
-<script src="/node_modules/babylonjs-loaders/babylonjs.loaders.js"></script>
-</head>
-<body>
-<canvas id="canvas" width="256" height="256"></canvas>
-<script>
-// Renders `meshes` seen by `camera` into a 32-bit float target; returns its pixels (rows bottom to top)
-// and the camera's position and inverse view-projection (Babylon's row-vector layout).
-async function renderFloat(scene, camera, meshes, size) {
-  const target = new BABYLON.RenderTargetTexture('float target', { width: size, height: size }, scene, {
-    generateMipMaps: false, type: BABYLON.Constants.TEXTURETYPE_FLOAT,
-    samplingMode: BABYLON.Constants.TEXTURE_NEAREST_SAMPLINGMODE });
-  target.renderList = meshes;
-  target.activeCamera = camera;
-  target.clearColor = new BABYLON.Color4(0, 0, 0, 0);
-  scene.activeCamera = camera;
-  await scene.whenReadyAsync();
-  const ready = () => target.isReadyForRendering() && meshes.every((mesh) => mesh.isReady(true) &&
-    mesh.material.isReady(mesh) && (!mesh.material.reflectionTexture || mesh.material.reflectionTexture.isReady()));
-  for (let attempt = 0; attempt < 200 && !ready(); ++attempt) {
-    scene.render();
-    await new Promise((r) => setTimeout(r, 50));
-  }
-  if (!ready()) throw new Error('the meshes of the float render never became ready');
-  // Under load Babylon can hand back a target it has not drawn into yet (all zero): render again until
-  // some pixel holds light, so the checks read the environment and not an empty frame.
-  let pixels;
-  for (let attempt = 0; attempt < 20; ++attempt) {
-    target.render();
-    pixels = await target.readPixels();
-    if (pixels.some((v) => Number.isFinite(v) && v > 0)) break;
-    scene.render();
-    await new Promise((r) => setTimeout(r, 50));
-  }
-  const viewProjection = camera.getTransformationMatrix().clone();
-  const inverse = BABYLON.Matrix.Invert(viewProjection);
-  target.dispose();
-  return { size, pixels: Array.from(pixels), cameraPosition: camera.position.asArray(),
-           inverseViewProjection: Array.from(inverse.m) };
-}
+// Babylon.js side of babylon_gltf.mjs: loads an exported glTF as a user would (the glTF loader's
+// EXT_lights_image_based and KHR_lights_punctual), then hands back what Babylon decoded and rendered.
+// Served inside consumer_common.mjs enginePage (babylon, a 256-px canvas).
+
+import { renderFloatPixels } from '/tests/babylon_render.js';
 
 // options: { rightHanded, mirrorCamera: [x, y, z] direction from the sphere, fov (radians) }
+// renderFloatPixels, with what the checks need to map pixels to directions: { size, pixels, cameraPosition,
+// inverseViewProjection } (Babylon's row-vector layout).
+async function renderFloat(scene, camera, meshes, size) {
+  const pixels = await renderFloatPixels(scene, camera, meshes, size);
+  const inverse = BABYLON.Matrix.Invert(camera.getTransformationMatrix().clone());
+  return { size, pixels, cameraPosition: camera.position.asArray(), inverseViewProjection: Array.from(inverse.m) };
+}
+
 window.runBabylon = async (gltfUrl, options) => {
   const engine = new BABYLON.Engine(document.getElementById('canvas'), false, { preserveDrawingBuffer: true });
   const scene = new BABYLON.Scene(engine);
@@ -109,6 +76,3 @@ window.runBabylon = async (gltfUrl, options) => {
     mirrorView, sunView,
   };
 };
-</script>
-</body>
-</html>

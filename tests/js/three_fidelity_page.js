@@ -1,18 +1,12 @@
-<!doctype html>
-<!-- three.js side of three_fidelity.mjs: white metal and white dielectric spheres lit by an environment (our
-     `--profile three` chain through iblbakeCubeLoader.js, used as a PMREM texture as is, or three's own
-     PMREMGenerator of the raw HDRI), each rendered head-on by an orthographic camera into a 32-bit float
-     target and handed back. -->
-<html>
-<head>
-<meta charset="utf-8">
-<script type="importmap">{ "imports": { "three": "/node_modules/three/build/three.module.js" } }</script>
-</head>
-<body>
-<canvas id="canvas" width="64" height="64"></canvas>
-<script type="module">
+// three.js side of three_fidelity.mjs: white metal and white dielectric spheres lit by an environment (our
+// `--profile three` chain through iblbakeCubeLoader.js, used as a PMREM texture as is, or three's own
+// PMREMGenerator of the raw HDRI), each rendered head-on by an orthographic camera into a 32-bit float
+// target and handed back.
+// Served inside consumer_common.mjs enginePage (three, a 64-px canvas).
+
 import * as THREE from 'three';
 import { HDRLoader } from '/node_modules/three/examples/jsm/loaders/HDRLoader.js';
+import { renderFloatPixels } from '/tests/three_render.js';
 import { loadIblbakeCube } from '/runtime/iblbakeCubeLoader.js';
 
 const renderer = new THREE.WebGLRenderer({ canvas: document.getElementById('canvas') });
@@ -47,19 +41,6 @@ function withFeatures(material, variant) {
     }
   };
   material.customProgramCacheKey = () => off.join(' ');
-}
-
-// The unit sphere seen from (0, 0, -3) along +z, filling a size x size float target; pixels RGBA, rows
-// bottom to top.
-function renderFloat(scene, camera, size) {
-  const target = new THREE.WebGLRenderTarget(size, size, { type: THREE.FloatType });
-  renderer.setRenderTarget(target);
-  renderer.render(scene, camera);
-  const pixels = new Float32Array(size * size * 4);
-  renderer.readRenderTargetPixels(target, 0, 0, size, size, pixels);
-  renderer.setRenderTarget(null);
-  target.dispose();
-  return Array.from(pixels);
 }
 
 // source: { ktx2: url } (our chain through the loader helper) or { hdr: url } (three's PMREMGenerator of the
@@ -103,13 +84,10 @@ window.runFidelity = async (source, options) => {
                                                           envMapIntensity: intensity, envMapRotation: rotation });
         withFeatures(material, variant);
         sphere.material = material;
-        renders[`${variant.name}/${name}`].push(renderFloat(scene, camera, options.pixels));
+        renders[`${variant.name}/${name}`].push(renderFloatPixels(renderer, scene, camera, options.pixels));
         material.dispose();
       }
     }
   return { facts, renders };
 };
 window.threeReady = true;
-</script>
-</body>
-</html>

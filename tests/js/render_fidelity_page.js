@@ -1,43 +1,11 @@
-<!doctype html>
-<!-- Babylon.js side of render_fidelity.mjs: white metal spheres lit by an environment (our glTF through the
-     stock loader, or Babylon's own HDRCubeTexture prefilter of the raw HDRI), each rendered head-on by an
-     orthographic camera into a 32-bit float target and handed back. -->
-<html>
-<head>
-<meta charset="utf-8">
-<script src="/node_modules/babylonjs/babylon.js"></script>
-<script src="/node_modules/babylonjs-loaders/babylonjs.loaders.js"></script>
-</head>
-<body>
-<canvas id="canvas" width="64" height="64"></canvas>
-<script>
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+// Babylon.js side of render_fidelity.mjs: white metal spheres lit by an environment (our glTF through the
+// stock loader, or Babylon's own HDRCubeTexture prefilter of the raw HDRI), each rendered head-on by an
+// orthographic camera into a 32-bit float target and handed back.
+// Served inside consumer_common.mjs enginePage (babylon, a 64-px canvas).
 
-// The unit sphere seen from (0, 0, -3) along +z, filling a size x size float target; pixels RGBA, rows
-// bottom to top.
-async function renderSphere(scene, camera, sphere, size) {
-  const target = new BABYLON.RenderTargetTexture('float target', { width: size, height: size }, scene, {
-    generateMipMaps: false, type: BABYLON.Constants.TEXTURETYPE_FLOAT,
-    samplingMode: BABYLON.Constants.TEXTURE_NEAREST_SAMPLINGMODE });
-  target.renderList = [sphere];
-  target.activeCamera = camera;
-  target.clearColor = new BABYLON.Color4(0, 0, 0, 0);
-  for (let attempt = 0; attempt < 200 && !(target.isReadyForRendering() && sphere.isReady(true) &&
-       sphere.material.isReady(sphere)); ++attempt) {
-    scene.render();
-    await sleep(20);
-  }
-  let pixels;
-  for (let attempt = 0; attempt < 20; ++attempt) {
-    target.render();
-    pixels = await target.readPixels();
-    if (pixels.some((v) => Number.isFinite(v) && v > 0)) break;
-    scene.render();
-    await sleep(50);
-  }
-  target.dispose();
-  return Array.from(pixels);
-}
+import { renderFloatPixels } from '/tests/babylon_render.js';
+
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 
 // Renders white metal and white dielectric (metallic 0) spheres; keyed '<variant>/metal', '<variant>/dielectric'.
 // source: { gltf: url } or { hdr: url, faceSize }. variants: [{ name, energyConservation, horizonOcclusion,
@@ -88,13 +56,10 @@ window.runFidelity = async (source, options) => {
       material.useHorizonOcclusion = variant.horizonOcclusion;
       material.useRadianceOcclusion = variant.horizonOcclusion;
       sphere.material = material;
-      renders[`${variant.name}/${name}`].push(await renderSphere(scene, camera, sphere, options.pixels));
+      renders[`${variant.name}/${name}`].push(await renderFloatPixels(scene, camera, [sphere], options.pixels));
       material.dispose();
     }
   }
   engine.dispose();
   return { facts, renders };
 };
-</script>
-</body>
-</html>

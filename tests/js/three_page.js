@@ -1,34 +1,22 @@
-<!doctype html>
-<!-- three.js side of three_cube.mjs: our cube KTX2 through three's cube path (scene.background, and
-     MeshStandardMaterial.envMap: a --profile three chain as the PMREM texture it is, any other cube through
-     PMREMGenerator), rendered into float targets and handed back. -->
-<html>
-<head>
-<meta charset="utf-8">
-<script type="importmap">{ "imports": { "three": "/node_modules/three/build/three.module.js" } }</script>
-</head>
-<body>
-<canvas id="canvas" width="256" height="256"></canvas>
-<script type="module">
+// three.js side of three_cube.mjs: our cube KTX2 through three's cube path (scene.background, and
+// MeshStandardMaterial.envMap: a --profile three chain as the PMREM texture it is, any other cube through
+// PMREMGenerator), rendered into float targets and handed back.
+// Served inside consumer_common.mjs enginePage (three, a 256-px canvas).
+
 import * as THREE from 'three';
+import { renderFloatPixels } from '/tests/three_render.js';
 import { cubeTextureFromLevels, loadIblbakeCube, parseIblbakeKtx2 } from '/runtime/iblbakeCubeLoader.js';
 
 const renderer = new THREE.WebGLRenderer({ canvas: document.getElementById('canvas') });
 renderer.toneMapping = THREE.NoToneMapping;
 
-// Renders `scene` from `camera` into a float target: { size, pixels (rows bottom to top), cameraPosition,
-// inverseViewProjection }.
+// renderFloatPixels, with what the checks need to map pixels to directions: { size, pixels,
+// cameraPosition, inverseViewProjection }.
 function renderFloat(scene, camera, size) {
-  const target = new THREE.WebGLRenderTarget(size, size, { type: THREE.FloatType });
-  renderer.setRenderTarget(target);
-  renderer.render(scene, camera);
-  const pixels = new Float32Array(size * size * 4);
-  renderer.readRenderTargetPixels(target, 0, 0, size, size, pixels);
-  renderer.setRenderTarget(null);
-  target.dispose();
+  const pixels = renderFloatPixels(renderer, scene, camera, size);
   camera.updateMatrixWorld();
   const viewProjection = new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
-  return { size, pixels: Array.from(pixels), cameraPosition: camera.position.toArray(),
+  return { size, pixels, cameraPosition: camera.position.toArray(),
            inverseViewProjection: viewProjection.invert().elements.slice() };
 }
 
@@ -68,6 +56,3 @@ window.runThree = async (options) => {
   };
 };
 window.threeReady = true;
-</script>
-</body>
-</html>
