@@ -2,6 +2,7 @@
 // source for the baker, the runtime and the kernels. Level 0 is the unconvolved source; level m of L holds
 //   frostbite  r_m = (m / (L - 1))^2, so lod(r) = sqrt(r) (L - 1)   (Frostbite eq. 63, the default)
 //   linear     r_m = m / (L - 1),     so lod(r) = r (L - 1)
+//   filament-lod  r_m = 1 - sqrt(1 - m / (L - 1)), so lod(r) = r (2 - r) (L - 1)   (`--profile three`)
 // with r the perceptual roughness. A chain has at most floor(log2(base face size)) + 1 levels (down to 1x1).
 // Files store the mapping as its name (KTX2 key "iblbake.roughnessMapping", the manifest's
 // "roughnessMapping"); files written before held prose after the name ("frostbite: level m of L holds ..."),
@@ -24,6 +25,9 @@ IBL_BEGIN_NAMESPACE
 
 #define IBL_MIP_FROSTBITE 0u
 #define IBL_MIP_LINEAR 1u
+// The engines' lookup lod = maxLevel r (2 - r) (three.js r187 roughnessToMip, Filament
+// perceptualRoughnessToLod): what `--profile three` chains hold (cube_profile.h LevelRule::FilamentLod).
+#define IBL_MIP_FILAMENT_LOD 2u
 
 // Levels of a full chain whose level 0 has faces of faceSize texels (>= 1): floor(log2(faceSize)) + 1.
 IBL_FN uint mipLevelCountForFaceSize(uint faceSize) {
@@ -37,6 +41,7 @@ IBL_FN uint mipLevelCountForFaceSize(uint faceSize) {
 IBL_FN float mipLevelRoughness(uint mapping, uint level, uint levelCount) {
     if (levelCount <= 1u) return 0.0f;
     float t = IBL_FLOAT(level) / IBL_FLOAT(levelCount - 1u);
+    if (mapping == IBL_MIP_FILAMENT_LOD) return 1.0f - sqrt(fmax(1.0f - t, 0.0f)); // r (2 - r) = t
     return mapping == IBL_MIP_LINEAR ? t : t * t;
 }
 
@@ -44,6 +49,7 @@ IBL_FN float mipLevelRoughness(uint mapping, uint level, uint levelCount) {
 IBL_FN float mipLevelForRoughness(uint mapping, float perceptualRoughness, uint levelCount) {
     float r = saturate(perceptualRoughness);
     float maxLevel = IBL_FLOAT(levelCount - 1u);
+    if (mapping == IBL_MIP_FILAMENT_LOD) return r * (2.0f - r) * maxLevel;
     return (mapping == IBL_MIP_LINEAR ? r : sqrt(r)) * maxLevel;
 }
 
@@ -95,17 +101,24 @@ namespace ibl {
 enum class MipMapping : std::uint32_t {
     Frostbite = IBL_MIP_FROSTBITE,
     Linear = IBL_MIP_LINEAR,
+    FilamentLod = IBL_MIP_FILAMENT_LOD,
 };
 
 // The names files, options and scene files use, in enum order.
 inline constexpr std::array<const char*, 2> kMipMappingNames = {"frostbite", "linear"};
 
+// The name files store for FilamentLod. Not a --mip-mapping choice: a chain that follows it also has its
+// engine's level count (cube_profile.h engineLevelCount).
+inline constexpr const char* kFilamentLodMappingName = "filament-lod";
+
 inline const char* mipMappingName(MipMapping mapping) {
-    return kMipMappingNames[std::size_t(mapping)];
+    return mapping == MipMapping::FilamentLod ? kFilamentLodMappingName
+                                              : kMipMappingNames[std::size_t(mapping)];
 }
 
 // What the name means, for the human-readable key beside the stored name.
 inline const char* mipMappingMeaning(MipMapping mapping) {
+    if (mapping == MipMapping::FilamentLod) return "level m of L holds r = 1 - sqrt(1 - m/(L-1))";
     return mapping == MipMapping::Linear ? "level m of L holds r = m/(L-1)"
                                          : "level m of L holds r = (m/(L-1))^2";
 }
@@ -126,6 +139,7 @@ inline std::optional<MipMapping> mipMappingFromStoredValue(std::string_view text
         if (ch == ':' || std::isspace(static_cast<unsigned char>(ch))) break;
         name += char(std::tolower(static_cast<unsigned char>(ch)));
     }
+    if (name == kFilamentLodMappingName) return MipMapping::FilamentLod;
     return mipMappingFromName(name);
 }
 

@@ -251,10 +251,10 @@ TEST(ScenePlan, LdLevelsStopAtTheRoughestMaterial) {
     EXPECT_EQ(ibl::mipLevelCount(256), 9);
     EXPECT_EQ(ibl::mipLevelCount(1), 1);
     // Frostbite: level m of 9 holds (m/8)^2: 0.5 is first reached at m = 6 (0.5625), 1 only at m = 8.
-    EXPECT_EQ(ibl::lastLevelNeeded(256, ibl::MipMapping::Frostbite, 0.5), 6);
-    EXPECT_EQ(ibl::lastLevelNeeded(256, ibl::MipMapping::Frostbite, 1.0), 8);
-    EXPECT_EQ(ibl::lastLevelNeeded(256, ibl::MipMapping::Frostbite, 0.0), 0);
-    EXPECT_EQ(ibl::lastLevelNeeded(256, ibl::MipMapping::Linear, 0.5), 4);
+    EXPECT_EQ(ibl::lastLevelNeeded(9, ibl::MipMapping::Frostbite, 0.5), 6);
+    EXPECT_EQ(ibl::lastLevelNeeded(9, ibl::MipMapping::Frostbite, 1.0), 8);
+    EXPECT_EQ(ibl::lastLevelNeeded(9, ibl::MipMapping::Frostbite, 0.0), 0);
+    EXPECT_EQ(ibl::lastLevelNeeded(9, ibl::MipMapping::Linear, 0.5), 4);
     json doc = minimalScene();
     doc["materials"] = {{"roughness", {{"max", 0.5}}}};
     for (const ibl::PlanStage& s : ibl::planScene(parse(doc)).stages)

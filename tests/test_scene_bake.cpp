@@ -8,6 +8,7 @@
 #include <iblbake/baker/bake_scene.h>
 #include <iblbake/baker/material_preview.h>
 #include <iblbake/baker/sun.h>
+#include <iblbake/ktx2/cube_profile.h>
 #include <iblbake/ktx2/ktx2.h>
 #include <iblbake/ktx2/storage_scale.h>
 #include <iblbake/runtime/runtime_manifest.h>
@@ -755,6 +756,44 @@ TEST(SceneBake, ManifestLoadsAndShadesLikeTheHandBuiltSet) {
     }
     EXPECT_GT(local, 8);                  // some points are lit by the local probe ...
     EXPECT_LT(local, int(points.size())); // ... and some are not
+}
+
+// outputs.profile three: the chain holds at each level the roughness three.js reads there (as `iblbake
+// specular --profile three`), and the runtime reads it with the same rule (mip_mapping.h FilamentLod).
+TEST(SceneBake, ThreeProfileChainHoldsThreesRoughnessAndTheRuntimeReadsIt) {
+    SceneDir d("scene_three");
+    d.scene["outputs"]["profile"] = "three";
+    d.scene["outputs"]["faceSize"] = 64;
+    d.scene["outputs"]["preview"] = {{"sphereSize", 8}};
+    const ibl::BakeSummary summary = bakeOnCpu(d.write());
+    ASSERT_TRUE(summary.ok) << summary.error;
+
+    const ibl::EngineProfile& three = ibl::engineProfile("three");
+    const int levels = ibl::engineLevelCount(three, 64);
+    const ibl::Ktx2Image chain = ibl::readKtx2(d.out() / "specular.ktx2");
+    ASSERT_EQ(int(chain.levels.size()), levels);
+    EXPECT_EQ(chain.keyValues.at("iblbake.roughnessMapping"), "filament-lod");
+    EXPECT_EQ(chain.keyValues.at("iblbake.profile"), "three");
+    std::istringstream stored(chain.keyValues.at("iblbake.levelRoughness"));
+    const std::vector<float> expected = ibl::engineChainRoughness(three, levels, 64);
+    for (int m = 0; m < levels; ++m) {
+        float r = 0.0f;
+        char comma = 0;
+        stored >> r;
+        if (m + 1 < levels) stored >> comma;
+        EXPECT_NEAR(r, expected[std::size_t(m)], 1e-6f) << m;
+        // The runtime's lookup reads level m at the roughness level m holds.
+        EXPECT_NEAR(
+            ibl::mipLevelForRoughness(IBL_MIP_FILAMENT_LOD, expected[std::size_t(m)], std::uint32_t(levels)),
+            float(m), 1e-4f)
+            << m;
+    }
+    const json manifest = json::parse(readBytes(d.out() / "manifest.json"));
+    EXPECT_EQ(manifest.at("products").at("specular").at("roughnessMapping"), "filament-lod");
+    const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(d.out());
+    EXPECT_EQ(loaded.set.distantLd().mapping, ibl::MipMapping::FilamentLod);
+    EXPECT_EQ(loaded.set.distantLd().layout.levelCount, std::uint32_t(levels));
+    EXPECT_TRUE(fs::exists(d.out() / "preview.png"));
 }
 
 TEST(SceneBake, PreviewAcceptsAManifestBake) {

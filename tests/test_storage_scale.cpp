@@ -101,7 +101,7 @@ TEST(StorageScale, ParkBakeKeepsEveryLevelsEnergyInHalfFloats) {
         prepareEnvironment({fs::path(IBLBAKE_SOURCE_DIR) / "data/rooitou_park_1k.hdr"}, settings);
     ASSERT_TRUE(park.withSun);
     SpecularSettings specular;
-    specular.integratedLevels = lastLevelNeeded(256, MipMapping::Frostbite, 0.8) + 1;
+    specular.integratedLevels = lastLevelNeeded(mipLevelCount(256), MipMapping::Frostbite, 0.8) + 1;
     const CubeMapChain residual = bakeSpecular(park.env.cube, specular, openclOrCpu());
 
     // Before the storage scale: the residual chain written as it was (clamped by the writer), against the

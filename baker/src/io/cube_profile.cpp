@@ -26,8 +26,8 @@ const EngineProfile& engineProfile(const std::string& name) {
 
 float engineLevelRoughness(const EngineProfile& profile, int level, int levelCount, int baseFaceSize) {
     if (profile.levelRule == LevelRule::Baked || level <= 0 || levelCount < 2) return 0.0f;
-    if (profile.levelRule == LevelRule::FilamentLod) // r (2 - r) = m / (N - 1)
-        return float(1.0 - std::sqrt(std::max(1.0 - double(level) / double(levelCount - 1), 0.0)));
+    if (profile.levelRule == LevelRule::FilamentLod)
+        return perceptualRoughnessForLevel(level, levelCount, MipMapping::FilamentLod);
     const double alphaG =
         std::pow(double(baseFaceSize), double(level) / double(levelCount - 1) - 1.0); // 1 at the last level
     return float(std::sqrt(std::max(alphaG - profile.minimumVariance, 0.0)));

@@ -55,8 +55,9 @@ LdManifestFacts ldManifestFactsFromJson(const json& j) {
         f.levels = j.at("levels").get<int>();
         f.integratedLevels = j.at("integratedLevels").get<int>();
         const std::optional<MipMapping> mapping =
-            mipMappingFromName(j.at("roughnessMapping").get<std::string>());
-        if (!mapping) throw Error("LD manifest entry: roughnessMapping is neither frostbite nor linear");
+            mipMappingFromStoredValue(j.at("roughnessMapping").get<std::string>());
+        if (!mapping)
+            throw Error("LD manifest entry: roughnessMapping is not one of frostbite, linear, filament-lod");
         f.mapping = *mapping;
         f.validRoughnessMax = j.at("validRoughnessMax").get<double>();
         f.quality = j.at("quality").get<std::string>();

@@ -177,7 +177,10 @@ ProductPlan specularPlan(const EnvironmentJob& environment, const SpecularJob& j
         {"roughLayers", job.roughLayers.empty() ? json::array() : json(roughLayerRoughnessValues())},
         {"exrLevels", !job.exrDirectory.empty()},
         {"preview", !job.preview.empty()}};
-    if (engine.levelRule == LevelRule::FilamentLod) specular.settings["levelRule"] = kFilamentLodRuleName;
+    if (engine.levelRule == LevelRule::FilamentLod) {
+        specular.settings["levelRule"] = kFilamentLodRuleName;
+        specular.settings["mipMapping"] = kFilamentLodMappingName;
+    }
     p.files["specular.ktx2"] = job.chain;
     if (!job.roughLayers.empty()) {
         specular.products.push_back(kRoughLayersFile);

@@ -3,6 +3,7 @@
 
 #include "iblbake/core/format_text.h"
 #include "iblbake/core/gltf_names.h"
+#include "iblbake/ktx2/cube_profile.h"
 
 #include <cmath>
 
@@ -36,16 +37,25 @@ MipMapping sceneMipMapping(const SceneOutputs& o) {
     return mipMappingFromName(o.mipMapping).value_or(MipMapping::Frostbite);
 }
 
+// An LD chain's settings. Under an engine profile with its own level rule (three: FilamentLod), the chain
+// holds at each level the roughness that engine reads there, down to its smallest face, as `iblbake specular
+// --profile three` bakes it (cube_profile.h).
 json ldSettings(const SceneOutputs& o, const SceneMaterials& m, int faceSize) {
-    return {{"faceSize", faceSize},
-            {"levels", mipLevelCount(faceSize)},
-            {"integratedLevels", lastLevelNeeded(faceSize, sceneMipMapping(o), m.roughnessMax) + 1},
-            {"roughnessMax", m.roughnessMax},
-            {"mipMapping", o.mipMapping},
-            {"quality", o.quality},
-            {"ktx2Format", o.ktx2Format},
-            {"clampToFormat", o.clampToFormat},
-            {"profile", o.profile}};
+    const EngineProfile& engine = engineProfile(o.profile);
+    const bool engineLevels = engine.levelRule == LevelRule::FilamentLod;
+    const int levels = engineLevels ? engineLevelCount(engine, faceSize) : mipLevelCount(faceSize);
+    const MipMapping mapping = engineLevels ? MipMapping::FilamentLod : sceneMipMapping(o);
+    json settings = {{"faceSize", faceSize},
+                     {"levels", levels},
+                     {"integratedLevels", lastLevelNeeded(levels, mapping, m.roughnessMax) + 1},
+                     {"roughnessMax", m.roughnessMax},
+                     {"mipMapping", mipMappingName(mapping)},
+                     {"quality", o.quality},
+                     {"ktx2Format", o.ktx2Format},
+                     {"clampToFormat", o.clampToFormat},
+                     {"profile", o.profile}};
+    if (engineLevels) settings["levelRule"] = kFilamentLodRuleName;
+    return settings;
 }
 
 // What the preview's balls are (outputs.preview is set): their size and material model.
@@ -134,8 +144,7 @@ void planEngineOutputs(const Scene& scene, bool glossy, const std::string& light
 
 } // namespace
 
-int lastLevelNeeded(int faceSize, MipMapping mapping, double roughnessMax) {
-    const int levels = mipLevelCount(faceSize);
+int lastLevelNeeded(int levels, MipMapping mapping, double roughnessMax) {
     for (int m = 0; m < levels - 1; ++m)
         if (double(perceptualRoughnessForLevel(m, levels, mapping)) >= roughnessMax) return m;
     return levels - 1;

@@ -68,6 +68,7 @@ std::uint32_t samplesForLobe(std::uint32_t maxSamples, float alpha, int sourceFa
 } // namespace
 
 MipMapping parseMipMapping(const std::string& name) {
+    if (name == kFilamentLodMappingName) return MipMapping::FilamentLod; // a stage's, set by its profile
     if (std::optional<MipMapping> mapping = mipMappingFromName(name)) return *mapping;
     throw SettingError("mipMapping", quotedForMessage(name) + " is not one of frostbite, linear");
 }

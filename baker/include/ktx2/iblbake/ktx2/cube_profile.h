@@ -13,6 +13,8 @@
 
 #include "iblbake/core/image.h"
 
+#include <mip_mapping.h>
+
 #include <span>
 #include <string>
 #include <vector>
@@ -50,7 +52,7 @@ inline constexpr const char* kCubeProfileKey = "iblbake.profile";
 //   scales the harmonics by `intensity` and its PBR shader multiplies the irradiance by the texture's level
 //   (= intensity) again (computeEnvironmentIrradiance): the file divides the coefficients by intensity^2.
 enum class LevelRule { Baked, FilamentLod, BabylonLodFromAlphaG };
-inline constexpr const char* kFilamentLodRuleName = "filament-lod";
+inline constexpr const char* kFilamentLodRuleName = kFilamentLodMappingName; // mip_mapping.h FilamentLod
 inline constexpr const char* kFilamentLodRuleMeaning =
     "level m of L holds r = 1 - sqrt(1 - m/(L-1)) (lod = (L-1) r (2 - r): three.js r187 roughnessToMip, "
     "Filament perceptualRoughnessToLod)";

@@ -53,9 +53,9 @@ nlohmann::json planToJson(const Plan& plan);
 // and products, the skipped stages, the notes; one line each.
 std::string planText(const Scene& scene, const Plan& plan);
 
-// The last level the roughest material reads in a full chain (mipLevelCount(faceSize) levels): the first
-// level m whose roughness under `mapping` (mip_mapping.h) reaches roughnessMax. Levels past it are not
-// integrated (specular.h SpecularSettings::integratedLevels).
-int lastLevelNeeded(int faceSize, MipMapping mapping, double roughnessMax);
+// The last level the roughest material reads in a chain of `levels` levels: the first level m whose
+// roughness under `mapping` (mip_mapping.h) reaches roughnessMax. Levels past it are not integrated
+// (specular.h SpecularSettings::integratedLevels).
+int lastLevelNeeded(int levels, MipMapping mapping, double roughnessMax);
 
 } // namespace ibl
