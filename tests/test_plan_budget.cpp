@@ -130,8 +130,8 @@ TEST(PlanBudget, ManyLargeProbesAreRefusedInOneLineWritingNothing) {
         EXPECT_EQ(run.exitCode, 1) << log;
         EXPECT_EQ(log, "iblbake: error: " + scene.string() +
                            c.expected.substr(std::string("many.json").size()) + "\n");
-        EXPECT_LT(run.seconds, 1.0) << c.flags;
-        EXPECT_LT(run.peakMiB, 100.0) << c.flags;
+        EXPECT_LT(run.peakMiB, 100.0)
+            << c.flags;                // refused before any work (no timer: CI machines are shared)
         std::vector<std::string> left; // nothing written anywhere in the scene's directory
         for (const fs::directory_entry& e : fs::directory_iterator(dir))
             left.push_back(e.path().filename().string());
