@@ -1,0 +1,71 @@
+// A lat-long read block by block for resampleLatLongBlocks (ingest_internal.h RepairedLatLongBlocks): each
+// block decoded when first asked for, then repaired and colour-converted as ingestEnvironment does a whole
+// image, so that the cube is the same bit for bit while only a few blocks are held (docs/performance.md
+// "Big HDRIs").
+#include "ingest_internal.h"
+
+#include <algorithm>
+#include <utility>
+
+namespace ibl::ingest {
+
+namespace {
+
+// Rows a block spans: whole chunks (a chunk is decoded whole, image_source.h), at least 2 Mi pixels so that
+// each read gives OpenEXR's threads many chunks to decode at once, and at least 64 rows.
+int blockRowsOf(const ImageHeader& header) {
+    constexpr int kBlockPixels = 1 << 21;
+    const int chunk = std::max(1, header.rowsPerRead);
+    const int rows = std::max(64, (kBlockPixels + header.width - 1) / header.width);
+    return std::min(header.height, (rows + chunk - 1) / chunk * chunk);
+}
+
+} // namespace
+
+RepairedLatLongBlocks::RepairedLatLongBlocks(OpenedImage& image, std::string inputColorSpace,
+                                             std::string workingColorSpace,
+                                             const glm::dvec3& luminanceWeights)
+    : image_(image), inputColorSpace_(std::move(inputColorSpace)),
+      workingColorSpace_(std::move(workingColorSpace)), luminanceWeights_(luminanceWeights),
+      blockRows_(blockRowsOf(image.source->header())) {
+    const int blocks = (height() + blockRows_ - 1) / blockRows_;
+    held_.resize(std::size_t(blocks));
+    decoded_.resize(std::size_t(blocks), false);
+}
+
+const glm::vec4* RepairedLatLongBlocks::acquire(int block) {
+    const int y0 = block * blockRows_, y1 = std::min(height(), y0 + blockRows_);
+    ImageRGBA& pixels = held_[std::size_t(block)];
+    pixels.width = width();
+    pixels.height = y1 - y0;
+    if (!spare_.empty()) {
+        pixels.pixels = std::move(spare_.back());
+        spare_.pop_back();
+    }
+    pixels.pixels.resize(std::size_t(pixels.width) * std::size_t(pixels.height));
+    readRgbaRows(image_, y0, y1, pixels.pixels.data(), strip_);
+    const RepairCounts repaired = sanitize(pixels);
+    if (repaired.inf > 0) throw NeedsWholeImage{};
+    const RepairCounts converted =
+        convertColorRepaired(pixels, inputColorSpace_, workingColorSpace_, image_.raw.file);
+    if (converted.inf > 0) throw NeedsWholeImage{};
+    repairs_ = repairs_ + repaired + converted;
+    maxLuminance_ = std::max(maxLuminance_, ingest::maxLuminance(pixels, luminanceWeights_));
+    decoded_[std::size_t(block)] = true;
+    return pixels.pixels.data();
+}
+
+void RepairedLatLongBlocks::release(int block) {
+    spare_.push_back(std::move(held_[std::size_t(block)].pixels));
+    held_[std::size_t(block)] = {};
+}
+
+void RepairedLatLongBlocks::decodeRest() {
+    for (std::size_t block = 0; block < decoded_.size(); ++block)
+        if (!decoded_[block]) {
+            acquire(int(block));
+            release(int(block));
+        }
+}
+
+} // namespace ibl::ingest
