@@ -415,9 +415,9 @@ TEST(IngestResample, BlocksGiveTheWholeImagesBits) {
         EXPECT_TRUE(sameBits(whole, streamed)) << c.w << "x" << c.h << " into " << c.n << ", rotation "
                                                << c.rotate << ", symmetry " << c.symmetry;
         EXPECT_EQ(blocks.held, 0);
-        // A texel reads a few rows: the blocks of its slab and those before, top and bottom, however many
-        // blocks the image has.
-        EXPECT_LE(blocks.maxHeld, 8) << "of " << blocks.blockCount() << " blocks, " << c.w << "x" << c.h;
+        // A texel reads a few rows: the blocks of its slab and those before, top and bottom, and the next
+        // slab's, decoded meanwhile, however many blocks the image has.
+        EXPECT_LE(blocks.maxHeld, 10) << "of " << blocks.blockCount() << " blocks, " << c.w << "x" << c.h;
     }
 }
 

@@ -75,8 +75,10 @@ OpenedImage openImage(const std::filesystem::path& file,
 // readImage's second half: every pixel into image.raw (`keepRgbe` as readImage's).
 void readPixels(OpenedImage& image, bool keepRgbe = false);
 // Rows [y0, y1) of an opened image as RGBA (A = 1 when no alpha is read) into `out`, width pixels a row;
-// `strip` is scratch. Rows are asked for as ImageSource::readRows allows.
-void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vector<float>& strip);
+// `strip` is scratch. Rows are asked for as ImageSource::readRows allows. `written`, when given, is called on
+// every range of pixels once they are complete, from parallel tasks, while the range is in cache.
+void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vector<float>& strip,
+                  const std::function<void(glm::vec4*, std::size_t)>& written = nullptr);
 
 // Decodes the RGBE pixels readImage kept into `pixels` (and frees them); nothing when there are none.
 void decodeKeptRgbe(RawImage& image);
@@ -137,6 +139,15 @@ RepairCounts sanitize(ImageRGBA& image);
 RepairCounts convertColorRepaired(ImageRGBA& image, const std::string& from, const std::string& to,
                                   const std::string& file);
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
+// sanitize() and then maxLuminance() of `count` pixels in one pass (a streamed ingest's, over pixels just
+// decoded), where they hold no +Inf: its repair takes the whole image's largest finite value, so +Inf values
+// are left as they are and counted in plusInf (the caller then reads the image whole).
+struct FiniteRepair {
+    RepairCounts counts;
+    std::uint64_t plusInf = 0;
+    float maxLuminance = 0.0f;
+};
+FiniteRepair repairFinite(glm::vec4* pixels, std::size_t count, const glm::dvec3& weights);
 float maxLuminance(const ImageRGBE& image, const glm::dvec3& weights);
 struct AlphaRepairCounts {
     std::uint64_t nan = 0, negative = 0, overOne = 0;
@@ -225,6 +236,7 @@ class RepairedLatLongBlocks final : public LatLongBlocks {
     OpenedImage& image_;
     std::string inputColorSpace_, workingColorSpace_;
     glm::dvec3 luminanceWeights_;
+    bool identityConversion_;
     int blockRows_;
     std::vector<ImageRGBA> held_;               // per block; no pixels when not held
     std::vector<bool> decoded_;                 // per block

@@ -5,6 +5,7 @@
 #include "ingest_internal.h"
 
 #include <algorithm>
+#include <mutex>
 #include <utility>
 
 namespace ibl::ingest {
@@ -27,6 +28,7 @@ RepairedLatLongBlocks::RepairedLatLongBlocks(OpenedImage& image, std::string inp
                                              const glm::dvec3& luminanceWeights)
     : image_(image), inputColorSpace_(std::move(inputColorSpace)),
       workingColorSpace_(std::move(workingColorSpace)), luminanceWeights_(luminanceWeights),
+      identityConversion_(isIdentityConversion(inputColorSpace_, workingColorSpace_, image.raw.file)),
       blockRows_(blockRowsOf(image.source->header())) {
     const int blocks = (height() + blockRows_ - 1) / blockRows_;
     held_.resize(std::size_t(blocks));
@@ -43,14 +45,27 @@ const glm::vec4* RepairedLatLongBlocks::acquire(int block) {
         spare_.pop_back();
     }
     pixels.pixels.resize(std::size_t(pixels.width) * std::size_t(pixels.height));
-    readRgbaRows(image_, y0, y1, pixels.pixels.data(), strip_);
-    const RepairCounts repaired = sanitize(pixels);
-    if (repaired.inf > 0) throw NeedsWholeImage{};
-    const RepairCounts converted =
-        convertColorRepaired(pixels, inputColorSpace_, workingColorSpace_, image_.raw.file);
-    if (converted.inf > 0) throw NeedsWholeImage{};
-    repairs_ = repairs_ + repaired + converted;
-    maxLuminance_ = std::max(maxLuminance_, ingest::maxLuminance(pixels, luminanceWeights_));
+    // The repair (and, without a colour conversion, the luminance) in the pass that writes the pixels, while
+    // they are in cache.
+    std::mutex merging;
+    FiniteRepair repair;
+    readRgbaRows(image_, y0, y1, pixels.pixels.data(), strip_, [&](glm::vec4* first, std::size_t count) {
+        const FiniteRepair part = repairFinite(first, count, luminanceWeights_);
+        const std::lock_guard lock(merging);
+        repair.counts = repair.counts + part.counts;
+        repair.plusInf += part.plusInf;
+        repair.maxLuminance = std::max(repair.maxLuminance, part.maxLuminance);
+    });
+    if (repair.plusInf > 0) throw NeedsWholeImage{};
+    repairs_ = repairs_ + repair.counts;
+    if (!identityConversion_) {
+        const RepairCounts converted =
+            convertColorRepaired(pixels, inputColorSpace_, workingColorSpace_, image_.raw.file);
+        if (converted.inf > 0) throw NeedsWholeImage{};
+        repairs_ = repairs_ + converted;
+        repair.maxLuminance = ingest::maxLuminance(pixels, luminanceWeights_);
+    }
+    maxLuminance_ = std::max(maxLuminance_, repair.maxLuminance);
     decoded_[std::size_t(block)] = true;
     return pixels.pixels.data();
 }

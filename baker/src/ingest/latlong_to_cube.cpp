@@ -35,6 +35,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <array>
@@ -708,19 +709,31 @@ CubeMap resampleLatLongBlocks(LatLongBlocks& blocks, int faceSize, LatLongPixels
         std::size_t begin, end; // slabTexels of one side column or one +-Y row
     };
     std::vector<Run> runs;
-    for (int s = 0; s < blockCount; ++s) {
-        const std::size_t first = slabFirst[std::size_t(s)], last = slabFirst[std::size_t(s) + 1];
-        if (first == last) continue;
+    // A slab's blocks not yet held are acquired (decoded) while the slab before it is resampled: the
+    // decoder's own threads (OpenEXR's) take the time the resampling leaves idle, and the other way round.
+    auto acquireBlocks = [&](int s) {
         slabBlocks(s, [&](int b) {
             if (holding[std::size_t(b)]) return;
             held.hold(b * blockRows, blockRowCount(b), width, blocks.acquire(b));
             holding[std::size_t(b)] = true;
         });
+    };
+    auto nextSlab = [&](int s) {
+        while (s < blockCount && slabFirst[std::size_t(s)] == slabFirst[std::size_t(s) + 1])
+            ++s;
+        return s;
+    };
+    int next = nextSlab(0);
+    if (next < blockCount) acquireBlocks(next);
+    while (next < blockCount) {
+        const int s = next;
+        next = nextSlab(s + 1);
+        const std::size_t first = slabFirst[std::size_t(s)], last = slabFirst[std::size_t(s) + 1];
         runs.clear();
         for (std::size_t t = first; t < last; ++t) {
             const BlockTexel& a = slabTexels[t];
             const bool side = a.face != 2 && a.face != 3;
-            if (!runs.empty() && t > first) {
+            if (t > first) {
                 const BlockTexel& b = slabTexels[t - 1];
                 if (b.face == a.face && (side ? b.i == a.i : b.j == a.j)) {
                     runs.back().end = t + 1;
@@ -729,25 +742,36 @@ CubeMap resampleLatLongBlocks(LatLongBlocks& blocks, int faceSize, LatLongPixels
             }
             runs.push_back({t, t + 1});
         }
-        tbb::parallel_for(
-            tbb::blocked_range<std::size_t>(0, runs.size()),
-            [&](const tbb::blocked_range<std::size_t>& range) {
-                CubeResampler::Scratch scratch;
-                for (std::size_t r = range.begin(); r != range.end(); ++r) {
-                    const std::span<const BlockTexel> run(&slabTexels[runs[r].begin],
-                                                          runs[r].end - runs[r].begin);
-                    const int face = run.front().face;
-                    if (face == 2 || face == 3) {
-                        for (const BlockTexel& t : run)
-                            resampler.poleTexel(held, face, t.i, t.j, scratch);
-                    } else {
-                        resampler.sideTexels(
-                            held, face, run.front().i,
-                            run | std::views::transform([](const BlockTexel& t) { return int(t.j); }),
-                            scratch);
+        tbb::task_group prefetch;
+        if (next < blockCount) prefetch.run([&, next] { acquireBlocks(next); });
+        try {
+            tbb::parallel_for(
+                tbb::blocked_range<std::size_t>(0, runs.size()),
+                [&](const tbb::blocked_range<std::size_t>& range) {
+                    CubeResampler::Scratch scratch;
+                    for (std::size_t r = range.begin(); r != range.end(); ++r) {
+                        const std::span<const BlockTexel> run(&slabTexels[runs[r].begin],
+                                                              runs[r].end - runs[r].begin);
+                        const int face = run.front().face;
+                        if (face == 2 || face == 3) {
+                            for (const BlockTexel& t : run)
+                                resampler.poleTexel(held, face, t.i, t.j, scratch);
+                        } else {
+                            resampler.sideTexels(
+                                held, face, run.front().i,
+                                run | std::views::transform([](const BlockTexel& t) { return int(t.j); }),
+                                scratch);
+                        }
                     }
-                }
-            });
+                });
+        } catch (...) {
+            try {
+                prefetch.wait();
+            } catch (...) { // the resampling's own error is the one to report
+            }
+            throw;
+        }
+        prefetch.wait();
         for (int b = 0; b < blockCount; ++b)
             if (holding[std::size_t(b)] && lastSlab[std::size_t(b)] == s) {
                 held.hold(b * blockRows, blockRowCount(b), width, nullptr);

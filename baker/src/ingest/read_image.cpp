@@ -124,7 +124,8 @@ OpenedImage openImage(const std::filesystem::path& file,
     return image;
 }
 
-void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vector<float>& strip) {
+void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vector<float>& strip,
+                  const std::function<void(glm::vec4*, std::size_t)>& written) {
     // Only the channels from the lowest to the highest of R, G, B (and A) are read, or each of them on its
     // own when they lie far apart (a file with render layers holds many more).
     const std::array<int, 3>& rgb = image.rgb;
@@ -136,7 +137,8 @@ void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vecto
     const bool together = span <= limits::kMaxChannelsRead;
     const std::size_t n = std::size_t(y1 - y0) * std::size_t(image.raw.pixels.width);
     if (!together) std::fill(out, out + n, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    for (int c = 0; c < (together ? 1 : int(channels.size())); ++c) {
+    const int reads = together ? 1 : int(channels.size());
+    for (int c = 0; c < reads; ++c) {
         const int begin = together ? first : channels[std::size_t(c)];
         const int end = together ? first + span : begin + 1;
         strip.resize(n * std::size_t(end - begin));
@@ -150,6 +152,7 @@ void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vecto
                 else
                     out[i][c] = p[0];
             }
+            if (written && c == reads - 1) written(out + r.begin(), r.size());
         });
     }
 }
