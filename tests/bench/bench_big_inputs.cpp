@@ -1,11 +1,15 @@
 // Big HDRIs (docs/performance.md "Big HDRIs"; Google Benchmark, never a pass/fail timer): each kind of input
 // at 8k x 4k and 16k x 8k, timed three ways on the same file: OpenImageIO's decode with 2 threads
 // (ImageInput::read_image, all channels to float, as `oiiotool` and OpenImageIO's Python read_image), our
-// ingest to 1,024-px faces (ingestEnvironment: decode, repair, colour, resampling), and the whole
-// `iblbake specular FILE -o X.ktx2 --size 1024` in a child process with its peak RSS. Registered only when
-// $IBLBAKE_BENCH_BIG_DIR names a directory: the inputs (the README's sample resized by OpenImageIO, as
-// `oiiotool --resize`; Radiance, half and float OpenEXR with ZIP compression, tiled half OpenEXR) are written
-// there on first use, 2.5 GB in all, and reused; $IBLBAKE_BENCH_BIG_SOURCE names another HDRI to resize.
+// decode alone (the blocks the streamed ingest decodes and repairs, no resampling), our ingest to 1,024-px
+// faces (ingestEnvironment: decode, repair, colour, resampling), and the whole `iblbake specular FILE -o
+// X.ktx2 --size 1024` in a child process with its peak RSS. Registered only when $IBLBAKE_BENCH_BIG_DIR names
+// a directory: the inputs (the README's sample resized by OpenImageIO, as `oiiotool --resize`; Radiance, half
+// and float OpenEXR with ZIP compression, tiled half OpenEXR) are written there on first use, 2.5 GB in all,
+// and reused; $IBLBAKE_BENCH_BIG_SOURCE names another HDRI to resize.
+#include "ingest_internal.h"
+
+#include <iblbake/baker/calibration.h>
 #include <iblbake/baker/ingest.h>
 
 #include <OpenImageIO/imagebuf.h>
@@ -15,13 +19,16 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 extern char** environ;
 
@@ -53,7 +60,9 @@ fs::path bigInput(const fs::path& dir, const InputKind& kind, int width) {
     OIIO::ImageSpec spec(width, width / 2, 3, kind.format);
     spec.attribute("compression", "zip");
     if (kind.tile > 0) spec.tile_width = spec.tile_height = kind.tile;
-    const fs::path part = file.string() + ".part";
+    fs::path part = file;
+    part.replace_extension(std::string(".part") +
+                           kind.extension); // OpenImageIO picks the writer by extension
     auto out = OIIO::ImageOutput::create(part.string());
     if (!out || !out->open(part.string(), spec) || !resized.write(out.get()) || !out->close())
         throw std::runtime_error("cannot write " + part.string() + ": " + OIIO::geterror());
@@ -83,28 +92,50 @@ void ingest(benchmark::State& state, const fs::path& file) {
         benchmark::DoNotOptimize(ibl::ingestEnvironment({file}, settings));
 }
 
-// The whole command in a child process; its peak RSS (ru_maxrss of the child, the engine it execs included)
-// as the counter peakMiB.
+// The whole command in a child process, under /usr/bin/time for its peak RSS (the engine it execs included;
+// the child of a spawn would report this process's own until its exec) as the counter peakMiB.
 void wholeCommand(benchmark::State& state, const fs::path& file) {
-    const std::string output = (file.parent_path() / "bench.ktx2").string();
-    std::vector<std::string> args = {IBLBAKE_CLI, "specular", file.string(), "-o", output, "--size", "1024"};
+    const fs::path dir = file.parent_path(), peakFile = dir / "bench-peak.txt";
+    std::vector<std::string> args = {
+        "/usr/bin/time", "-f",       "%M",          "-o", peakFile.string(),
+        IBLBAKE_CLI,     "specular", file.string(), "-o", (dir / "bench.ktx2").string(),
+        "--size",        "1024"};
     std::vector<char*> argv;
     for (std::string& a : args)
         argv.push_back(a.data());
     argv.push_back(nullptr);
+    posix_spawn_file_actions_t quiet; // the command's report lines would break up the benchmark's table
+    posix_spawn_file_actions_init(&quiet);
+    posix_spawn_file_actions_addopen(&quiet, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
     double peakMiB = 0.0;
     for (auto _ : state) {
         pid_t child = 0;
-        if (posix_spawn(&child, IBLBAKE_CLI, nullptr, nullptr, argv.data(), environ) != 0)
-            throw std::runtime_error("cannot run " + std::string(IBLBAKE_CLI));
+        if (posix_spawn(&child, argv[0], &quiet, nullptr, argv.data(), environ) != 0)
+            throw std::runtime_error("cannot run /usr/bin/time");
         int status = 0;
-        rusage usage{};
-        wait4(child, &status, 0, &usage);
+        waitpid(child, &status, 0);
         if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
             throw std::runtime_error("iblbake specular " + file.string() + " failed");
-        peakMiB = std::max(peakMiB, double(usage.ru_maxrss) / 1024.0);
+        double kilobytes = 0.0;
+        std::ifstream(peakFile) >> kilobytes;
+        peakMiB = std::max(peakMiB, kilobytes / 1024.0);
     }
+    posix_spawn_file_actions_destroy(&quiet);
     state.counters["peakMiB"] = peakMiB;
+}
+
+// Our decode alone: every block of an OpenEXR file decoded and repaired as the streamed ingest does
+// (RepairedLatLongBlocks), with no resampling; a Radiance file read whole as its RGBE bytes.
+void decodeBlocks(benchmark::State& state, const fs::path& file) {
+    for (auto _ : state) {
+        ibl::ingest::OpenedImage image = ibl::ingest::openImage(file);
+        if (!image.source->readsRowsInAnyOrder()) {
+            ibl::ingest::readPixels(image, true);
+            continue;
+        }
+        ibl::ingest::RepairedLatLongBlocks blocks(image, "lin_rec709", "lin_rec709", ibl::kRec709Luminance);
+        blocks.decodeRest();
+    }
 }
 
 const bool registered = [] {
@@ -115,8 +146,9 @@ const bool registered = [] {
         for (const InputKind& kind : kKinds) {
             const fs::path file = bigInput(dir, kind, width);
             const std::string suffix = std::string("/") + kind.name + "/" + std::to_string(width);
-            for (auto [name, run] : {std::pair{"bigOiioDecode", &oiioDecode}, std::pair{"bigIngest", &ingest},
-                                     std::pair{"bigCommand", &wholeCommand}})
+            for (auto [name, run] :
+                 {std::pair{"bigOiioDecode", &oiioDecode}, std::pair{"bigDecode", &decodeBlocks},
+                  std::pair{"bigIngest", &ingest}, std::pair{"bigCommand", &wholeCommand}})
                 benchmark::RegisterBenchmark((name + suffix).c_str(), run, file)
                     ->Unit(benchmark::kMillisecond)
                     ->UseRealTime()
