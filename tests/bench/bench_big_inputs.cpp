@@ -133,7 +133,8 @@ void decodeBlocks(benchmark::State& state, const fs::path& file) {
             ibl::ingest::readPixels(image, true);
             continue;
         }
-        ibl::ingest::RepairedLatLongBlocks blocks(image, "lin_rec709", "lin_rec709", ibl::kRec709Luminance);
+        ibl::ingest::RepairedLatLongBlocks blocks(image, ibl::kRec709Luminance, nullptr,
+                                                  ibl::ingest::defaultBlockPixels(image.raw.pixels.width));
         blocks.decodeRest();
     }
 }

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <utility>
 
@@ -64,7 +65,14 @@ std::optional<SourceEnvironment> ingestLatLongInBlocks(const std::filesystem::pa
     report.faceSize =
         settings.sourceFaceSize > 0 ? settings.sourceFaceSize : defaultLatLongFaceSize(raw.pixels.width);
     report.latLongPixels = ingest::resolveLatLongPixels(raw, settings.latLongPixels);
-    ingest::RepairedLatLongBlocks blocks(image, report.inputColorSpace, report.workingColorSpace, weights);
+    std::function<ingest::RepairCounts(ImageRGBA&)> convertColour;
+    if (!ingest::isIdentityConversion(report.inputColorSpace, report.workingColorSpace, raw.file))
+        convertColour = [&](ImageRGBA& pixels) {
+            return ingest::convertColorRepaired(pixels, report.inputColorSpace, report.workingColorSpace,
+                                                raw.file);
+        };
+    ingest::RepairedLatLongBlocks blocks(image, weights, convertColour,
+                                         ingest::defaultBlockPixels(raw.pixels.width));
     try {
         env.cube = ingest::resampleLatLongBlocks(blocks, report.faceSize, *report.latLongPixels,
                                                  double(settings.rotateDegrees) * kDegree);

@@ -214,14 +214,18 @@ class LatLongBlocks {
 CubeMap resampleLatLongBlocks(LatLongBlocks& blocks, int faceSize, LatLongPixels placement,
                               double rotateRadians, bool useSymmetry = true);
 // The blocks of an opened lat-long (read without alpha, from a source that reads rows in any order), each
-// repaired, colour-converted and repaired again as ingestEnvironment does a whole image; released blocks'
-// memory is reused. Throws NeedsWholeImage from acquire() when a block holds an infinity: its repair takes
-// the largest finite value of the whole image.
+// repaired, colour-converted (`convertColour`, convertColorRepaired in ingest; none for the identity) and its
+// brightest luminance taken as ingestEnvironment does a whole image; released blocks' memory is reused.
+// Blocks are `blockPixels` pixels or a little more (whole chunks, image_source.h). Throws NeedsWholeImage
+// from acquire() when a block holds +Inf: its repair takes the largest finite value of the whole image.
 struct NeedsWholeImage {};
+// A streamed ingest's blocks: at least 64 rows and 2 Mi pixels, so that each read gives OpenEXR's threads
+// many chunks to decode at once.
+std::uint64_t defaultBlockPixels(int width);
 class RepairedLatLongBlocks final : public LatLongBlocks {
   public:
-    RepairedLatLongBlocks(OpenedImage& image, std::string inputColorSpace, std::string workingColorSpace,
-                          const glm::dvec3& luminanceWeights);
+    RepairedLatLongBlocks(OpenedImage& image, const glm::dvec3& luminanceWeights,
+                          std::function<RepairCounts(ImageRGBA&)> convertColour, std::uint64_t blockPixels);
     int width() const override { return image_.raw.pixels.width; }
     int height() const override { return image_.raw.pixels.height; }
     int blockRows() const override { return blockRows_; }
@@ -234,9 +238,8 @@ class RepairedLatLongBlocks final : public LatLongBlocks {
 
   private:
     OpenedImage& image_;
-    std::string inputColorSpace_, workingColorSpace_;
     glm::dvec3 luminanceWeights_;
-    bool identityConversion_;
+    std::function<RepairCounts(ImageRGBA&)> convertColour_;
     int blockRows_;
     std::vector<ImageRGBA> held_;               // per block; no pixels when not held
     std::vector<bool> decoded_;                 // per block

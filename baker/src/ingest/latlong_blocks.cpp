@@ -10,26 +10,19 @@
 
 namespace ibl::ingest {
 
-namespace {
-
-// Rows a block spans: whole chunks (a chunk is decoded whole, image_source.h), at least 2 Mi pixels so that
-// each read gives OpenEXR's threads many chunks to decode at once, and at least 64 rows.
-int blockRowsOf(const ImageHeader& header) {
-    constexpr int kBlockPixels = 1 << 21;
-    const int chunk = std::max(1, header.rowsPerRead);
-    const int rows = std::max(64, (kBlockPixels + header.width - 1) / header.width);
-    return std::min(header.height, (rows + chunk - 1) / chunk * chunk);
+std::uint64_t defaultBlockPixels(int width) {
+    return std::max<std::uint64_t>(std::uint64_t(1) << 21, 64 * std::uint64_t(width));
 }
 
-} // namespace
-
-RepairedLatLongBlocks::RepairedLatLongBlocks(OpenedImage& image, std::string inputColorSpace,
-                                             std::string workingColorSpace,
-                                             const glm::dvec3& luminanceWeights)
-    : image_(image), inputColorSpace_(std::move(inputColorSpace)),
-      workingColorSpace_(std::move(workingColorSpace)), luminanceWeights_(luminanceWeights),
-      identityConversion_(isIdentityConversion(inputColorSpace_, workingColorSpace_, image.raw.file)),
-      blockRows_(blockRowsOf(image.source->header())) {
+RepairedLatLongBlocks::RepairedLatLongBlocks(OpenedImage& image, const glm::dvec3& luminanceWeights,
+                                             std::function<RepairCounts(ImageRGBA&)> convertColour,
+                                             std::uint64_t blockPixels)
+    : image_(image), luminanceWeights_(luminanceWeights), convertColour_(std::move(convertColour)) {
+    // Whole chunks: a chunk is decoded whole (image_source.h).
+    const ImageHeader& header = image.source->header();
+    const std::uint64_t chunk = std::uint64_t(std::max(1, header.rowsPerRead));
+    const std::uint64_t rows = std::max<std::uint64_t>(1, (blockPixels + header.width - 1) / header.width);
+    blockRows_ = int(std::min<std::uint64_t>(header.height, (rows + chunk - 1) / chunk * chunk));
     const int blocks = (height() + blockRows_ - 1) / blockRows_;
     held_.resize(std::size_t(blocks));
     decoded_.resize(std::size_t(blocks), false);
@@ -58,9 +51,8 @@ const glm::vec4* RepairedLatLongBlocks::acquire(int block) {
     });
     if (repair.plusInf > 0) throw NeedsWholeImage{};
     repairs_ = repairs_ + repair.counts;
-    if (!identityConversion_) {
-        const RepairCounts converted =
-            convertColorRepaired(pixels, inputColorSpace_, workingColorSpace_, image_.raw.file);
+    if (convertColour_) {
+        const RepairCounts converted = convertColour_(pixels);
         if (converted.inf > 0) throw NeedsWholeImage{};
         repairs_ = repairs_ + converted;
         repair.maxLuminance = ingest::maxLuminance(pixels, luminanceWeights_);
