@@ -42,7 +42,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <ranges>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -480,17 +479,17 @@ class CubeResampler {
         std::vector<MeridianNode> nodes;
     };
 
-    // Texels js of a side face's column i. Side faces (+-X, +-Z) go column by column: their vertical texel
-    // edges are meridians, so every texel of a face column has the same corner longitudes (a corner's
-    // horizontal direction does not depend on its height), hence the same cuts and quadrature meridians,
-    // computed once per column.
-    template <class Image, class Js>
-    void sideTexels(const Image& image, int face, int i, const Js& js, Scratch& scratch) {
+    // Texels (face, i, rowOf(k)) for k < count of a side face's column i. Side faces (+-X, +-Z) go column by
+    // column: their vertical texel edges are meridians, so every texel of a face column has the same corner
+    // longitudes (a corner's horizontal direction does not depend on its height), hence the same cuts and
+    // quadrature meridians, computed once per column.
+    template <class Image, class RowOf>
+    void sideTexels(const Image& image, int face, int i, int count, RowOf rowOf, Scratch& scratch) {
         const FaceFrame frame = faceFrame(face);
         texelNodes(grid_, frame, square(i, 0), cornerLongitudes(face, i, 0), rotate_, scratch.cuts,
                    scratch.nodes);
-        for (int j : js)
-            resampleTexel(image, face, frame, i, j, scratch.nodes);
+        for (int k = 0; k < count; ++k)
+            resampleTexel(image, face, frame, i, rowOf(k), scratch.nodes);
     }
 
     // Texel (face, i, j) of +-Y, with its own cuts.
@@ -598,7 +597,9 @@ CubeMap resampleLatLong(const Image& latlong, int faceSize, LatLongPixels placem
         for (int fc = columns.begin(); fc != columns.end(); ++fc) {
             const int face = kSideFaces[std::size_t(fc / faceSize)], i = fc % faceSize;
             const int count = resampler.sideCount(face, i);
-            if (count > 0) resampler.sideTexels(latlong, face, i, std::views::iota(0, count), scratch);
+            if (count > 0)
+                resampler.sideTexels(
+                    latlong, face, i, count, [](int k) { return k; }, scratch);
         }
     });
     tbb::parallel_for(tbb::blocked_range<int>(0, 2 * faceSize), [&](const tbb::blocked_range<int>& rows) {
@@ -745,25 +746,23 @@ CubeMap resampleLatLongBlocks(LatLongBlocks& blocks, int faceSize, LatLongPixels
         tbb::task_group prefetch;
         if (next < blockCount) prefetch.run([&, next] { acquireBlocks(next); });
         try {
-            tbb::parallel_for(
-                tbb::blocked_range<std::size_t>(0, runs.size()),
-                [&](const tbb::blocked_range<std::size_t>& range) {
-                    CubeResampler::Scratch scratch;
-                    for (std::size_t r = range.begin(); r != range.end(); ++r) {
-                        const std::span<const BlockTexel> run(&slabTexels[runs[r].begin],
-                                                              runs[r].end - runs[r].begin);
-                        const int face = run.front().face;
-                        if (face == 2 || face == 3) {
-                            for (const BlockTexel& t : run)
-                                resampler.poleTexel(held, face, t.i, t.j, scratch);
-                        } else {
-                            resampler.sideTexels(
-                                held, face, run.front().i,
-                                run | std::views::transform([](const BlockTexel& t) { return int(t.j); }),
-                                scratch);
-                        }
-                    }
-                });
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size()),
+                              [&](const tbb::blocked_range<std::size_t>& range) {
+                                  CubeResampler::Scratch scratch;
+                                  for (std::size_t r = range.begin(); r != range.end(); ++r) {
+                                      const std::span<const BlockTexel> run(&slabTexels[runs[r].begin],
+                                                                            runs[r].end - runs[r].begin);
+                                      const int face = run.front().face;
+                                      if (face == 2 || face == 3) {
+                                          for (const BlockTexel& t : run)
+                                              resampler.poleTexel(held, face, t.i, t.j, scratch);
+                                      } else {
+                                          resampler.sideTexels(
+                                              held, face, run.front().i, int(run.size()),
+                                              [&](int k) { return int(run[std::size_t(k)].j); }, scratch);
+                                      }
+                                  }
+                              });
         } catch (...) {
             try {
                 prefetch.wait();
