@@ -26,6 +26,10 @@
 // 2 without the turns) and its weights applied to all of them: a sixteenth of the cube (a quadrant of a
 // side face's upper half and half a quadrant of +Y) instead of all of it. The arithmetic is symmetric too:
 // on the sample and the tests' images every texel has the bits it has when computed on its own.
+//
+// A streamed ingest (resampleLatLongBlocks) computes the same texels with the same arithmetic from the rows
+// it holds: in slabs by the last block of rows each reads, a slab's blocks decoded while the slab before it
+// is resampled, so the cube has the whole image's bits.
 #include "iblbake/core/numeric.h"
 #include "ingest_internal.h"
 
