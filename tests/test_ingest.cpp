@@ -107,6 +107,15 @@ ImageRGBA latLongOf(int w, int h, const std::function<glm::vec3(int, int)>& valu
     return im;
 }
 
+bool sameBits(const CubeMap& a, const CubeMap& b) {
+    if (a.faceSize != b.faceSize) return false;
+    for (int f = 0; f < 6; ++f)
+        if (std::memcmp(a.faces[f].pixels.data(), b.faces[f].pixels.data(),
+                        a.faces[f].pixels.size() * sizeof(glm::vec4)) != 0)
+            return false;
+    return true;
+}
+
 glm::dvec3 latLongEnergy(const ImageRGBA& im, LatLongPixels p) {
     glm::dvec3 e(0.0);
     for (int y = 0; y < im.height; ++y)
@@ -346,6 +355,72 @@ TEST(IngestResample, SymmetricGeometryMatchesTexelByTexel) {
     RecordProperty("worst_relative_difference", worstText.str());
 }
 
+// An image handed out block by block, as a streamed ingest does: counts what is held.
+class CountedBlocks final : public ibl::ingest::LatLongBlocks {
+  public:
+    CountedBlocks(const ImageRGBA& image, int blockRows)
+        : image_(image), blockRows_(blockRows), state_((image.height + blockRows - 1) / blockRows, 0) {}
+    int width() const override { return image_.width; }
+    int height() const override { return image_.height; }
+    int blockRows() const override { return blockRows_; }
+    const glm::vec4* acquire(int block) override {
+        EXPECT_EQ(state_[std::size_t(block)], 0) << "block " << block << " asked for twice";
+        state_[std::size_t(block)] = 1;
+        maxHeld = std::max(maxHeld, ++held);
+        return &image_.at(0, block * blockRows_);
+    }
+    void release(int block) override {
+        EXPECT_EQ(state_[std::size_t(block)], 1) << "block " << block << " released but not held";
+        state_[std::size_t(block)] = 2;
+        --held;
+    }
+    int blockCount() const { return int(state_.size()); }
+    int held = 0, maxHeld = 0;
+
+  private:
+    const ImageRGBA& image_;
+    int blockRows_;
+    std::vector<int> state_; // per block: 0 never held, 1 held, 2 released
+};
+
+// The streamed resampling (resampleLatLongBlocks) gives the whole image's cube bit for bit, in every case of
+// the symmetry (see above), holding few of the blocks at once and asking for each block once.
+TEST(IngestResample, BlocksGiveTheWholeImagesBits) {
+    std::mt19937 rng(12);
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    struct Case {
+        int w, h, n, blockRows;
+        LatLongPixels placement;
+        double rotate;
+        bool symmetry;
+    };
+    const Case cases[] = {
+        {256, 128, 32, 8, LatLongPixels::Centre, 0.0, true},   // mirror, quarter turns and reflections
+        {256, 128, 20, 5, LatLongPixels::Centre, 0.7, true},   // rotated: no reflections
+        {257, 129, 16, 7, LatLongPixels::OpenExr, 0.0, true},  // mirror only, a last block shorter
+        {256, 128, 15, 8, LatLongPixels::Centre, 0.0, true},   // odd face: every texel on its own
+        {256, 128, 32, 8, LatLongPixels::Centre, 0.0, false},  // no symmetry
+        {512, 256, 64, 16, LatLongPixels::Centre, -2.0, true}, // texels of about a row
+    };
+    for (const Case& c : cases) {
+        ImageRGBA ll = latLongOf(c.w, c.h, [&](int, int) { return glm::vec3(uni(rng), uni(rng), uni(rng)); });
+        for (int k = 0; k < 20; ++k) // bright spots
+            ll.at(int(uni(rng) * float(c.w - 1)), int(uni(rng) * float(c.h - 1))) =
+                glm::vec4(glm::vec3(1e4f * uni(rng)), 1.0f);
+        const CubeMap whole =
+            ibl::ingest::resampleLatLongToCubeRotated(ll, c.n, c.placement, c.rotate, false, c.symmetry);
+        CountedBlocks blocks(ll, c.blockRows);
+        const CubeMap streamed =
+            ibl::ingest::resampleLatLongBlocks(blocks, c.n, c.placement, c.rotate, c.symmetry);
+        EXPECT_TRUE(sameBits(whole, streamed)) << c.w << "x" << c.h << " into " << c.n << ", rotation "
+                                               << c.rotate << ", symmetry " << c.symmetry;
+        EXPECT_EQ(blocks.held, 0);
+        // A texel reads a few rows: the blocks of its slab and those before, top and bottom, and the next
+        // slab's, decoded meanwhile, however many blocks the image has.
+        EXPECT_LE(blocks.maxHeld, 10) << "of " << blocks.blockCount() << " blocks, " << c.w << "x" << c.h;
+    }
+}
+
 // A quarter turn maps the texel grid onto itself, so the rotated cube is the unrotated one permuted.
 TEST(IngestResample, QuarterTurnMovesPlusZToPlusX) {
     TempDir dir;
@@ -397,6 +472,56 @@ TEST(IngestFile, RepairsAndCountsBadPixels) {
         for (const glm::vec4& p : face.pixels)
             for (int c = 0; c < 3; ++c)
                 ASSERT_TRUE(std::isfinite(p[c]) && p[c] >= 0.0f);
+}
+
+// An OpenEXR lat-long is resampled block by block as it is decoded (ingest.cpp ingestLatLongInBlocks): the
+// cube, the repairs and the brightest luminance are those of the whole image read, repaired, converted and
+// resampled, with and without a colour conversion, in scan-line and tiled files; a file with an infinity
+// (whose repair takes the whole image's largest value) too.
+TEST(IngestFile, OpenExrLatLongStreamsToTheWholeImagesCube) {
+    TempDir dir;
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> uni(-0.1f, 4.0f);
+    ImageRGBA ll = latLongOf(512, 256, [&](int, int) { return glm::vec3(uni(rng), uni(rng), uni(rng)); });
+    ll.at(10, 10) = glm::vec4(nan, 1.0f, nan, 1.0f);
+    ll.at(500, 250) = glm::vec4(-inf, 1.0f, 1.0f, 1.0f);
+    ImageRGBA withInf = ll;
+    withInf.at(40, 200) = glm::vec4(inf, 1.0f, 1.0f, 1.0f);
+    writeImage(dir / "scanlines.exr", ll, {OIIO::TypeDesc::HALF});
+    writeImage(dir / "float.exr", ll);
+    writeImage(dir / "inf.exr", withInf);
+    {
+        OIIO::ImageSpec spec(ll.width, ll.height, 3, OIIO::TypeDesc::HALF);
+        spec.tile_width = spec.tile_height = 32;
+        auto out = OIIO::ImageOutput::create((dir / "tiled.exr").string());
+        ASSERT_TRUE(out && out->open((dir / "tiled.exr").string(), spec));
+        std::vector<float> data;
+        for (const glm::vec4& p : ll.pixels)
+            data.insert(data.end(), {p.x, p.y, p.z});
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, data.data()) && out->close());
+    }
+    for (const char* name : {"scanlines.exr", "float.exr", "inf.exr", "tiled.exr"})
+        for (const char* working : {"lin_rec709", "acescg"}) {
+            IngestSettings settings;
+            settings.workingColorSpace = working;
+            settings.sourceFaceSize = 48;
+            const ibl::SourceEnvironment env = ingest(dir / name, settings);
+            ibl::ingest::RawImage whole = ibl::ingest::readImage(dir / name);
+            const ibl::ingest::RepairCounts repaired = ibl::ingest::sanitize(whole.pixels);
+            const ibl::ingest::RepairCounts repairs =
+                repaired + ibl::ingest::convertColorRepaired(whole.pixels, "lin_rec709", working, name);
+            const CubeMap cube =
+                ibl::ingest::resampleLatLongToCubeRotated(whole.pixels, 48, LatLongPixels::Centre, 0.0);
+            EXPECT_TRUE(sameBits(env.cube, cube)) << name << " " << working;
+            EXPECT_EQ(env.report.nanRepaired, repairs.nan) << name;
+            EXPECT_EQ(env.report.infRepaired, repairs.inf) << name;
+            EXPECT_EQ(env.report.negativeRepaired, repairs.negative) << name;
+            EXPECT_GT(env.report.negativeRepaired, 1000u) << name;
+            EXPECT_EQ(env.report.maxLuminanceIn,
+                      ibl::ingest::maxLuminance(whole.pixels, ibl::ingest::luminanceWeights(working)))
+                << name << " " << working;
+        }
 }
 
 TEST(IngestFile, EightBitPngDecodesFromSrgb) {
@@ -1066,19 +1191,6 @@ TEST(ImageSources, RadianceDecodesEveryExponentAsLdexp) {
             << name;
     }
 }
-
-namespace {
-
-bool sameBits(const CubeMap& a, const CubeMap& b) {
-    if (a.faceSize != b.faceSize) return false;
-    for (int f = 0; f < 6; ++f)
-        if (std::memcmp(a.faces[f].pixels.data(), b.faces[f].pixels.data(),
-                        a.faces[f].pixels.size() * sizeof(glm::vec4)) != 0)
-            return false;
-    return true;
-}
-
-} // namespace
 
 // A Radiance lat-long is resampled from its RGBE bytes as stored (rgbe.h): the cube has the bits of the
 // one resampled from the decoded floats, with and without the symmetric geometry, in both pixel

@@ -232,13 +232,17 @@ TEST(PlanBudget, SourceSizeFromTheHeaderDrivesTheEnvironmentStage) {
             if (e.id == "environment") return e;
         return StageEstimate{};
     };
-    // 20 bytes a source pixel (fp32 RGBA and the RGBE bytes) beside two 16-px cubes.
-    EXPECT_EQ(environment(wide).memoryBytes - environment(small).memoryBytes,
-              (1024u * 512u - 64u * 32u) * 20u);
+    // An OpenEXR lat-long is resampled as it is decoded: blocks of 2,048 rows of 1,024 pixels (2 Mi pixels;
+    // the 64 x 32 image is one block of its own size), at most 8 held as fp32 RGBA, a block's fp32 RGB strip
+    // and the table of 3 x 16^2 texels (20 bytes each), beside two 16-px cubes.
+    const std::uint64_t cube = 6u * 16u * 16u * 16u, texelTable = 3u * 16u * 16u * 20u;
+    EXPECT_EQ(environment(small).memoryBytes, 64u * 32u * (16u + 12u) + texelTable + 2 * cube);
+    EXPECT_EQ(environment(wide).memoryBytes, 1024u * 512u * (16u + 12u) + texelTable + 2 * cube);
     EXPECT_EQ(environment(wide).drivingKey, "environment.file");
     EXPECT_EQ(environment(wide).what, "524,288-pixel source");
-    EXPECT_EQ(environment(small).drivingKey, "outputs.faceSize");
-    scene.environment.files = {kSampleHdri}; // Radiance: "-Y 512 +X 1024"
+    // A Radiance file is held whole: 20 bytes a source pixel (fp32 RGBA and the RGBE bytes).
+    scene.environment.files = {kSampleHdri}; // "-Y 512 +X 1024"
+    EXPECT_EQ(environment(estimatePlan(scene, planScene(scene))).memoryBytes, 1024u * 512u * 20u + 2 * cube);
     EXPECT_EQ(environment(estimatePlan(scene, planScene(scene))).what, "524,288-pixel source");
     fs::remove_all(dir);
 }

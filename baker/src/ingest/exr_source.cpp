@@ -8,6 +8,7 @@
 #include "iblbake/core/error.h"
 
 #include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
@@ -30,6 +31,25 @@ void startOpenExrThreads() {
                    [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
 }
 
+// Scan lines a chunk of a scan-line file holds, by its compression (the OpenEXR file layout, "Scan Line
+// Blocks"); a read of part of a chunk decodes all of it.
+int linesPerChunk(Imf::Compression compression) {
+    switch (compression) {
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION:
+        return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION:
+        return 32;
+    case Imf::DWAB_COMPRESSION:
+        return 256;
+    default: // none, RLE, ZIPS
+        return 1;
+    }
+}
+
 std::string textOf(const std::exception& e) {
     return printableForMessage(e.what());
 }
@@ -47,7 +67,8 @@ class ExrSource final : public ImageSource {
         dataWindow_ = h.dataWindow();
         header_.width = dataWindow_.max.x - dataWindow_.min.x + 1;
         header_.height = dataWindow_.max.y - dataWindow_.min.y + 1;
-        if (h.hasTileDescription()) header_.rowsPerRead = std::max(1, int(h.tileDescription().ySize));
+        header_.rowsPerRead = h.hasTileDescription() ? std::max(1, int(h.tileDescription().ySize))
+                                                     : linesPerChunk(h.compression());
         bool allIntegers = true;
         for (auto c = h.channels().begin(); c != h.channels().end(); ++c) {
             if (c.channel().xSampling != 1 || c.channel().ySampling != 1)
@@ -81,6 +102,8 @@ class ExrSource final : public ImageSource {
             header_.stringAttributes.emplace_back(key, text->value());
         }
     }
+
+    bool readsRowsInAnyOrder() const override { return true; }
 
     void readRows(int y0, int y1, int begin, int end, float* data) override {
         const std::size_t xStride = sizeof(float) * std::size_t(end - begin);

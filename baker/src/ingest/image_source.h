@@ -25,7 +25,8 @@ struct ImageHeader {
     int width = 0, height = 0;         // level 0 of the first image (the data window, for OpenEXR)
     std::vector<std::string> channels; // names, in the order readRows counts channels
     int alphaChannel = -1;             // the format's own alpha channel, -1 if it names none
-    int rowsPerRead = 1;               // tile height of a tiled file: strips are multiples of it
+    int rowsPerRead = 1;               // rows of a chunk (OpenEXR's tile height or lines per chunk), which
+                                       // is decoded whole: strips are multiples of it
     bool integerPixels = false;        // stored as integers: display-encoded
     bool unassociatedAlpha = false;    // colour not premultiplied by alpha (PNG, some TIFF)
     std::string colorSpace;            // what the format says ("Linear" for OpenEXR), "" if nothing
@@ -43,6 +44,8 @@ class ImageSource {
     // be asked for again (one channel at a time) but never before rows already read. Throws ibl::Error
     // "<file>: cannot read pixels: <cause>".
     virtual void readRows(int y0, int y1, int begin, int end, float* data) = 0;
+    // Whether readRows takes rows in any order (OpenEXR: each chunk is found by the file's offset table).
+    virtual bool readsRowsInAnyOrder() const { return false; }
     // Whether the file stores Radiance RGBE pixels, which readRgbeRows gives as stored (rgbe.h).
     virtual bool storesRgbe() const { return false; }
     // Rows [y0, y1) of a source that storesRgbe(), after the rows already read; not mixed with readRows.

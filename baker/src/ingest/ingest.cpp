@@ -11,6 +11,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
+#include <utility>
 
 namespace ibl {
 
@@ -39,6 +42,49 @@ void add(IngestReport& report, const ingest::AlphaRepairCounts& n) {
     report.alphaOverOneRepaired += n.overOne;
 }
 
+// A single OpenEXR lat-long without alpha, resampled block by block as it is decoded (docs/performance.md
+// "Big HDRIs"): the same cube and report as the whole image's, holding a few blocks of rows instead of the
+// lat-long. Nothing for another input, or one with an infinity (whose repair needs the whole image).
+std::optional<SourceEnvironment> ingestLatLongInBlocks(const std::filesystem::path& file,
+                                                       const IngestSettings& settings) {
+    ingest::OpenedImage image = ingest::openImage(
+        file, [&](const ingest::RawImage& header) { ingest::resolveLayout(header, settings.layout); },
+        settings.readAlpha);
+    if (!image.source->readsRowsInAnyOrder() || image.alpha >= 0) return std::nullopt;
+    const ingest::RawImage& raw = image.raw;
+    SourceEnvironment env;
+    IngestReport& report = env.report;
+    report.layout = ingest::resolveLayout(raw, settings.layout);
+    if (report.layout != EnvLayout::LatLong) return std::nullopt;
+    report.file = raw.file;
+    report.width = raw.pixels.width;
+    report.height = raw.pixels.height;
+    report.inputColorSpace = ingest::resolveInputColorSpace(raw, settings.inputColorSpace);
+    const glm::dvec3 weights = ingest::luminanceWeights(settings.workingColorSpace); // also checks linearity
+    report.workingColorSpace = ingest::colorSpaceName(settings.workingColorSpace);
+    report.faceSize =
+        settings.sourceFaceSize > 0 ? settings.sourceFaceSize : defaultLatLongFaceSize(raw.pixels.width);
+    report.latLongPixels = ingest::resolveLatLongPixels(raw, settings.latLongPixels);
+    std::function<ingest::RepairCounts(ImageRGBA&)> convertColour;
+    if (!ingest::isIdentityConversion(report.inputColorSpace, report.workingColorSpace, raw.file))
+        convertColour = [&](ImageRGBA& pixels) {
+            return ingest::convertColorRepaired(pixels, report.inputColorSpace, report.workingColorSpace,
+                                                raw.file);
+        };
+    ingest::RepairedLatLongBlocks blocks(image, weights, convertColour,
+                                         ingest::defaultBlockPixels(raw.pixels.width));
+    try {
+        env.cube = ingest::resampleLatLongBlocks(blocks, report.faceSize, *report.latLongPixels,
+                                                 double(settings.rotateDegrees) * kDegree);
+        blocks.decodeRest();
+    } catch (const ingest::NeedsWholeImage&) {
+        return std::nullopt;
+    }
+    add(report, blocks.repairs());
+    report.maxLuminanceIn = blocks.maxLuminance();
+    return env;
+}
+
 } // namespace
 
 SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& files,
@@ -58,6 +104,10 @@ SourceEnvironment ingestEnvironment(const std::vector<std::filesystem::path>& fi
         throw SettingError("sourceFaceSize", "the source face size " +
                                                  std::to_string(settings.sourceFaceSize) + " is not in 0.." +
                                                  std::to_string(kMaxFaceSize));
+
+    if (!six && settings.visibilityMask.empty())
+        if (std::optional<SourceEnvironment> env = ingestLatLongInBlocks(files.front(), settings))
+            return std::move(*env);
 
     std::vector<ingest::RawImage> images;
     // A size the layout cannot take is refused from the header, before the pixels are read. A single

@@ -4,12 +4,14 @@
 #include "iblbake/baker/ingest.h"
 #include "iblbake/core/cubemap.h"
 #include "iblbake/core/image.h"
+#include "image_source.h"
 #include "rgbe.h"
 
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -58,6 +60,26 @@ struct RawImage {
 RawImage readImage(const std::filesystem::path& file,
                    const std::function<void(const RawImage&)>& checkHeader = nullptr, bool readAlpha = false,
                    bool keepRgbe = false);
+// An image file whose header has been read and checked (readImage is openImage, then readPixels).
+struct OpenedImage {
+    RawImage raw;                        // metadata and size; no pixels yet
+    std::unique_ptr<ImageSource> source; // its decoder
+    std::array<int, 3> rgb{};            // the file's channels read as R, G, B (one channel read as grey)
+    int alpha = -1;                      // the file's channel read as A, -1 for none (A = 1)
+};
+// readImage's first half: the file opened, its header checked (`checkHeader`, the pixel limit), the
+// channels picked. Throws as readImage does.
+OpenedImage openImage(const std::filesystem::path& file,
+                      const std::function<void(const RawImage&)>& checkHeader = nullptr,
+                      bool readAlpha = false);
+// readImage's second half: every pixel into image.raw (`keepRgbe` as readImage's).
+void readPixels(OpenedImage& image, bool keepRgbe = false);
+// Rows [y0, y1) of an opened image as RGBA (A = 1 when no alpha is read) into `out`, width pixels a row;
+// `strip` is scratch. Rows are asked for as ImageSource::readRows allows. `written`, when given, is called on
+// every range of pixels once they are complete, from parallel tasks, while the range is in cache.
+void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vector<float>& strip,
+                  const std::function<void(glm::vec4*, std::size_t)>& written = nullptr);
+
 // Decodes the RGBE pixels readImage kept into `pixels` (and frees them); nothing when there are none.
 void decodeKeptRgbe(RawImage& image);
 
@@ -117,6 +139,15 @@ RepairCounts sanitize(ImageRGBA& image);
 RepairCounts convertColorRepaired(ImageRGBA& image, const std::string& from, const std::string& to,
                                   const std::string& file);
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& weights);
+// sanitize() and then maxLuminance() of `count` pixels in one pass (a streamed ingest's, over pixels just
+// decoded), where they hold no +Inf: its repair takes the whole image's largest finite value, so +Inf values
+// are left as they are and counted in plusInf (the caller then reads the image whole).
+struct FiniteRepair {
+    RepairCounts counts;
+    std::uint64_t plusInf = 0;
+    float maxLuminance = 0.0f;
+};
+FiniteRepair repairFinite(glm::vec4* pixels, std::size_t count, const glm::dvec3& weights);
 float maxLuminance(const ImageRGBE& image, const glm::dvec3& weights);
 struct AlphaRepairCounts {
     std::uint64_t nan = 0, negative = 0, overOne = 0;
@@ -163,6 +194,61 @@ CubeMap resampleLatLongToCubeRotated(const ImageRGBA& latlong, int faceSize, Lat
 // The same of RGBE pixels as stored (no alpha): the same values as of the decoded image, bit for bit.
 CubeMap resampleLatLongToCubeRotated(const ImageRGBE& latlong, int faceSize, LatLongPixels placement,
                                      double rotateRadians, bool useSymmetry = true);
+// A lat-long given to resampleLatLongBlocks in blocks of rows, each decoded when first asked for: block b
+// holds rows [b * blockRows(), min(height(), (b + 1) * blockRows())).
+class LatLongBlocks {
+  public:
+    virtual ~LatLongBlocks() = default;
+    virtual int width() const = 0;
+    virtual int height() const = 0;
+    virtual int blockRows() const = 0;
+    // Block b's pixels (R, G, B, A = 1), row-major, valid until release(b). Asked for once per block.
+    virtual const glm::vec4* acquire(int block) = 0;
+    virtual void release(int block) = 0;
+};
+// resampleLatLongToCubeRotated of a lat-long without alpha, the same values bit for bit, holding only the
+// blocks that the texels being computed read: texels are computed in slabs by the last block they read
+// (their rows from their extreme latitudes), each block acquired before the first slab that reads it and
+// released after the last (the mirror images of the texels read the blocks at the bottom; docs/performance.md
+// "Big HDRIs").
+CubeMap resampleLatLongBlocks(LatLongBlocks& blocks, int faceSize, LatLongPixels placement,
+                              double rotateRadians, bool useSymmetry = true);
+// The blocks of an opened lat-long (read without alpha, from a source that reads rows in any order), each
+// repaired, colour-converted (`convertColour`, convertColorRepaired in ingest; none for the identity) and its
+// brightest luminance taken as ingestEnvironment does a whole image; released blocks' memory is reused.
+// Blocks are `blockPixels` pixels or a little more (whole chunks, image_source.h). Throws NeedsWholeImage
+// from acquire() when a block holds +Inf: its repair takes the largest finite value of the whole image.
+struct NeedsWholeImage {};
+// A streamed ingest's blocks: at least 64 rows and 2 Mi pixels, so that each read gives OpenEXR's threads
+// many chunks to decode at once.
+std::uint64_t defaultBlockPixels(int width);
+class RepairedLatLongBlocks final : public LatLongBlocks {
+  public:
+    RepairedLatLongBlocks(OpenedImage& image, const glm::dvec3& luminanceWeights,
+                          std::function<RepairCounts(ImageRGBA&)> convertColour, std::uint64_t blockPixels);
+    int width() const override { return image_.raw.pixels.width; }
+    int height() const override { return image_.raw.pixels.height; }
+    int blockRows() const override { return blockRows_; }
+    const glm::vec4* acquire(int block) override;
+    void release(int block) override;
+    // Decodes the blocks never acquired, so that repairs() and maxLuminance() are the whole image's.
+    void decodeRest();
+    RepairCounts repairs() const { return repairs_; }
+    float maxLuminance() const { return maxLuminance_; }
+
+  private:
+    OpenedImage& image_;
+    glm::dvec3 luminanceWeights_;
+    std::function<RepairCounts(ImageRGBA&)> convertColour_;
+    int blockRows_;
+    std::vector<ImageRGBA> held_;               // per block; no pixels when not held
+    std::vector<bool> decoded_;                 // per block
+    std::vector<std::vector<glm::vec4>> spare_; // released blocks' pixels
+    std::vector<float> strip_;                  // readRgbaRows' scratch
+    RepairCounts repairs_;
+    float maxLuminance_ = 0.0f;
+};
+
 // A resampled alpha as stored: clamped to [0, 1], and within 1e-6 of 0 or 1 taken as that (the exact-area
 // average of cells that are all 1 may round to 0.99999994; it should not make a visible texel partial).
 float resampledAlpha(double alpha);

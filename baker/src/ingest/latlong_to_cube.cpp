@@ -26,6 +26,10 @@
 // 2 without the turns) and its weights applied to all of them: a sixteenth of the cube (a quadrant of a
 // side face's upper half and half a quadrant of +Y) instead of all of it. The arithmetic is symmetric too:
 // on the sample and the tests' images every texel has the bits it has when computed on its own.
+//
+// A streamed ingest (resampleLatLongBlocks) computes the same texels with the same arithmetic from the rows
+// it holds: in slabs by the last block of rows each reads, a slab's blocks decoded while the slab before it
+// is resampled, so the cube has the whole image's bits.
 #include "iblbake/core/numeric.h"
 #include "ingest_internal.h"
 
@@ -35,12 +39,16 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
+#include <stdexcept>
+#include <string>
 
 namespace ibl {
 
@@ -180,6 +188,8 @@ class LatLongGrid {
 
     int width() const { return width_; }
     int height() const { return height_; }
+    // The row holding z (on a row edge, the row above it).
+    int rowOf(double z) const { return row(z); }
     double rowHeight(int r) const { return rowHeight_[std::size_t(r)]; }
 
   private:
@@ -405,109 +415,375 @@ TexelIntegral integrateTexel(const Image& image, const LatLongGrid& grid, const 
     return sum;
 }
 
-template <class Image>
-CubeMap resampleLatLong(const Image& latlong, int faceSize, LatLongPixels placement, double rotateRadians,
-                        bool withAlpha, bool useSymmetry) {
-    if (latlong.width <= 0 || latlong.height <= 0) throw Error("lat-long resampling: empty image");
-    if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
-    if (placement == LatLongPixels::Auto) throw Error("lat-long resampling: internal: unresolved placement");
-    const LatLongGrid grid(latlong.width, latlong.height, placement);
-    const Symmetry symmetry(faceSize, latlong.width, placement, rotateRadians, useSymmetry);
-    CubeMap cube(faceSize);
-    const double step = 2.0 / faceSize;
-    const int corners = faceSize + 1; // per face and axis
-    // Corner longitudes of the texels whose cuts are computed (texel (i, j)'s corners (i..i+1, j..j+1)): a
-    // side face's first two rows of corners (its columns' cuts are those of their first texel, below), +-Y's
-    // up to the last computed texel (a quadrant with quarter turns). Only these: each is an atan2, and
-    // memory first touched costs a page fault per 4 KB (read_image.cpp), so a table of every corner of
-    // every face took 6x as much time and 10x as much memory.
+// The resampling of one lat-long size to one cube: the grid, the symmetry and the corner longitudes, shared
+// by every texel; texels are computed from an image given to each call (the whole lat-long, or the rows that
+// a streamed ingest holds, resampleLatLongBlocks).
+class CubeResampler {
+  public:
+    CubeResampler(int width, int height, int faceSize, LatLongPixels placement, double rotateRadians,
+                  bool withAlpha, bool useSymmetry)
+        : grid_(checked(width, height, faceSize, placement), height, placement),
+          symmetry_(faceSize, width, placement, rotateRadians, useSymmetry), cube_(faceSize),
+          faceSize_(faceSize), rotate_(rotateRadians), withAlpha_(withAlpha), step_(2.0 / faceSize) {
+        const int corners = faceSize + 1; // per face and axis
+        // Corner longitudes of the texels whose cuts are computed (texel (i, j)'s corners (i..i+1, j..j+1)):
+        // a side face's first two rows of corners (its columns' cuts are those of their first texel, below),
+        // +-Y's up to the last computed texel (a quadrant with quarter turns). Only these: each is an atan2,
+        // and memory first touched costs a page fault per 4 KB (read_image.cpp), so a table of every corner
+        // of every face took 6x as much time and 10x as much memory.
+        std::vector<std::array<int, 2>> cornerRows; // (face, j)
+        std::size_t cornerCount = 0;
+        for (int face = 0; face < 6; ++face) {
+            if (!symmetry_.computes(face, 0, 0, faceSize)) continue;
+            const bool pole = face == 2 || face == 3;
+            const int extent = pole && symmetry_.quarterTurns ? faceSize / 2 + 1 : corners;
+            CornerTable& table = cornerTable_[std::size_t(face)];
+            table = {cornerCount, pole ? extent : std::min(2, corners), extent};
+            cornerCount += std::size_t(table.rows) * std::size_t(table.columns);
+            for (int j = 0; j < table.rows; ++j)
+                cornerRows.push_back({face, j});
+        }
+        cornerLongitude_.resize(cornerCount);
+        tbb::parallel_for(std::size_t(0), cornerRows.size(), [&](std::size_t k) {
+            const auto [face, j] = cornerRows[k];
+            const CornerTable& table = cornerTable_[std::size_t(face)];
+            const FaceFrame frame = faceFrame(face);
+            double* row = &cornerLongitude_[table.offset + std::size_t(j) * std::size_t(table.columns)];
+            for (int i = 0; i < table.columns; ++i) {
+                const glm::dvec3 d = frame.at(-1.0 + i * step_, -1.0 + j * step_);
+                row[i] =
+                    d.x * d.x + d.z * d.z < 1e-24 ? std::numeric_limits<double>::quiet_NaN() : longitude(d);
+            }
+        });
+    }
+
+    const LatLongGrid& grid() const { return grid_; }
+    const Symmetry& symmetry() const { return symmetry_; }
+    int faceSize() const { return faceSize_; }
+    CubeMap takeCube() { return std::move(cube_); }
+
+    // Texels (face, i, j) computed of a side face's column i: j < sideCount(face, i) (none when the column's
+    // texels are all computed as images of others).
+    int sideCount(int face, int i) const {
+        int j = 0;
+        while (j < faceSize_ && symmetry_.computes(face, i, j, faceSize_))
+            ++j;
+        return j;
+    }
+    // Texels (face, i, j) computed of +-Y's row j: i < poleCount(face, j).
+    int poleCount(int face, int j) const {
+        int i = 0;
+        while (i < faceSize_ && symmetry_.computes(face, i, j, faceSize_))
+            ++i;
+        return i;
+    }
+
+    struct Scratch {
+        std::vector<double> cuts;
+        std::vector<MeridianNode> nodes;
+    };
+
+    // Texels (face, i, rowOf(k)) for k < count of a side face's column i. Side faces (+-X, +-Z) go column by
+    // column: their vertical texel edges are meridians, so every texel of a face column has the same corner
+    // longitudes (a corner's horizontal direction does not depend on its height), hence the same cuts and
+    // quadrature meridians, computed once per column.
+    template <class Image, class RowOf>
+    void sideTexels(const Image& image, int face, int i, int count, RowOf rowOf, Scratch& scratch) {
+        const FaceFrame frame = faceFrame(face);
+        texelNodes(grid_, frame, square(i, 0), cornerLongitudes(face, i, 0), rotate_, scratch.cuts,
+                   scratch.nodes);
+        for (int k = 0; k < count; ++k)
+            resampleTexel(image, face, frame, i, rowOf(k), scratch.nodes);
+    }
+
+    // Texel (face, i, j) of +-Y, with its own cuts.
+    template <class Image>
+    void poleTexel(const Image& image, int face, int i, int j, Scratch& scratch) {
+        const FaceFrame frame = faceFrame(face);
+        texelNodes(grid_, frame, square(i, j), cornerLongitudes(face, i, j), rotate_, scratch.cuts,
+                   scratch.nodes);
+        resampleTexel(image, face, frame, i, j, scratch.nodes);
+    }
+
+    // The lat-long rows texel (face, i, j) reads (its orbit's mirror images read rows H-1-r of these),
+    // widened by two rows: those of the texel's extreme z = sin(latitude), which lie on its edges (a
+    // great-circle arc's highest or lowest point is an end or the one interior point where z' = 0) unless it
+    // holds a pole. The rows integrateTexel reads lie between them: the arcs it clips are inside the texel.
+    std::array<int, 2> texelRows(int face, int i, int j) const {
+        const FaceFrame frame = faceFrame(face);
+        const Square sq = square(i, j);
+        const std::array<glm::dvec3, 4> corner = {frame.at(sq.a0, sq.b0), frame.at(sq.a1, sq.b0),
+                                                  frame.at(sq.a1, sq.b1), frame.at(sq.a0, sq.b1)};
+        double zMin = 1.0, zMax = -1.0;
+        auto take = [&](const glm::dvec3& d) {
+            const double z = d.y / glm::length(d);
+            zMin = std::min(zMin, z);
+            zMax = std::max(zMax, z);
+        };
+        for (int k = 0; k < 4; ++k) {
+            const glm::dvec3 p = corner[std::size_t(k)], edge = corner[std::size_t((k + 1) % 4)] - p;
+            take(p);
+            // z(t) = (p + t edge).y / |p + t edge| is stationary where t = (p.y q - edge.y |p|^2) /
+            // (edge.y q - p.y |edge|^2), q = p . edge.
+            const double q = glm::dot(p, edge);
+            const double denominator = edge.y * q - p.y * glm::dot(edge, edge);
+            if (std::fabs(denominator) < 1e-300) continue;
+            const double t = (p.y * q - edge.y * glm::dot(p, p)) / denominator;
+            if (t > 0.0 && t < 1.0) take(p + t * edge);
+        }
+        const bool holdsPole =
+            std::fabs(frame.o.y) == 1.0 && sq.a0 < 0.0 && 0.0 < sq.a1 && sq.b0 < 0.0 && 0.0 < sq.b1;
+        if (holdsPole) (frame.o.y > 0.0 ? zMax : zMin) = frame.o.y;
+        const int last = grid_.height() - 1;
+        return {std::max(0, grid_.rowOf(zMax) - 2), std::min(last, grid_.rowOf(zMin) + 2)};
+    }
+
+  private:
     struct CornerTable {
         std::size_t offset = 0;
         int rows = 0, columns = 0;
     };
-    std::array<CornerTable, 6> cornerTable{};
-    std::vector<std::array<int, 2>> cornerRows; // (face, j)
-    std::size_t cornerCount = 0;
-    for (int face = 0; face < 6; ++face) {
-        if (!symmetry.computes(face, 0, 0, faceSize)) continue;
-        const bool pole = face == 2 || face == 3;
-        const int extent = pole && symmetry.quarterTurns ? faceSize / 2 + 1 : corners;
-        CornerTable& table = cornerTable[std::size_t(face)];
-        table = {cornerCount, pole ? extent : std::min(2, corners), extent};
-        cornerCount += std::size_t(table.rows) * std::size_t(table.columns);
-        for (int j = 0; j < table.rows; ++j)
-            cornerRows.push_back({face, j});
+
+    static int checked(int width, int height, int faceSize, LatLongPixels placement) {
+        if (width <= 0 || height <= 0) throw Error("lat-long resampling: empty image");
+        if (faceSize <= 0) throw Error("lat-long resampling: face size must be positive");
+        if (placement == LatLongPixels::Auto)
+            throw Error("lat-long resampling: internal: unresolved placement");
+        return width;
     }
-    std::vector<double> cornerLongitude(cornerCount);
-    tbb::parallel_for(std::size_t(0), cornerRows.size(), [&](std::size_t k) {
-        const auto [face, j] = cornerRows[k];
-        const CornerTable& table = cornerTable[std::size_t(face)];
-        const FaceFrame frame = faceFrame(face);
-        double* row = &cornerLongitude[table.offset + std::size_t(j) * std::size_t(table.columns)];
-        for (int i = 0; i < table.columns; ++i) {
-            const glm::dvec3 d = frame.at(-1.0 + i * step, -1.0 + j * step);
-            row[i] = d.x * d.x + d.z * d.z < 1e-24 ? std::numeric_limits<double>::quiet_NaN() : longitude(d);
-        }
-    });
-    // Each computed texel writes its whole orbit; orbits do not overlap, so tasks never write the same texel,
-    // and each texel's value comes from one fixed computation whatever the scheduling.
-    auto square = [&](int i, int j) {
-        return Square{-1.0 + i * step, -1.0 + (i + 1) * step, -1.0 + j * step, -1.0 + (j + 1) * step};
-    };
-    auto cornerLongitudes = [&](int face, int i, int j) {
-        const CornerTable& table = cornerTable[std::size_t(face)];
-        const double* below = &cornerLongitude[table.offset + std::size_t(j) * std::size_t(table.columns)];
+
+    Square square(int i, int j) const {
+        return Square{-1.0 + i * step_, -1.0 + (i + 1) * step_, -1.0 + j * step_, -1.0 + (j + 1) * step_};
+    }
+
+    CornerLongitudes cornerLongitudes(int face, int i, int j) const {
+        const CornerTable& table = cornerTable_[std::size_t(face)];
+        const double* below = &cornerLongitude_[table.offset + std::size_t(j) * std::size_t(table.columns)];
         const double* above = below + table.columns;
         return CornerLongitudes{below[i], above[i], below[i + 1], above[i + 1]};
-    };
-    auto resampleTexel = [&](int face, const FaceFrame& frame, int i, int j,
-                             const std::vector<MeridianNode>& nodes) {
-        const Square sq = square(i, j);
-        const Orbit orbit = symmetry.orbit(face, i, j, faceSize, latlong.width);
-        auto texel = [&](int m) -> glm::vec4& {
-            const TexelImage& t = orbit.images[std::size_t(m)];
-            return cube.faces[std::size_t(t.face)].at(t.i, t.j);
-        };
-        const TexelIntegral t = integrateTexel(latlong, grid, frame, sq, nodes, orbit);
+    }
+
+    // Each computed texel writes its whole orbit; orbits do not overlap, so tasks never write the same texel,
+    // and each texel's value comes from one fixed computation whatever the scheduling.
+    template <class Image>
+    void resampleTexel(const Image& image, int face, const FaceFrame& frame, int i, int j,
+                       const std::vector<MeridianNode>& nodes) {
+        const Orbit orbit = symmetry_.orbit(face, i, j, faceSize_, grid_.width());
+        const TexelIntegral t = integrateTexel(image, grid_, frame, square(i, j), nodes, orbit);
         for (int m = 0; m < orbit.count; ++m) {
+            const TexelImage& at = orbit.images[std::size_t(m)];
             const glm::dvec4 v = t.area > 0.0 ? t.energy[std::size_t(m)] / t.area : glm::dvec4(0.0);
-            texel(m) = glm::vec4(glm::vec3(glm::dvec3(v)), withAlpha ? resampledAlpha(v.w) : 1.0f);
+            cube_.faces[std::size_t(at.face)].at(at.i, at.j) =
+                glm::vec4(glm::vec3(glm::dvec3(v)), withAlpha_ ? resampledAlpha(v.w) : 1.0f);
         }
-    };
-    // Side faces (+-X, +-Z) column by column: their vertical texel edges are meridians, so every texel of a
-    // face column has the same corner longitudes (a corner's horizontal direction does not depend on its
-    // height), hence the same cuts and quadrature meridians, computed once per column.
-    constexpr std::array<int, 4> kSideFaces = {0, 1, 4, 5};
+    }
+
+    LatLongGrid grid_;
+    Symmetry symmetry_;
+    CubeMap cube_;
+    int faceSize_;
+    double rotate_;
+    bool withAlpha_;
+    double step_;
+    std::array<CornerTable, 6> cornerTable_{};
+    std::vector<double> cornerLongitude_;
+};
+
+constexpr std::array<int, 4> kSideFaces = {0, 1, 4, 5};
+
+template <class Image>
+CubeMap resampleLatLong(const Image& latlong, int faceSize, LatLongPixels placement, double rotateRadians,
+                        bool withAlpha, bool useSymmetry) {
+    CubeResampler resampler(latlong.width, latlong.height, faceSize, placement, rotateRadians, withAlpha,
+                            useSymmetry);
     tbb::parallel_for(tbb::blocked_range<int>(0, 4 * faceSize), [&](const tbb::blocked_range<int>& columns) {
-        std::vector<double> cuts;
-        std::vector<MeridianNode> nodes;
+        CubeResampler::Scratch scratch;
         for (int fc = columns.begin(); fc != columns.end(); ++fc) {
             const int face = kSideFaces[std::size_t(fc / faceSize)], i = fc % faceSize;
-            if (!symmetry.computes(face, i, 0, faceSize)) continue;
-            const FaceFrame frame = faceFrame(face);
-            texelNodes(grid, frame, square(i, 0), cornerLongitudes(face, i, 0), rotateRadians, cuts, nodes);
-            for (int j = 0; j < faceSize && symmetry.computes(face, i, j, faceSize); ++j)
-                resampleTexel(face, frame, i, j, nodes);
+            const int count = resampler.sideCount(face, i);
+            if (count > 0)
+                resampler.sideTexels(
+                    latlong, face, i, count, [](int k) { return k; }, scratch);
         }
     });
-    // +-Y row by row, every texel with its own cuts.
     tbb::parallel_for(tbb::blocked_range<int>(0, 2 * faceSize), [&](const tbb::blocked_range<int>& rows) {
-        std::vector<double> cuts;
-        std::vector<MeridianNode> nodes;
+        CubeResampler::Scratch scratch;
         for (int fr = rows.begin(); fr != rows.end(); ++fr) {
             const int face = 2 + fr / faceSize, j = fr % faceSize;
-            const FaceFrame frame = faceFrame(face);
-            for (int i = 0; i < faceSize && symmetry.computes(face, i, j, faceSize); ++i) {
-                texelNodes(grid, frame, square(i, j), cornerLongitudes(face, i, j), rotateRadians, cuts,
-                           nodes);
-                resampleTexel(face, frame, i, j, nodes);
-            }
+            for (int i = 0, count = resampler.poleCount(face, j); i < count; ++i)
+                resampler.poleTexel(latlong, face, i, j, scratch);
         }
     });
-    return cube;
+    return resampler.takeCube();
 }
 
+// The rows of a lat-long that a streamed resampling holds, by pointer (null for the rows not held).
+class HeldRows {
+  public:
+    explicit HeldRows(int height) : rows_(std::size_t(height), nullptr) {}
+    glm::vec4 at(int c, int r) const {
+        const glm::vec4* row = rows_[std::size_t(r)];
+        if (!row)
+            throw std::logic_error("lat-long resampling: internal: row " + std::to_string(r) + " not held");
+        return row[c];
+    }
+    void hold(int firstRow, int rowCount, int width, const glm::vec4* pixels) {
+        for (int r = 0; r < rowCount; ++r)
+            rows_[std::size_t(firstRow + r)] =
+                pixels ? pixels + std::size_t(r) * std::size_t(width) : nullptr;
+    }
+
+  private:
+    std::vector<const glm::vec4*> rows_;
+};
+
+// A computed texel of a streamed resampling.
+struct BlockTexel {
+    std::uint8_t face;
+    std::uint16_t i, j;
+};
+
 } // namespace
+
+CubeMap resampleLatLongBlocks(LatLongBlocks& blocks, int faceSize, LatLongPixels placement,
+                              double rotateRadians, bool useSymmetry) {
+    const int width = blocks.width(), height = blocks.height(), blockRows = blocks.blockRows();
+    if (faceSize > 65536) throw Error("lat-long resampling: face size must be at most 65536");
+    CubeResampler resampler(width, height, faceSize, placement, rotateRadians, false, useSymmetry);
+    const int n = faceSize;
+    // The computed texels in resampleLatLong's order (side columns, then +-Y rows) and the rows each reads.
+    std::vector<std::size_t> firstOf(6 * std::size_t(n) + 1, 0); // per side column, then per +-Y row
+    for (int k = 0; k < 6 * n; ++k) {
+        const int count = k < 4 * n ? resampler.sideCount(kSideFaces[std::size_t(k / n)], k % n)
+                                    : resampler.poleCount(2 + (k - 4 * n) / n, (k - 4 * n) % n);
+        firstOf[std::size_t(k) + 1] = firstOf[std::size_t(k)] + std::size_t(count);
+    }
+    const std::size_t texelCount = firstOf.back();
+    std::vector<BlockTexel> texels(texelCount);
+    std::vector<std::array<int, 2>> rows(texelCount);
+    tbb::parallel_for(0, 6 * n, [&](int k) {
+        const bool side = k < 4 * n;
+        const int face = side ? kSideFaces[std::size_t(k / n)] : 2 + (k - 4 * n) / n, line = k % n;
+        for (std::size_t t = firstOf[std::size_t(k)]; t < firstOf[std::size_t(k) + 1]; ++t) {
+            const int step = int(t - firstOf[std::size_t(k)]);
+            const int i = side ? line : step, j = side ? step : line;
+            texels[t] = {std::uint8_t(face), std::uint16_t(i), std::uint16_t(j)};
+            rows[t] = resampler.texelRows(face, i, j);
+        }
+    });
+    // Slab s: the texels whose last row is in block s, in the order above; the rows they read, top and
+    // (through the mirror) bottom.
+    const int blockCount = (height + blockRows - 1) / blockRows;
+    std::vector<std::size_t> slabFirst(std::size_t(blockCount) + 1, 0);
+    std::vector<std::array<int, 2>> slabRows(std::size_t(blockCount), {height, -1});
+    for (std::size_t t = 0; t < texelCount; ++t) {
+        const int s = rows[t][1] / blockRows;
+        ++slabFirst[std::size_t(s) + 1];
+        slabRows[std::size_t(s)] = {std::min(slabRows[std::size_t(s)][0], rows[t][0]),
+                                    std::max(slabRows[std::size_t(s)][1], rows[t][1])};
+    }
+    for (int s = 0; s < blockCount; ++s)
+        slabFirst[std::size_t(s) + 1] += slabFirst[std::size_t(s)];
+    std::vector<BlockTexel> slabTexels(texelCount);
+    {
+        std::vector<std::size_t> next(slabFirst.begin(), slabFirst.end() - 1);
+        for (std::size_t t = 0; t < texelCount; ++t)
+            slabTexels[next[std::size_t(rows[t][1] / blockRows)]++] = texels[t];
+    }
+    texels = {};
+    rows = {};
+    // The blocks each slab reads, and the last slab that reads each block (released after it).
+    const bool mirror = resampler.symmetry().mirror;
+    auto slabBlocks = [&](int s, auto&& visit) {
+        const auto [top, bottom] = slabRows[std::size_t(s)];
+        for (int b = top / blockRows; b <= bottom / blockRows; ++b)
+            visit(b);
+        if (mirror)
+            for (int b = (height - 1 - bottom) / blockRows; b <= (height - 1 - top) / blockRows; ++b)
+                visit(b);
+    };
+    std::vector<int> lastSlab(std::size_t(blockCount), -1);
+    for (int s = 0; s < blockCount; ++s)
+        if (slabFirst[std::size_t(s)] < slabFirst[std::size_t(s) + 1])
+            slabBlocks(s, [&](int b) { lastSlab[std::size_t(b)] = s; });
+
+    HeldRows held(height);
+    std::vector<bool> holding(std::size_t(blockCount), false);
+    auto blockRowCount = [&](int b) { return std::min(height, (b + 1) * blockRows) - b * blockRows; };
+    struct Run {
+        std::size_t begin, end; // slabTexels of one side column or one +-Y row
+    };
+    std::vector<Run> runs;
+    // A slab's blocks not yet held are acquired (decoded) while the slab before it is resampled: the
+    // decoder's own threads (OpenEXR's) take the time the resampling leaves idle, and the other way round.
+    auto acquireBlocks = [&](int s) {
+        slabBlocks(s, [&](int b) {
+            if (holding[std::size_t(b)]) return;
+            held.hold(b * blockRows, blockRowCount(b), width, blocks.acquire(b));
+            holding[std::size_t(b)] = true;
+        });
+    };
+    auto nextSlab = [&](int s) {
+        while (s < blockCount && slabFirst[std::size_t(s)] == slabFirst[std::size_t(s) + 1])
+            ++s;
+        return s;
+    };
+    int next = nextSlab(0);
+    if (next < blockCount) acquireBlocks(next);
+    while (next < blockCount) {
+        const int s = next;
+        next = nextSlab(s + 1);
+        const std::size_t first = slabFirst[std::size_t(s)], last = slabFirst[std::size_t(s) + 1];
+        runs.clear();
+        for (std::size_t t = first; t < last; ++t) {
+            const BlockTexel& a = slabTexels[t];
+            const bool side = a.face != 2 && a.face != 3;
+            if (t > first) {
+                const BlockTexel& b = slabTexels[t - 1];
+                if (b.face == a.face && (side ? b.i == a.i : b.j == a.j)) {
+                    runs.back().end = t + 1;
+                    continue;
+                }
+            }
+            runs.push_back({t, t + 1});
+        }
+        tbb::task_group prefetch;
+        if (next < blockCount) prefetch.run([&, next] { acquireBlocks(next); });
+        try {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, runs.size()),
+                              [&](const tbb::blocked_range<std::size_t>& range) {
+                                  CubeResampler::Scratch scratch;
+                                  for (std::size_t r = range.begin(); r != range.end(); ++r) {
+                                      const std::span<const BlockTexel> run(&slabTexels[runs[r].begin],
+                                                                            runs[r].end - runs[r].begin);
+                                      const int face = run.front().face;
+                                      if (face == 2 || face == 3) {
+                                          for (const BlockTexel& t : run)
+                                              resampler.poleTexel(held, face, t.i, t.j, scratch);
+                                      } else {
+                                          resampler.sideTexels(
+                                              held, face, run.front().i, int(run.size()),
+                                              [&](int k) { return int(run[std::size_t(k)].j); }, scratch);
+                                      }
+                                  }
+                              });
+        } catch (...) {
+            try {
+                prefetch.wait();
+            } catch (...) { // the resampling's own error is the one to report
+            }
+            throw;
+        }
+        prefetch.wait();
+        for (int b = 0; b < blockCount; ++b)
+            if (holding[std::size_t(b)] && lastSlab[std::size_t(b)] == s) {
+                held.hold(b * blockRows, blockRowCount(b), width, nullptr);
+                blocks.release(b);
+                holding[std::size_t(b)] = false;
+            }
+    }
+    return resampler.takeCube();
+}
 
 float resampledAlpha(double alpha) {
     constexpr double kSnap = 1e-6;

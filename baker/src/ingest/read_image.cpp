@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <fstream>
@@ -92,21 +93,21 @@ void checkPixelLimit(const std::string& name, std::uint64_t width, std::uint64_t
                 limits::kMaxImagePixelsVariable + ")");
 }
 
-RawImage readImage(const std::filesystem::path& file, const std::function<void(const RawImage&)>& checkHeader,
-                   bool readAlpha, bool keepRgbe) {
+OpenedImage openImage(const std::filesystem::path& file,
+                      const std::function<void(const RawImage&)>& checkHeader, bool readAlpha) {
     const std::string name = printableForMessage(file.string());
     requireRegularFile(file); // before a format is probed: a device or FIFO would never end
-    const std::unique_ptr<ImageSource> source = openImageSource(file, name);
-    const ImageHeader& header = source->header();
+    OpenedImage image;
+    image.source = openImageSource(file, name);
+    const ImageHeader& header = image.source->header();
     if (header.width <= 0 || header.height <= 0 || header.channels.empty())
         throw Error(name + ": image has no pixels (" + std::to_string(header.width) + "x" +
                     std::to_string(header.height) + ")");
     // The header's claim is checked before any pixel memory is taken: a damaged or hostile header may
     // claim billions of pixels.
     checkPixelLimit(name, std::uint64_t(header.width), std::uint64_t(header.height));
-    const std::uint64_t count = std::uint64_t(header.width) * std::uint64_t(header.height);
 
-    RawImage raw;
+    RawImage& raw = image.raw;
     raw.file = name;
     raw.colorSpace = header.colorSpace;
     raw.textureFormat = header.textureFormat;
@@ -116,73 +117,92 @@ RawImage readImage(const std::filesystem::path& file, const std::function<void(c
     raw.pixels.width = header.width; // the size alone, for checkHeader: no pixels yet
     raw.pixels.height = header.height;
     if (checkHeader) checkHeader(raw);
+    image.rgb = pickChannels(header);
+    image.alpha = readAlpha ? pickAlpha(header, image.rgb) : -1;
+    raw.hasAlpha = image.alpha >= 0;
+    raw.unassociatedAlpha = raw.hasAlpha && header.unassociatedAlpha;
+    return image;
+}
 
-    // Only the channels from the lowest to the highest of R, G, B are read, or each of them on its own when
-    // they lie far apart (a file with render layers holds many more). Rows are read strip by strip into the
-    // image, whose memory is reserved but taken only as rows arrive: a truncated file that claims a huge
-    // size fails at its first missing strip having used little, and no second full copy is ever made.
+void readRgbaRows(OpenedImage& image, int y0, int y1, glm::vec4* out, std::vector<float>& strip,
+                  const std::function<void(glm::vec4*, std::size_t)>& written) {
+    // Only the channels from the lowest to the highest of R, G, B (and A) are read, or each of them on its
+    // own when they lie far apart (a file with render layers holds many more).
+    const std::array<int, 3>& rgb = image.rgb;
+    const int alpha = image.alpha;
+    std::vector<int> channels(rgb.begin(), rgb.end());
+    if (alpha >= 0) channels.push_back(alpha);
+    const int first = *std::min_element(channels.begin(), channels.end());
+    const int span = *std::max_element(channels.begin(), channels.end()) - first + 1;
+    const bool together = span <= limits::kMaxChannelsRead;
+    const std::size_t n = std::size_t(y1 - y0) * std::size_t(image.raw.pixels.width);
+    if (!together) std::fill(out, out + n, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    const int reads = together ? 1 : int(channels.size());
+    for (int c = 0; c < reads; ++c) {
+        const int begin = together ? first : channels[std::size_t(c)];
+        const int end = together ? first + span : begin + 1;
+        strip.resize(n * std::size_t(end - begin));
+        image.source->readRows(y0, y1, begin, end, strip.data());
+        tbb::parallel_for(Range(0, n, kPixelsPerTask), [&](const Range& r) {
+            for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                const float* p = &strip[i * std::size_t(end - begin)];
+                if (together)
+                    out[i] = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first],
+                                       alpha >= 0 ? p[alpha - first] : 1.0f);
+                else
+                    out[i][c] = p[0];
+            }
+            if (written && c == reads - 1) written(out + r.begin(), r.size());
+        });
+    }
+}
+
+void readPixels(OpenedImage& image, bool keepRgbe) {
+    RawImage& raw = image.raw;
+    ImageSource& source = *image.source;
+    const ImageHeader& header = source.header();
+    const std::uint64_t count = std::uint64_t(header.width) * std::uint64_t(header.height);
+    // Rows are read strip by strip into the image, whose memory is reserved but taken only as rows arrive: a
+    // truncated file that claims a huge size fails at its first missing strip having used little, and no
+    // second full copy is ever made.
     const int rowStep = header.rowsPerRead;
     const int stripRows = rowStep * std::max(1, int(kStripPixels / (std::uint64_t(header.width) * rowStep)));
     const auto outOfMemory = [&] {
-        return Error(name + ": not enough memory for " + std::to_string(header.width) + "x" +
+        return Error(raw.file + ": not enough memory for " + std::to_string(header.width) + "x" +
                      std::to_string(header.height) + " pixels (" + limits::kMaxImagePixelsVariable +
                      " sets a lower limit)");
     };
-    if (keepRgbe && source->storesRgbe()) {
-        raw.rgbe.width = header.width;
-        raw.rgbe.height = header.height;
-        try {
+    try {
+        if (keepRgbe && source.storesRgbe()) {
+            raw.rgbe.width = header.width;
+            raw.rgbe.height = header.height;
             raw.rgbe.pixels.reserve(std::size_t(count));
             for (int y0 = 0; y0 < header.height; y0 += stripRows) {
                 const int y1 = std::min(header.height, y0 + stripRows);
                 const std::size_t offset = raw.rgbe.pixels.size();
                 raw.rgbe.pixels.resize(offset + std::size_t(y1 - y0) * std::size_t(header.width));
-                source->readRgbeRows(y0, y1, &raw.rgbe.pixels[offset]);
+                source.readRgbeRows(y0, y1, &raw.rgbe.pixels[offset]);
             }
-        } catch (const std::bad_alloc&) {
-            throw outOfMemory();
+            return;
         }
-        return raw;
-    }
-    const std::array<int, 3> rgb = pickChannels(header);
-    const int alpha = readAlpha ? pickAlpha(header, rgb) : -1;
-    raw.hasAlpha = alpha >= 0;
-    raw.unassociatedAlpha = raw.hasAlpha && header.unassociatedAlpha;
-    std::vector<int> channels(rgb.begin(), rgb.end());
-    if (raw.hasAlpha) channels.push_back(alpha);
-    const int first = *std::min_element(channels.begin(), channels.end());
-    const int span = *std::max_element(channels.begin(), channels.end()) - first + 1;
-    const bool together = span <= limits::kMaxChannelsRead;
-    try {
         raw.pixels.pixels.reserve(std::size_t(count));
         std::vector<float> strip;
         for (int y0 = 0; y0 < header.height; y0 += stripRows) {
             const int y1 = std::min(header.height, y0 + stripRows);
             const std::size_t offset = raw.pixels.pixels.size();
-            const std::size_t n = std::size_t(y1 - y0) * std::size_t(header.width);
-            raw.pixels.pixels.resize(offset + n, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-            for (int c = 0; c < (together ? 1 : int(channels.size())); ++c) {
-                const int begin = together ? first : channels[std::size_t(c)];
-                const int end = together ? first + span : begin + 1;
-                strip.resize(n * std::size_t(end - begin));
-                source->readRows(y0, y1, begin, end, strip.data());
-                tbb::parallel_for(Range(0, n, kPixelsPerTask), [&](const Range& r) {
-                    for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                        const float* p = &strip[i * std::size_t(end - begin)];
-                        glm::vec4& out = raw.pixels.pixels[offset + i];
-                        if (together)
-                            out = glm::vec4(p[rgb[0] - first], p[rgb[1] - first], p[rgb[2] - first],
-                                            raw.hasAlpha ? p[alpha - first] : 1.0f);
-                        else
-                            out[c] = p[0];
-                    }
-                });
-            }
+            raw.pixels.pixels.resize(offset + std::size_t(y1 - y0) * std::size_t(header.width));
+            readRgbaRows(image, y0, y1, &raw.pixels.pixels[offset], strip);
         }
     } catch (const std::bad_alloc&) {
         throw outOfMemory();
     }
-    return raw;
+}
+
+RawImage readImage(const std::filesystem::path& file, const std::function<void(const RawImage&)>& checkHeader,
+                   bool readAlpha, bool keepRgbe) {
+    OpenedImage image = openImage(file, checkHeader, readAlpha);
+    readPixels(image, keepRgbe);
+    return std::move(image.raw);
 }
 
 void decodeKeptRgbe(RawImage& image) {

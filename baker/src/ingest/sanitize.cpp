@@ -111,6 +111,33 @@ float maxLuminanceOf(const Pixels& pixels, const glm::dvec3& w, Decode decode) {
 
 } // namespace
 
+FiniteRepair repairFinite(glm::vec4* pixels, std::size_t count, const glm::dvec3& w) {
+    FiniteRepair repair;
+    RepairCounts& n = repair.counts;
+    for (std::size_t i = 0; i < count; ++i) {
+        glm::vec4& p = pixels[i];
+        for (int c = 0; c < 3; ++c) {
+            float& v = p[c];
+            if (std::isnan(v)) {
+                v = 0.0f;
+                ++n.nan;
+            } else if (std::isinf(v)) {
+                if (v > 0.0f) {
+                    ++repair.plusInf;
+                    continue;
+                }
+                v = 0.0f;
+                ++n.inf;
+            } else if (v < 0.0f) {
+                v = 0.0f;
+                ++n.negative;
+            }
+        }
+        repair.maxLuminance = std::max(repair.maxLuminance, float(w.x * p.x + w.y * p.y + w.z * p.z));
+    }
+    return repair;
+}
+
 float maxLuminance(const ImageRGBA& image, const glm::dvec3& w) {
     return maxLuminanceOf(image.pixels, w, [](const glm::vec4& p) { return p; });
 }

@@ -26,7 +26,7 @@ std::uint32_t bigEndian32(const unsigned char* at) {
 
 // Radiance: text lines up to an empty one, then the resolution line "-Y H +X W" (either axis first, either
 // sign; Greg Ward's file format description).
-std::optional<std::uint64_t> radiancePixels(const std::string& header) {
+std::optional<ImageHeaderSize> radianceSize(const std::string& header) {
     const std::size_t blank = header.find("\n\n");
     if (blank == std::string::npos) return std::nullopt;
     char axis0[3] = {}, axis1[3] = {};
@@ -34,12 +34,13 @@ std::optional<std::uint64_t> radiancePixels(const std::string& header) {
     if (std::sscanf(header.c_str() + blank + 2, "%2s %lu %2s %lu", axis0, &size0, axis1, &size1) != 4 ||
         size0 > kMostSide || size1 > kMostSide)
         return std::nullopt;
-    return std::uint64_t(size0) * size1;
+    const bool rowsFirst = axis0[1] == 'Y'; // "-Y H +X W": scan lines of W pixels
+    return ImageHeaderSize{rowsFirst ? size1 : size0, rowsFirst ? size0 : size1, false};
 }
 
 // OpenEXR: magic, version, then attributes "name\0type\0<int32 size><value>" up to an empty name; the
 // dataWindow is a box2i (xMin, yMin, xMax, yMax, int32 each).
-std::optional<std::uint64_t> exrPixels(const std::string& header) {
+std::optional<ImageHeaderSize> exrSize(const std::string& header) {
     const auto* bytes = reinterpret_cast<const unsigned char*>(header.data());
     std::size_t at = 8;
     while (at < header.size() && header[at] != '\0') {
@@ -58,7 +59,7 @@ std::optional<std::uint64_t> exrPixels(const std::string& header) {
             const std::int64_t width = coordinate(2) - coordinate(0) + 1,
                                height = coordinate(3) - coordinate(1) + 1;
             if (width < 1 || height < 1) return std::nullopt;
-            return std::uint64_t(width) * std::uint64_t(height);
+            return ImageHeaderSize{std::uint64_t(width), std::uint64_t(height), true};
         }
         at = value + size;
     }
@@ -67,7 +68,7 @@ std::optional<std::uint64_t> exrPixels(const std::string& header) {
 
 } // namespace
 
-std::optional<std::uint64_t> imageHeaderPixels(const std::filesystem::path& file) {
+std::optional<ImageHeaderSize> imageHeaderSize(const std::filesystem::path& file) {
     std::string header(64 * 1024, '\0');
     std::size_t filled = 0;
     try {
@@ -82,12 +83,18 @@ std::optional<std::uint64_t> imageHeaderPixels(const std::filesystem::path& file
     }
     header.resize(filled);
     const auto* bytes = reinterpret_cast<const unsigned char*>(header.data());
-    if (header.rfind("#?", 0) == 0) return radiancePixels(header);
-    if (header.size() >= 8 && littleEndian32(bytes) == 20000630u) return exrPixels(header);
+    if (header.rfind("#?", 0) == 0) return radianceSize(header);
+    if (header.size() >= 8 && littleEndian32(bytes) == 20000630u) return exrSize(header);
     if (header.size() >= 24 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0 &&
         std::memcmp(bytes + 12, "IHDR", 4) == 0)
-        return std::uint64_t(bigEndian32(bytes + 16)) * bigEndian32(bytes + 20);
+        return ImageHeaderSize{bigEndian32(bytes + 16), bigEndian32(bytes + 20), false};
     return std::nullopt;
+}
+
+std::optional<std::uint64_t> imageHeaderPixels(const std::filesystem::path& file) {
+    const std::optional<ImageHeaderSize> size = imageHeaderSize(file);
+    if (!size) return std::nullopt;
+    return size->width * size->height;
 }
 
 } // namespace ibl

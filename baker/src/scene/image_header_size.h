@@ -8,8 +8,15 @@
 
 namespace ibl {
 
-// Width x height from a Radiance (.hdr), OpenEXR (the first part's dataWindow) or PNG (IHDR) header; nothing
+struct ImageHeaderSize {
+    std::uint64_t width = 0, height = 0;
+    bool openExr = false; // an OpenEXR file, whose lat-long the ingest resamples as it decodes
+};
+
+// The size from a Radiance (.hdr), OpenEXR (the first part's dataWindow) or PNG (IHDR) header; nothing
 // for another format, a file that cannot be opened or a header that does not parse.
+std::optional<ImageHeaderSize> imageHeaderSize(const std::filesystem::path& file);
+// Its width x height.
 std::optional<std::uint64_t> imageHeaderPixels(const std::filesystem::path& file);
 
 } // namespace ibl

@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <unistd.h>
 
 namespace ibl {
@@ -95,6 +96,29 @@ std::uint64_t inputPixels(const PlanStage& stage, const std::string& prefix, std
     return pixels;
 }
 
+// What the ingest holds of an OpenEXR lat-long it resamples block by block (latlong_blocks.cpp,
+// latlong_to_cube.cpp resampleLatLongBlocks), nothing for another input: blocks of max(64, 2 Mi / width) rows
+// (at most the image's) as fp32 RGBA, at most kHeldBlocks at once (the slab being resampled and the one
+// before it, top and bottom, and the next slab's, decoded meanwhile: 6 measured at 8k and 16k), the decoder's
+// fp32 RGB strip of one block, and the computed texels' table (20 bytes a texel: 3 n^2 texels of n-px faces
+// with the mirror symmetry alone, all 6 n^2 at an odd face size). It does not grow with the image's height.
+std::optional<std::uint64_t> streamedIngestBytes(const PlanStage& stage, std::uint64_t faceSize) {
+    constexpr std::uint64_t kHeldBlocks = 8, kTexelTableBytes = 20, kBlockPixels = std::uint64_t(1) << 21;
+    if (stage.inputs.size() != 1) return std::nullopt;
+    const std::optional<ImageHeaderSize> size = imageHeaderSize(stage.inputs.front().file);
+    const std::string layout = stage.settings.value("layout", std::string("auto"));
+    if (!size || !size->openExr ||
+        !(layout == "latlong" || (layout == "auto" && size->width == 2 * size->height)))
+        return std::nullopt;
+    const std::uint64_t blockRows =
+        std::min(size->height, std::max<std::uint64_t>(64, (kBlockPixels + size->width - 1) / size->width));
+    const std::uint64_t blocks = (size->height + blockRows - 1) / blockRows;
+    const std::uint64_t blockPixels = blockRows * size->width;
+    const std::uint64_t texels = (faceSize % 2 == 0 ? 3 : 6) * faceSize * faceSize;
+    return std::min(kHeldBlocks, blocks) * blockPixels * kFloatRgbaBytes + blockPixels * 12 +
+           texels * kTexelTableBytes;
+}
+
 std::uint64_t setting(const PlanStage& stage, const char* key) {
     return stage.settings.at(key).get<std::uint64_t>();
 }
@@ -111,12 +135,15 @@ StageEstimate estimateStage(const Scene& scene, const PlanStage& stage) {
         e.drivingKey = "outputs.dfgSize";
         e.what = grouped(size) + "-px LUT";
     } else if (kind == "environment") {
-        // The decoded source (fp32 RGBA; a Radiance file's RGBE bytes beside it, 4 more a pixel), the cube
-        // and its texel geometry table (one cube's size).
+        // The decoded source (fp32 RGBA; a Radiance file's RGBE bytes beside it, 4 more a pixel), or the
+        // blocks of an OpenEXR lat-long resampled as it is decoded; the cube and its texel geometry table
+        // (one cube's size).
         const std::uint64_t pixels = inputPixels(stage, "environment.file", face);
-        e.memoryBytes = pixels * (kFloatRgbaBytes + 4) + 2 * cubeBytes(face);
+        const std::optional<std::uint64_t> streamed = streamedIngestBytes(stage, face);
+        const std::uint64_t sourceBytes = streamed ? *streamed : pixels * (kFloatRgbaBytes + 4);
+        e.memoryBytes = sourceBytes + 2 * cubeBytes(face);
         e.work = pixels + 6 * face * face;
-        if (pixels * (kFloatRgbaBytes + 4) > 2 * cubeBytes(face)) {
+        if (sourceBytes > 2 * cubeBytes(face)) {
             e.drivingKey = "environment.file";
             e.what = grouped(pixels) + "-pixel source";
         }
