@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
     for (auto addCommand : {addDevicesCommand, addDfgCommand, addSpecularCommand, addDiffuseCommand,
                             addInspectCommand, addCalibrateCommand, addPreviewCommand, addPlanCommand,
                             addBakeCommand, addBatchCommand, addGltfCommand, addExportShCommand,
-                            addExportFilamentCommand, addAccuracyCommand, addLightCardCommand})
+                            addExportFilamentCommand, addAccuracyCommand, addLightCardCommand,
+                            addFormatCostCommand})
         add(addCommand(app));
 
     try {

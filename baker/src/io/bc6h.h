@@ -14,9 +14,9 @@
 namespace ibl::bc6h {
 
 // The encoder's effort (docs/formats.md "BC6H"): Fast tries mode 11 (one region, 10-bit endpoints); Default
-// also the other one-region modes and the two best-looking of the 32 two-region partitions in every
-// two-region mode, with one least-squares refit of the endpoints; Best the eight best-looking partitions and
-// three refits.
+// every one-region mode, and where the best of them is not within about 0.5%, the two most compact of the 32
+// two-region partitions in every two-region mode, the best candidate refitted once (least squares); Best
+// always the eight most compact partitions, every candidate refitted up to three times.
 enum class Preset { Fast, Default, Best };
 
 using Block = std::array<std::uint8_t, 16>;
