@@ -98,7 +98,10 @@ Action addDiffuseCommand(CLI::App& app) {
     cmd->add_option("--window-param", o->windowParam,
                     "window parameter: sloan lambda >= 0, hanning/lanczos width w > 0 in bands (default: the "
                     "weakest value with E >= 0 everywhere)");
-    cmd->add_option("--format", o->format, "irradiance cube format: rgba16f, rgba32f, b10g11r11, e5b9g9r9")
+    cmd->add_option(
+           "--format", o->format,
+           "irradiance cube format: rgba16f, rgba32f, b10g11r11, e5b9g9r9, bc6h, bc6h-fast, bc6h-best "
+           "(docs/formats.md \"Storage formats\"); --irradiance-cube NAME.dds writes DDS")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
     cmd->add_flag("--clamp-to-format", o->clampToFormat,

@@ -70,7 +70,9 @@ Action addSpecularCommand(CLI::App& app) {
         ->check(CLI::IsMember({"draft", "production", "reference"}));
     cmd->add_option("--samples", o->samples, "maximum samples per texel (overrides the preset)")
         ->check(CLI::Range(1u, limits::kMaxSamples));
-    cmd->add_option("--format", o->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")
+    cmd->add_option("--format", o->format,
+                    "rgba16f, rgba32f, b10g11r11, e5b9g9r9, or BC6H made by the default, fast or best preset "
+                    "(docs/formats.md \"Storage formats\"); -o NAME.dds writes DDS")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
     cmd->add_option("--profile", o->profile, "standard (OpenGL faces) or three (three.js r187's own PMREM)")

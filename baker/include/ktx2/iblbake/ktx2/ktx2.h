@@ -22,6 +22,10 @@ namespace ibl {
 // three efforts; docs/formats.md "BC6H").
 enum class Ktx2Format { RGBA16F, RGBA32F, B10G11R11, E5B9G9R9, BC6H, BC6HFast, BC6HBest };
 
+inline bool isBc6h(Ktx2Format format) {
+    return format == Ktx2Format::BC6H || format == Ktx2Format::BC6HFast || format == Ktx2Format::BC6HBest;
+}
+
 // The names of the formats (`--format`, the scene's outputs.ktx2Format), in Ktx2Format order.
 inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f",   "b10g11r11", "e5b9g9r9",
                                                           "bc6h",    "bc6h-fast", "bc6h-best"};
