@@ -53,6 +53,8 @@ enum class Ktx2Alpha { Straight, Premultiplied };
 // "KTXwriter" = "iblbake <version>" (the caller may not pass that key, nor an empty or duplicate key).
 // The file is written to a temporary name and renamed when complete (ibl::AtomicFile). Throws ibl::Error
 // "<file>: <problem>" on invalid input or any I/O failure; an existing file at `path` is then untouched.
+// BC6H stores unsigned finite halves: a negative or non-finite channel is such a problem (checked before
+// any block is encoded), levels below 4 x 4 are one block an image (docs/formats.md "BC6H").
 Ktx2WriteStats writeKtx2Cube(const std::filesystem::path& path, const CubeMapChain& chain, Ktx2Format format,
                              const Ktx2KeyValues& keyValues, Ktx2Alpha alpha = Ktx2Alpha::Straight);
 
