@@ -306,8 +306,8 @@ Block encodeBlock(const BlockHalves& halves, Preset preset) {
             consider(t, mode, 0, single, best);
     refine(t, refits, best);
     // Default stops where one region is already within about 0.5% (a weighted squared half difference of
-    // 16 a texel): on potsdamer_platz_1k's chain that halves the time (2.2 -> 1.1 s) for a mean error 0.905 ->
-    // 0.906% at level 0 (docs/formats.md "BC6H").
+    // 16 a texel): on potsdamer_platz_1k's chain that halves the time (2.2 -> 1.1 s) for a mean error 0.905
+    // -> 0.906% at level 0 (docs/formats.md "BC6H").
     const float goodEnough = preset == Preset::Default ? 16.0f * kBlockTexels : 0.0f;
     if (preset == Preset::Fast || best.candidate.error <= goodEnough) return best.candidate.block;
 
