@@ -34,5 +34,6 @@ Action addExportShCommand(CLI::App& app);
 Action addExportFilamentCommand(CLI::App& app);
 Action addAccuracyCommand(CLI::App& app);
 Action addLightCardCommand(CLI::App& app);
+Action addFormatCostCommand(CLI::App& app);
 
 } // namespace ibl::cli

@@ -52,7 +52,10 @@ void CubeStorageOptions::addTo(CLI::App& command, const std::string& product) {
     std::string formats;
     for (const std::string& name : kKtx2FormatNames)
         formats += (formats.empty() ? "" : ", ") + name;
-    command.add_option("--format", format, product + " format: " + formats)
+    command
+        .add_option("--format", format,
+                    product + " format: " + formats +
+                        " (docs/formats.md \"Storage formats\"); an output named .dds is written as DDS")
         ->capture_default_str()
         ->check(CLI::IsMember(kKtx2FormatNames));
     command.add_flag("--clamp-to-format", clampToFormat,

@@ -25,10 +25,11 @@ int main(int argc, char** argv) {
     std::map<const CLI::App*, ibl::cli::Action> actions;
     auto add = [&](ibl::cli::Action action) { actions[app.get_subcommands({}).back()] = std::move(action); };
     using namespace ibl::cli;
-    for (auto addCommand : {addDevicesCommand, addDfgCommand, addSpecularCommand, addDiffuseCommand,
-                            addInspectCommand, addCalibrateCommand, addPreviewCommand, addPlanCommand,
-                            addBakeCommand, addBatchCommand, addGltfCommand, addExportShCommand,
-                            addExportFilamentCommand, addAccuracyCommand, addLightCardCommand})
+    for (auto addCommand :
+         {addDevicesCommand, addDfgCommand, addSpecularCommand, addDiffuseCommand, addInspectCommand,
+          addCalibrateCommand, addPreviewCommand, addPlanCommand, addBakeCommand, addBatchCommand,
+          addGltfCommand, addExportShCommand, addExportFilamentCommand, addAccuracyCommand,
+          addLightCardCommand, addFormatCostCommand})
         add(addCommand(app));
 
     try {

@@ -27,6 +27,7 @@ set(IBLBAKE_CODE_stage_runner # reads dependency entries, writes every stage's f
     baker/src/scene/scene_stages.cpp baker/src/scene/stage_runner.cpp baker/src/scene/stage_cache.cpp
     baker/src/io/ktx2_writer.cpp
     baker/src/io/ktx2_reader.cpp baker/src/io/ktx2_format_names.cpp baker/src/io/ktx2_storage_scale.cpp
+    baker/src/io/bc6h_encode.cpp baker/src/io/bc6h_decode.cpp baker/src/io/dds_writer.cpp
     baker/src/io/cube_profile.cpp
     baker/src/products)
 set(IBLBAKE_CODE_kernel_host # backend choice, program assembly and build options

@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
         const std::pair<ibl::Ktx2Format, const char*> formats[] = {{ibl::Ktx2Format::RGBA16F, "rgba16f"},
                                                                    {ibl::Ktx2Format::RGBA32F, "rgba32f"},
                                                                    {ibl::Ktx2Format::B10G11R11, "b10g11r11"},
-                                                                   {ibl::Ktx2Format::E5B9G9R9, "e5b9g9r9"}};
+                                                                   {ibl::Ktx2Format::E5B9G9R9, "e5b9g9r9"},
+                                                                   {ibl::Ktx2Format::BC6H, "bc6h"}};
         for (const auto& [format, name] : formats) {
             ibl::writeKtx2Cube(dir / (std::string("cube4_") + name + ".ktx2"), chainOf(4), format, keyValues);
             ibl::writeKtx2Cube(dir / (std::string("cube1_") + name + ".ktx2"), chainOf(1), format, {});

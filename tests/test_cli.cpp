@@ -159,12 +159,13 @@ TEST(Cli, AnOutputNamedForAnotherContainerIsRefused) {
     const struct {
         std::string args, file, container;
     } cases[] = {
-        {"specular " + hdri + " --size 16 --quality draft -o", "chain.dds", "KTX2 (.ktx2)"},
+        {"specular " + hdri + " --size 16 --quality draft -o", "chain.exr", "KTX2 (.ktx2) or DDS (.dds)"},
         {"specular " + hdri + " --size 16 --quality draft -o chain.ktx2 --rough-layers", "rough.exr",
-         "KTX2 (.ktx2)"},
+         "KTX2 (.ktx2) or DDS (.dds)"},
         {"dfg --size 8 --samples 8 -o", "lut.ktx2", "OpenEXR (.exr)"},
         {"diffuse " + hdri + " --size 16 -o", "d.txt", "JSON (.json)"},
-        {"diffuse " + hdri + " --size 16 -o d.json --irradiance-cube", "irr.png", "KTX2 (.ktx2)"},
+        {"diffuse " + hdri + " --size 16 -o d.json --irradiance-cube", "irr.png",
+         "KTX2 (.ktx2) or DDS (.dds)"},
         {"calibrate " + hdri + " --scale 2 -o", "cal.hdr", "OpenEXR (.exr)"},
         {"lightcard " + hdri + " --size 4 -o", "card", "KTX2 (.ktx2)"},
     };

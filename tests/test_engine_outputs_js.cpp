@@ -8,9 +8,12 @@
 
 #include <iblbake/ktx2/ktx2.h>
 
+#include <bc6h.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -69,7 +72,8 @@ struct FormatCase {
 
 class Ktx2ByKtxParse : public IndependentParser, public ::testing::WithParamInterface<FormatCase> {};
 
-const FormatCase kFormats[] = {{"rgba16f", 97}, {"rgba32f", 109}, {"b10g11r11", 122}, {"e5b9g9r9", 123}};
+const FormatCase kFormats[] = {
+    {"rgba16f", 97}, {"rgba32f", 109}, {"b10g11r11", 122}, {"e5b9g9r9", 123}, {"bc6h", 131}};
 
 std::string formatName(const ::testing::TestParamInfo<FormatCase>& info) {
     return info.param.name;
@@ -133,12 +137,8 @@ TEST_P(Ktx2ByKtxParse, TwoDimensionalImage) {
     ibl::ImageRGBA image(12, 5);
     for (std::size_t i = 0; i < image.pixels.size(); ++i)
         image.pixels[i] = glm::vec4(0.1f * float(i), 1.0f, 2.0f, 1.0f);
-    const std::string name = format;
-    const ibl::Ktx2Format ktxFormat = name == "rgba16f"     ? ibl::Ktx2Format::RGBA16F
-                                      : name == "rgba32f"   ? ibl::Ktx2Format::RGBA32F
-                                      : name == "b10g11r11" ? ibl::Ktx2Format::B10G11R11
-                                                            : ibl::Ktx2Format::E5B9G9R9;
-    ibl::writeKtx2Image(dir / "image.ktx2", image, ktxFormat, {{"iblbake.product", "test-image"}});
+    ibl::writeKtx2Image(dir / "image.ktx2", image, ibl::parseKtx2Format(format),
+                        {{"iblbake.product", "test-image"}});
     const nlohmann::json expect = {{"vkFormat", vkFormat},
                                    {"pixelWidth", 12},
                                    {"pixelHeight", 5},
@@ -210,6 +210,50 @@ TEST_F(IndependentParser, LightCardArray) {
 
 // A local probe's LD holds colour x visibility: its DFD carries KHR_DF_FLAG_ALPHA_PREMULTIPLIED, every
 // other product's does not (the checker expects the flag clear unless told).
+// BC6H blocks decoded by Chromium's WebGL2 (EXT_texture_compression_bptc on SwiftShader) equal our decoder's
+// texels: random blocks of all 14 modes and the reserved codes (16 x 16 blocks), and a 64 x 64 HDR pattern as
+// our encoder's default preset made it.
+TEST_F(IndependentParser, Bc6hDecodedByWebGlAsByOurDecoder) {
+    const fs::path dir = ibl::test::freshTempDir("bc6h_webgl");
+    constexpr int size = 64;
+    std::vector<std::uint8_t> random(std::size_t(size / 4) * std::size_t(size / 4) * 16);
+    std::uint32_t state = 50;
+    const int codes[] = {0x00, 0x01, 0x02, 0x06, 0x0A, 0x0E, 0x12, 0x16,
+                         0x1A, 0x1E, 0x03, 0x07, 0x0B, 0x0F, 0x13};
+    for (std::size_t b = 0; b < random.size() / 16; ++b) {
+        for (int i = 0; i < 16; ++i) {
+            state = state * 1664525u + 1013904223u;
+            random[16 * b + std::size_t(i)] = std::uint8_t(state >> 24);
+        }
+        const int code = codes[b % std::size(codes)], modeBits = code < 2 ? 2 : 5;
+        random[16 * b] = std::uint8_t((random[16 * b] & ~((1 << modeBits) - 1)) | code);
+    }
+    ibl::ImageRGBA pattern(size, size);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+            const float v = std::exp(3.0f * std::sin(0.2f * x) * std::cos(0.15f * y));
+            pattern.at(x, y) = {v, 0.7f * v + 0.05f * y,
+                                (x - 30) * (x - 30) + (y - 20) * (y - 20) < 9 ? 5000.0f : v, 1};
+        }
+    std::vector<std::uint8_t> encoded(ibl::bc6h::blockCount(size, size) * 16);
+    ibl::bc6h::encodeImage(pattern, ibl::bc6h::Preset::Default, encoded.data());
+    for (const auto* blocks : {&random, &encoded}) {
+        const ibl::ImageRGBA ours = ibl::bc6h::decodeImage(blocks->data(), size, size);
+        std::vector<float> expected;
+        for (const glm::vec4& t : ours.pixels)
+            expected.insert(expected.end(), {t.r, t.g, t.b});
+        std::ofstream(dir / "blocks.bin", std::ios::binary)
+            .write(reinterpret_cast<const char*>(blocks->data()), std::streamsize(blocks->size()));
+        std::ofstream(dir / "expected.f32", std::ios::binary)
+            .write(reinterpret_cast<const char*>(expected.data()), std::streamsize(4 * expected.size()));
+        NodeRun r = runNode("check_bc6h_webgl.mjs",
+                            (dir / "blocks.bin").string() + " " + (dir / "expected.f32").string() + " 64 64");
+        EXPECT_EQ(r.exitCode, 0) << r.out;
+        std::printf("%s", r.out.c_str());
+    }
+    fs::remove_all(dir);
+}
+
 TEST_F(IndependentParser, PremultipliedAlphaIsTheDfdFlag) {
     const fs::path dir = ibl::test::freshTempDir("ktx_premultiplied");
     ibl::CubeMapChain chain;

@@ -128,7 +128,7 @@ TEST(Ktx2FormatNames, OneTableAndOneParser) {
     for (std::size_t i = 0; i < kKtx2FormatNames.size(); ++i)
         EXPECT_EQ(parseKtx2Format(kKtx2FormatNames[i]), Ktx2Format(i));
     EXPECT_EQ(errorOf([] { parseKtx2Format("rgba8"); }),
-              "'rgba8' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9");
+              "'rgba8' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9, bc6h, bc6h-fast, bc6h-best");
 }
 
 TEST(Products, LdChainKeysStoreTheMappingByName) {

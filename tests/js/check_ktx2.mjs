@@ -14,7 +14,8 @@ const failures = [];
 const check = (ok, what) => { if (!ok) failures.push(what); };
 
 // What the Khronos Data Format Specification and Vulkan give for each format iblbake writes:
-// texel block bytes, typeSize, and the samples (channel id | qualifiers, bit offset, bit length).
+// texel block bytes, typeSize, and the samples (channel id | qualifiers, bit offset, bit length); BC6H's
+// texel block is 4 x 4 texels of colour model KHR_DF_MODEL_BC6H (131), one 128-bit sample (KDF "BC6H").
 const FLOAT = 0x80, SIGNED = 0x40, EXPONENT = 0x20;
 const FORMATS = {
   97: { name: 'R16G16B16A16_SFLOAT', bytes: 8, typeSize: 2,
@@ -25,6 +26,7 @@ const FORMATS = {
          samples: [[0 | FLOAT, 0, 11], [1 | FLOAT, 11, 11], [2 | FLOAT, 22, 10]] },
   123: { name: 'E5B9G9R9_UFLOAT_PACK32', bytes: 4, typeSize: 4,
          samples: [[0, 0, 9], [0 | EXPONENT, 27, 5], [1, 9, 9], [1 | EXPONENT, 27, 5], [2, 18, 9], [2 | EXPONENT, 27, 5]] },
+  131: { name: 'BC6H_UFLOAT_BLOCK', bytes: 16, typeSize: 1, block: 4, model: 131, samples: [[0 | FLOAT, 0, 128]] },
 };
 
 const bytes = new Uint8Array(readFileSync(file));
@@ -51,10 +53,12 @@ check(ktx.supercompressionScheme === 0, `supercompressionScheme ${ktx.supercompr
 
 if (format) {
   check(ktx.typeSize === format.typeSize, `typeSize ${ktx.typeSize}, expected ${format.typeSize} for ${format.name}`);
-  // Level m holds max(1, layerCount) x faceCount images of max(1, size >> m) texels per axis, nothing more or less.
+  // Level m holds max(1, layerCount) x faceCount images of max(1, size >> m) texels per axis in whole texel
+  // blocks, nothing more or less.
   const images = Math.max(1, ktx.layerCount) * ktx.faceCount;
+  const block = format.block ?? 1;
   ktx.levels.forEach((level, m) => {
-    const w = Math.max(1, ktx.pixelWidth >> m), h = Math.max(1, ktx.pixelHeight >> m);
+    const w = Math.ceil(Math.max(1, ktx.pixelWidth >> m) / block), h = Math.ceil(Math.max(1, ktx.pixelHeight >> m) / block);
     const expected = images * w * h * format.bytes;
     check(level.levelData.byteLength === expected,
           `level ${m}: ${level.levelData.byteLength} bytes, expected ${expected} (${images} x ${w}x${h} x ${format.bytes})`);
@@ -62,20 +66,22 @@ if (format) {
           `level ${m}: uncompressedByteLength ${level.uncompressedByteLength}, expected ${expected}`);
   });
 
-  // The DFD: one basic block, RGBSDA, BT.709, linear, 1x1x1x1 texels, bytesPlane0 = texel size, and the
-  // KDF's samples for the format.
+  // The DFD: one basic block, RGBSDA (BC6H: its own model), BT.709, linear, 1x1x1x1 texels (BC6H: 4x4x1x1),
+  // bytesPlane0 = texel block size, and the KDF's samples for the format.
   check(ktx.dataFormatDescriptor.length === 1, `${ktx.dataFormatDescriptor.length} DFD blocks, expected 1`);
   const dfd = ktx.dataFormatDescriptor[0];
   check(dfd.vendorId === 0 && dfd.descriptorType === 0 && dfd.versionNumber === 2,
         `DFD vendor/type/version ${dfd.vendorId}/${dfd.descriptorType}/${dfd.versionNumber}, expected 0/0/2`);
-  check(dfd.colorModel === KHR_DF_MODEL_RGBSDA, `DFD colorModel ${dfd.colorModel}, expected RGBSDA`);
+  const model = format.model ?? KHR_DF_MODEL_RGBSDA;
+  check(dfd.colorModel === model, `DFD colorModel ${dfd.colorModel}, expected ${model}`);
   check(dfd.colorPrimaries === KHR_DF_PRIMARIES_BT709, `DFD colorPrimaries ${dfd.colorPrimaries}, expected BT709`);
   check(dfd.transferFunction === KHR_DF_TRANSFER_LINEAR, `DFD transferFunction ${dfd.transferFunction}, expected LINEAR`);
   const premultiplied = (dfd.flags & KHR_DF_FLAG_ALPHA_PREMULTIPLIED) !== 0;
   check(premultiplied === (expect.alphaPremultiplied ?? false),
         `DFD flags ${dfd.flags}: alpha ${premultiplied ? 'premultiplied' : 'straight'}, expected ` +
         `${expect.alphaPremultiplied ? 'premultiplied' : 'straight'}`);
-  check(dfd.texelBlockDimension.every((d) => d === 0), `DFD texelBlockDimension ${dfd.texelBlockDimension}`);
+  const dimensions = [block - 1, block - 1, 0, 0];
+  check(dfd.texelBlockDimension.every((d, i) => d === dimensions[i]), `DFD texelBlockDimension ${dfd.texelBlockDimension}`);
   check(dfd.bytesPlane[0] === format.bytes && dfd.bytesPlane.slice(1).every((b) => b === 0),
         `DFD bytesPlane ${dfd.bytesPlane}, expected [${format.bytes}, 0...]`);
   check(dfd.samples.length === format.samples.length, `DFD ${dfd.samples.length} samples, expected ${format.samples.length}`);

@@ -24,16 +24,33 @@ void checkOutputFile(const fs::path& target) {
     if (fs::is_directory(target, ec)) throw OutputError(target.string() + ": is a directory");
 }
 
-void checkOutputExtension(const fs::path& target, std::string_view extension) {
-    std::string got = target.extension().string();
-    for (char& c : got)
+std::string lowercaseExtension(const fs::path& file) {
+    std::string extension = file.extension().string();
+    for (char& c : extension)
         c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (got == extension) return;
+    return extension;
+}
+
+void checkOutputExtension(const fs::path& target, std::initializer_list<std::string_view> extensions) {
+    const std::string got = lowercaseExtension(target);
     static const std::map<std::string_view, std::string_view> containers = {
-        {".ktx2", "KTX2"}, {".exr", "OpenEXR"}, {".json", "JSON"}, {".png", "PNG"}};
-    throw OutputError(target.string() + ": written as " + std::string(containers.at(extension)) + " (" +
-                      std::string(extension) + "), not " +
+        {".ktx2", "KTX2"}, {".dds", "DDS"}, {".exr", "OpenEXR"}, {".json", "JSON"}, {".png", "PNG"}};
+    std::string named;
+    for (std::string_view extension : extensions) {
+        if (got == extension) return;
+        named += std::string(named.empty() ? "" : " or ") + std::string(containers.at(extension)) + " (" +
+                 std::string(extension) + ")";
+    }
+    throw OutputError(target.string() + ": written as " + named + ", not " +
                       (got.empty() ? "a name without an extension" : got));
+}
+
+void checkOutputExtension(const fs::path& target, std::string_view extension) {
+    checkOutputExtension(target, {extension});
+}
+
+void checkCubeOutputExtension(const fs::path& target) {
+    checkOutputExtension(target, {".ktx2", ".dds"});
 }
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {

@@ -1,8 +1,9 @@
-// Facts about the KTX2 container and the four formats iblbake stores, shared by the writer and the reader
+// Facts about the KTX2 container and the formats iblbake stores, shared by the writer and the reader
 // so that both agree on one table. Section names refer to the KTX 2.0 specification (Khronos) and to the
 // Khronos Data Format Specification (KDF).
 #pragma once
 
+#include "bc6h.h"
 #include "iblbake/ktx2/ktx2.h"
 
 #include <array>
@@ -22,6 +23,7 @@ inline constexpr std::size_t kLevelIndexEntryBytes = 24; // byteOffset, byteLeng
 // KDF basic descriptor block constants (KDF section 5).
 inline constexpr std::uint32_t kDfVersion = 2;              // versionNumber of KDF 1.3 and later
 inline constexpr std::uint32_t kModelRgbsda = 1;            // KHR_DF_MODEL_RGBSDA
+inline constexpr std::uint32_t kModelBc6h = 131;            // KHR_DF_MODEL_BC6H
 inline constexpr std::uint32_t kPrimariesBt709 = 1;         // KHR_DF_PRIMARIES_BT709
 inline constexpr std::uint32_t kTransferLinear = 1;         // KHR_DF_TRANSFER_LINEAR
 inline constexpr std::uint32_t kFlagAlphaPremultiplied = 1; // KHR_DF_FLAG_ALPHA_PREMULTIPLIED
@@ -34,16 +36,24 @@ inline constexpr std::uint8_t kChannelR = 0, kChannelG = 1, kChannelB = 2, kChan
 struct FormatInfo {
     Ktx2Format format;
     std::uint32_t vkFormat;
-    std::uint32_t typeSize;   // KTX 2.0 "typeSize": component size, or 4 for the *_PACK32 formats
+    std::uint32_t dxgiFormat; // the DDS container's DXGI_FORMAT (dds_writer.cpp)
+    std::uint32_t typeSize;   // KTX 2.0 "typeSize": component size, 4 for the *_PACK32 formats, 1 for blocks
     std::uint32_t texelBytes; // Vulkan texel block size (also the DFD's bytesPlane0)
+    std::uint32_t blockSize;  // texels a block spans in x and in y: 1, or 4 for BC6H
     bool hasAlpha;
+    bc6h::Preset preset; // the BC6H encoder's effort (BC6H formats only)
 };
 
-inline constexpr std::array<FormatInfo, 4> kFormats = {{
-    {Ktx2Format::RGBA16F, 97, 2, 8, true},
-    {Ktx2Format::RGBA32F, 109, 4, 16, true},
-    {Ktx2Format::B10G11R11, 122, 4, 4, false},
-    {Ktx2Format::E5B9G9R9, 123, 4, 4, false},
+// One table for every format. DXGI: R16G16B16A16_FLOAT 10, R32G32B32A32_FLOAT 2, R11G11B10_FLOAT 26 and
+// R9G9B9E5_SHAREDEXP 67 (the same bits as their Vulkan formats), BC6H_UF16 95.
+inline constexpr std::array<FormatInfo, 7> kFormats = {{
+    {Ktx2Format::RGBA16F, 97, 10, 2, 8, 1, true, bc6h::Preset::Default},
+    {Ktx2Format::RGBA32F, 109, 2, 4, 16, 1, true, bc6h::Preset::Default},
+    {Ktx2Format::B10G11R11, 122, 26, 4, 4, 1, false, bc6h::Preset::Default},
+    {Ktx2Format::E5B9G9R9, 123, 67, 4, 4, 1, false, bc6h::Preset::Default},
+    {Ktx2Format::BC6H, 131, 95, 1, 16, 4, false, bc6h::Preset::Default},
+    {Ktx2Format::BC6HFast, 131, 95, 1, 16, 4, false, bc6h::Preset::Fast},
+    {Ktx2Format::BC6HBest, 131, 95, 1, 16, 4, false, bc6h::Preset::Best},
 }};
 
 inline const FormatInfo& formatInfo(Ktx2Format format) {
@@ -58,10 +68,21 @@ inline std::optional<FormatInfo> findFormat(std::uint32_t vkFormat) {
     return std::nullopt;
 }
 
-// KTX 2.0 "mipPadding": level data starts at a multiple of lcm(texel block size, 4). The four block
-// sizes here are 4, 8 and 16, so the lcm is simply max(size, 4).
+// KTX 2.0 "mipPadding": level data starts at a multiple of lcm(texel block size, 4). The block sizes here
+// are 4, 8 and 16, so the lcm is simply max(size, 4).
 inline std::uint32_t levelAlignment(const FormatInfo& f) {
     return f.texelBytes < 4 ? 4 : f.texelBytes;
+}
+
+// The bytes of one image of width x height texels: whole blocks (a level below the block size is one block
+// wide or high, KTX 2.0 "Level Index"). Saturates at UINT64_MAX.
+inline std::uint64_t imageBytes(const FormatInfo& f, std::uint64_t width, std::uint64_t height) {
+    const std::uint64_t blocksX = (width + f.blockSize - 1) / f.blockSize;
+    const std::uint64_t blocksY = (height + f.blockSize - 1) / f.blockSize;
+    std::uint64_t bytes = blocksX;
+    for (std::uint64_t factor : {blocksY, std::uint64_t(f.texelBytes)})
+        if (__builtin_mul_overflow(bytes, factor, &bytes)) return UINT64_MAX;
+    return bytes;
 }
 
 inline std::uint32_t floatBits(float v) {
@@ -81,7 +102,8 @@ struct Sample {
 // The samples the KDF format tables define for each vkFormat (KDF "Vulkan format" descriptors):
 // float formats use the bit patterns of -1.0f/0.0f and 1.0f as sampleLower/sampleUpper; E5B9G9R9 has an
 // unsigned 9-bit mantissa sample (upper 8448) followed by the shared 5-bit exponent sample (EXPONENT
-// qualifier, lower = bias 15, upper = 31) for each of R, G, B.
+// qualifier, lower = bias 15, upper = 31) for each of R, G, B. BC6H (KDF "BC6H", unsigned) is one 128-bit
+// sample of channel KHR_DF_CHANNEL_BC6H_COLOR (0) with the FLOAT qualifier, 0.0 to 1.0.
 inline std::vector<Sample> formatSamples(Ktx2Format format) {
     const std::uint32_t minusOne = floatBits(-1.0f), zero = floatBits(0.0f), one = floatBits(1.0f);
     const std::uint8_t sfloat = kQualifierFloat | kQualifierSigned;
@@ -104,6 +126,10 @@ inline std::vector<Sample> formatSamples(Ktx2Format format) {
         return {{0, 9, kChannelR, 0, 8448},  {27, 5, std::uint8_t(kChannelR | kQualifierExponent), 15, 31},
                 {9, 9, kChannelG, 0, 8448},  {27, 5, std::uint8_t(kChannelG | kQualifierExponent), 15, 31},
                 {18, 9, kChannelB, 0, 8448}, {27, 5, std::uint8_t(kChannelB | kQualifierExponent), 15, 31}};
+    case Ktx2Format::BC6H:
+    case Ktx2Format::BC6HFast:
+    case Ktx2Format::BC6HBest:
+        return {{0, 128, kQualifierFloat, zero, one}};
     }
     return {};
 }
@@ -120,8 +146,10 @@ inline std::vector<std::uint32_t> dataFormatDescriptor(Ktx2Format format, Ktx2Al
     words.push_back(0); // vendorId KHRONOS (0), descriptorType BASICFORMAT (0)
     words.push_back(kDfVersion | (blockBytes << 16));
     const std::uint32_t flags = alpha == Ktx2Alpha::Premultiplied ? kFlagAlphaPremultiplied : 0;
-    words.push_back(kModelRgbsda | (kPrimariesBt709 << 8) | (kTransferLinear << 16) | (flags << 24));
-    words.push_back(0);               // 1x1x1x1 texel block (each dimension stored minus one)
+    const std::uint32_t model = info.blockSize > 1 ? kModelBc6h : kModelRgbsda;
+    words.push_back(model | (kPrimariesBt709 << 8) | (kTransferLinear << 16) | (flags << 24));
+    // texelBlockDimension0..3, each stored minus one: 1x1x1x1, or 4x4x1x1 for BC6H.
+    words.push_back((info.blockSize - 1) | ((info.blockSize - 1) << 8));
     words.push_back(info.texelBytes); // bytesPlane0; planes 1..3 unused
     words.push_back(0);               // bytesPlane4..7
     for (const Sample& s : samples) {

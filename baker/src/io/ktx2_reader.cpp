@@ -158,7 +158,9 @@ Ktx2Alpha checkDfd(std::span<const std::uint8_t> bytes, const FormatInfo& info, 
     const std::uint32_t blockBytes = block[1] >> 16;
     if ((block[1] & 0xFFFFu) != ktx2::kDfVersion || blockBytes != expected[2] >> 16)
         throw Error(name + ": data format descriptor block has an unexpected version or size");
-    if ((block[2] & 0xFFu) != ktx2::kModelRgbsda) throw Error(name + ": colour model is not RGBSDA");
+    if ((block[2] & 0xFFu) != (expected[3] & 0xFFu))
+        throw Error(name + ": colour model " + std::to_string(block[2] & 0xFFu) +
+                    " does not match vkFormat " + std::to_string(info.vkFormat));
     if (((block[2] >> 16) & 0xFFu) != ktx2::kTransferLinear)
         throw Error(name + ": transfer function " + std::to_string((block[2] >> 16) & 0xFFu) +
                     " is not linear");
@@ -206,9 +208,8 @@ std::map<std::string, std::string> parseKeyValues(std::span<const std::uint8_t> 
 std::uint64_t levelByteLength(const Header& h, const FormatInfo& info, std::uint32_t level) {
     const std::uint64_t width = std::max<std::uint64_t>(1, h.pixelWidth >> level);
     const std::uint64_t height = std::max<std::uint64_t>(1, h.pixelHeight >> level);
-    std::uint64_t bytes = width;
-    for (std::uint64_t factor : {height, std::uint64_t(h.faceCount),
-                                 std::uint64_t(std::max(1u, h.layerCount)), std::uint64_t(info.texelBytes)})
+    std::uint64_t bytes = ktx2::imageBytes(info, width, height);
+    for (std::uint64_t factor : {std::uint64_t(h.faceCount), std::uint64_t(std::max(1u, h.layerCount))})
         if (__builtin_mul_overflow(bytes, factor, &bytes)) return UINT64_MAX;
     return bytes;
 }
@@ -236,6 +237,8 @@ glm::vec4 decodeTexel(const std::uint8_t* p, Ktx2Format format) {
         break;
     case Ktx2Format::E5B9G9R9:
         smallfloat::unpackE5B9G9R9(u32(0), v.r, v.g, v.b);
+        break;
+    default: // block formats are decoded a whole image at a time
         break;
     }
     return v;
@@ -312,6 +315,11 @@ Ktx2Image parseKtx2(std::span<const std::uint8_t> file, const std::string& name)
         const int height = int(std::max<std::uint32_t>(1, h.pixelHeight >> p));
         const std::uint8_t* cursor = data.data();
         for (std::uint32_t f = 0; f < h.faceCount * std::max(1u, h.layerCount); ++f) {
+            if (info.blockSize > 1) {
+                image.levels[p].push_back(bc6h::decodeImage(cursor, width, height));
+                cursor += ktx2::imageBytes(info, std::uint64_t(width), std::uint64_t(height));
+                continue;
+            }
             ImageRGBA face(width, height);
             for (glm::vec4& texel : face.pixels) {
                 texel = decodeTexel(cursor, info.format);

@@ -13,6 +13,9 @@ namespace ibl {
 glm::vec3 ktx2LargestValues(Ktx2Format format) {
     switch (format) {
     case Ktx2Format::RGBA16F:
+    case Ktx2Format::BC6H: // unsigned halves
+    case Ktx2Format::BC6HFast:
+    case Ktx2Format::BC6HBest:
         return glm::vec3(smallfloat::kHalfMax);
     case Ktx2Format::B10G11R11:
         return glm::vec3(smallfloat::kFloat11Max, smallfloat::kFloat11Max, smallfloat::kFloat10Max);

@@ -14,6 +14,7 @@
 #include <bit>
 #include <cerrno>
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fcntl.h>
@@ -25,14 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using ktx2::FormatInfo;
-
-// One level as the writer sees it: its size and its images, in KTX2's order within a level (layer by
-// layer, face by face within a layer).
-struct LevelView {
-    int width = 0;
-    int height = 0;
-    std::vector<const ImageRGBA*> faces;
-};
 
 class ByteSink {
   public:
@@ -52,6 +45,14 @@ class ByteSink {
 std::uint64_t alignUp(std::uint64_t v, std::uint64_t a) {
     return (v + a - 1) / a * a;
 }
+
+// One level as the writer sees it: its size and its images, in KTX2's order within a level (layer by
+// layer, face by face within a layer).
+struct LevelView {
+    int width = 0;
+    int height = 0;
+    std::vector<const ImageRGBA*> faces;
+};
 
 // A POSIX file that reports every failure (short writes, EFBIG, ENOSPC, fsync) as ibl::Error.
 class OutputFile {
@@ -143,6 +144,10 @@ void storeU32(std::uint8_t* out, std::uint32_t v) {
 void encodeTexel(const glm::vec4& texel, Ktx2Format format, std::uint8_t* out, Ktx2WriteStats& stats) {
     TexelFlags flags;
     switch (format) {
+    case Ktx2Format::BC6H: // block formats: encodeBc6hImage
+    case Ktx2Format::BC6HFast:
+    case Ktx2Format::BC6HBest:
+        return;
     case Ktx2Format::RGBA16F:
         for (int c = 0; c < 4; ++c)
             storeU16(out + 2 * c, smallfloat::floatToHalf(sanitize(texel[c], -smallfloat::kHalfMax,
@@ -166,6 +171,51 @@ void encodeTexel(const glm::vec4& texel, Ktx2Format format, std::uint8_t* out, K
     }
     stats.clampedTexels += flags.clamped ? 1 : 0;
     stats.repairedNonFinite += flags.nonFinite ? 1 : 0;
+}
+
+// BC6H stores unsigned finite halves: a negative or non-finite channel is refused (nothing is written),
+// one above 65,504 is clamped and counted like the other formats' (the storage scale keeps a product
+// below it). Checked over every image before the first block is encoded.
+void checkBc6hTexels(const std::string& name, const std::vector<LevelView>& levels) {
+    for (std::size_t m = 0; m < levels.size(); ++m)
+        for (std::size_t f = 0; f < levels[m].faces.size(); ++f) {
+            const ImageRGBA& image = *levels[m].faces[f];
+            for (std::size_t i = 0; i < image.pixels.size(); ++i)
+                for (int c = 0; c < 3; ++c) {
+                    const float v = image.pixels[i][c];
+                    if (std::isfinite(v) && v >= 0.0f) continue;
+                    throw Error(name + ": bc6h stores no negative or non-finite value; level " +
+                                std::to_string(m) + " image " + std::to_string(f) + " texel (" +
+                                std::to_string(i % std::size_t(image.width)) + ", " +
+                                std::to_string(i / std::size_t(image.width)) + ") channel " + "RGB"[c] +
+                                " holds " + std::to_string(v));
+                }
+        }
+}
+
+// One image's BC6H blocks at `out`, its channels above the half range clamped and counted.
+void encodeBc6hImage(const ImageRGBA& image, bc6h::Preset preset, std::uint8_t* out, Ktx2WriteStats& stats) {
+    ImageRGBA clamped = image;
+    for (glm::vec4& texel : clamped.pixels) {
+        TexelFlags flags;
+        for (int c = 0; c < 3; ++c)
+            texel[c] = sanitize(texel[c], 0.0f, smallfloat::kHalfMax, flags);
+        stats.clampedTexels += flags.clamped ? 1 : 0;
+    }
+    bc6h::encodeImage(clamped, preset, out);
+}
+
+// One image's bytes at `out`: ktx2::imageBytes(info, width, height) of them.
+void encodeImage(const ImageRGBA& image, const ktx2::FormatInfo& info, std::uint8_t* out,
+                 Ktx2WriteStats& stats) {
+    if (info.blockSize > 1) {
+        encodeBc6hImage(image, info.preset, out, stats);
+        return;
+    }
+    for (const glm::vec4& texel : image.pixels) {
+        encodeTexel(texel, info.format, out, stats);
+        out += info.texelBytes;
+    }
 }
 
 // KTX 2.0 "Key/Value Data": pairs sorted by the code points of the keys (byte order of UTF-8, which is
@@ -221,9 +271,10 @@ Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& lev
     std::vector<std::uint64_t> levelOffset(levelCount), levelBytes(levelCount);
     std::uint64_t cursor = kvdOffset + kvd.size();
     if (cursor > 0xFFFFFFFFu) throw Error(name + ": metadata too large for the 32-bit KTX2 index");
+    if (info.blockSize > 1) checkBc6hTexels(name, levels);
     for (std::uint32_t p = levelCount; p-- > 0;) {
-        levelBytes[p] = std::uint64_t(imagesPerLevel) * std::uint64_t(levels[p].width) *
-                        std::uint64_t(levels[p].height) * info.texelBytes;
+        levelBytes[p] = std::uint64_t(imagesPerLevel) * ktx2::imageBytes(info, std::uint64_t(levels[p].width),
+                                                                         std::uint64_t(levels[p].height));
         levelOffset[p] = alignUp(cursor, alignment);
         cursor = levelOffset[p] + levelBytes[p];
     }
@@ -262,13 +313,17 @@ Ktx2WriteStats writeKtx2(const fs::path& path, const std::vector<LevelView>& lev
         const std::uint64_t padding = levelOffset[p] - out.written(); // mipPadding, zeros
         std::vector<std::uint8_t> level(padding + levelBytes[p]);
         std::uint8_t* texelBytes = level.data() + padding;
-        for (const ImageRGBA* face : levels[p].faces)
-            for (const glm::vec4& texel : face->pixels) {
-                encodeTexel(texel, format, texelBytes, stats);
-                texelBytes += info.texelBytes;
-            }
+        const auto start = std::chrono::steady_clock::now();
+        for (const ImageRGBA* face : levels[p].faces) {
+            encodeImage(*face, info, texelBytes, stats);
+            texelBytes += ktx2::imageBytes(info, std::uint64_t(face->width), std::uint64_t(face->height));
+        }
+        stats.encodeSeconds +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats.gpuBytes += levelBytes[p];
         out.write(level);
     }
+    stats.fileBytes = out.written();
     out.close();
     atomic.commit();
     return stats;

@@ -4,6 +4,7 @@
 #include "iblbake/core/error.h"
 #include "iblbake/ktx2/atomic_file.h"
 #include "iblbake/ktx2/cube_profile.h"
+#include "iblbake/ktx2/dds.h"
 #include "iblbake/ktx2/output_set.h"
 #include "scene_stages.h"
 #include "stage_cache.h"
@@ -35,7 +36,7 @@ class PrivateCache {
 };
 
 // Every file the plan delivers, checked before any work (a directory output: its first file): where it can be
-// written, and named for the container its product is (specular.ktx2: KTX2).
+// written, and named for the container its product is (specular.ktx2: KTX2; the cube products KTX2 or DDS).
 void checkDeliveries(const ProductPlan& plan) {
     std::map<fs::path, std::string> productOf;
     for (const auto& [product, file] : plan.files)
@@ -43,7 +44,10 @@ void checkDeliveries(const ProductPlan& plan) {
             !added)
             throw Error(file.string() + ": given for two products, " + at->second + " and " + product);
     for (const auto& [product, file] : plan.files) {
-        if (product != kEntryFiles.ldExrDirectory) {
+        if (product == "specular.ktx2" || product == kRoughLayersFile || product == "irradiance.ktx2") {
+            checkOutputFile(file);
+            checkCubeOutputExtension(file);
+        } else if (product != kEntryFiles.ldExrDirectory) {
             checkOutputFile(file);
             checkOutputExtension(file, fs::path(product).extension().string());
         } else if (fs::exists(file) && !fs::is_directory(file)) {
@@ -131,6 +135,8 @@ ProductRun runProductPlan(const ProductPlan& plan, const std::function<const Exe
                 for (const fs::directory_entry& f : fs::directory_iterator(from))
                     copyProductFile(f.path(), temporary / f.path().filename());
             });
+        } else if (lowercaseExtension(file) == ".dds") { // a cube product's KTX2, rewrapped
+            outputs.writeFile(file, [&](const fs::path& temporary) { writeDdsFromKtx2(from, temporary); });
         } else {
             outputs.writeFile(file, [&](const fs::path& temporary) { copyProductFile(from, temporary); });
         }

@@ -23,8 +23,10 @@ bool fitsUnclamped(const CubeMap& cube, Ktx2Format format) {
 
 bool keepSunInLevel0(CubeMapChain& residualChain, const CubeMap& withSun, Ktx2Format format,
                      bool clampToFormat) {
+    // BC6H's blocks spread a sun disk's error over the sky beside it (the park sample's sun came back with
+    // more than 1% of its illuminance off), so a BC6H level 0 keeps the residual like the rest of the chain.
     if (residualChain.levels.empty() || residualChain.levels[0].faceSize != withSun.faceSize ||
-        (clampToFormat && !fitsUnclamped(withSun, format)))
+        (clampToFormat && !fitsUnclamped(withSun, format)) || isBc6h(format))
         return false;
     residualChain.levels[0] = withSun;
     return true;

@@ -121,7 +121,8 @@ VisibilityChain bakeSpecularWithVisibility(const CubeMap& premultiplied, const S
 // before the extraction back as level 0 when `format` stores every texel of it unclamped: always, since a
 // product is stored with a storage scale (products.h chooseProductStorage) that makes it fit; with
 // clampToFormat (the user's explicit choice to clamp) only when no channel exceeds the format's range
-// (16-bit and packed floats end near 65,000; a calibrated sun reaches ~1e9). A mirror then reflects the
+// (16-bit and packed floats end near 65,000; a calibrated sun reaches ~1e9); never in BC6H, whose blocks
+// blur the disk into the sky beside it. A mirror then reflects the
 // sun's own pixels, and the runtime fades the disk light out where it reads level 0
 // (LdPyramid::sunInLevel0, KTX2 key "iblbake.sunInLevel0"), so every roughness counts the sun once. Returns
 // whether level 0 now holds the sun.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -12,10 +13,19 @@ namespace ibl {
 // is a directory: what AtomicFile checks, for a command to check every output before any work.
 void checkOutputFile(const std::filesystem::path& target);
 
+// The extension of `file` in lower case (".dds" for "Chain.DDS").
+std::string lowercaseExtension(const std::filesystem::path& file);
+
 // Throws ibl::OutputError "<target>: written as <container> (<extension>), not <its extension>" unless
 // `target` ends in `extension` (any case): a writer makes one container (.ktx2 KTX2, .exr OpenEXR, .json
 // JSON, .png PNG), and a file named for another would hold bytes its name does not say (a .dds holding KTX2).
 void checkOutputExtension(const std::filesystem::path& target, std::string_view extension);
+// The same with several containers: "written as KTX2 (.ktx2) or DDS (.dds), not .exr".
+void checkOutputExtension(const std::filesystem::path& target,
+                          std::initializer_list<std::string_view> extensions);
+// A cube product (LD chain, rough layers, irradiance cube) is delivered as KTX2 (.ktx2) or DDS (.dds), by the
+// name's extension (iblbake/ktx2/dds.h).
+void checkCubeOutputExtension(const std::filesystem::path& target);
 
 class AtomicFile {
   public:

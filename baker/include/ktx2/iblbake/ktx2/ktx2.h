@@ -1,5 +1,5 @@
-// KTX 2.0 container output and input for cube-map chains, 2D LUTs and 2D arrays (light cards) (uncompressed
-// float formats only, no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data
+// KTX 2.0 container output and input for cube-map chains, 2D LUTs and 2D arrays (light cards) (float formats
+// and BC6H, no supercompression). Layout follows the KTX 2.0 specification (Khronos); the Data
 // Format Descriptor follows the Khronos Data Format Specification's basic descriptor block for each vkFormat.
 #pragma once
 
@@ -17,12 +17,19 @@
 namespace ibl {
 
 // VK_FORMAT_R16G16B16A16_SFLOAT (97), VK_FORMAT_R32G32B32A32_SFLOAT (109),
-// VK_FORMAT_B10G11R11_UFLOAT_PACK32 (122), VK_FORMAT_E5B9G9R9_UFLOAT_PACK32 (123).
-enum class Ktx2Format { RGBA16F, RGBA32F, B10G11R11, E5B9G9R9 };
+// VK_FORMAT_B10G11R11_UFLOAT_PACK32 (122), VK_FORMAT_E5B9G9R9_UFLOAT_PACK32 (123), and
+// VK_FORMAT_BC6H_UFLOAT_BLOCK (131) made by our encoder at its default, fast or best preset (one GPU format,
+// three efforts; docs/formats.md "BC6H").
+enum class Ktx2Format { RGBA16F, RGBA32F, B10G11R11, E5B9G9R9, BC6H, BC6HFast, BC6HBest };
+
+inline bool isBc6h(Ktx2Format format) {
+    return format == Ktx2Format::BC6H || format == Ktx2Format::BC6HFast || format == Ktx2Format::BC6HBest;
+}
 
 // The names of the formats (`--format`, the scene's outputs.ktx2Format), in Ktx2Format order.
-inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f", "b10g11r11", "e5b9g9r9"};
-// Throws ibl::Error "'<name>' is not one of rgba16f, rgba32f, b10g11r11, e5b9g9r9" for any other name.
+inline const std::vector<std::string> kKtx2FormatNames = {"rgba16f", "rgba32f",   "b10g11r11", "e5b9g9r9",
+                                                          "bc6h",    "bc6h-fast", "bc6h-best"};
+// Throws ibl::Error "'<name>' is not one of rgba16f, rgba32f, ..." for any other name.
 Ktx2Format parseKtx2Format(const std::string& name);
 
 // What the writer had to change to make the data storable. Each texel counts at most once per field.
@@ -30,6 +37,9 @@ struct Ktx2WriteStats {
     std::uint64_t clampedTexels = 0;     // a finite channel outside the format's range (|v| > max, or v < 0
                                          // for the unsigned packed formats) was clamped to it
     std::uint64_t repairedNonFinite = 0; // a channel was NaN (-> 0) or +-Inf (-> the range limit)
+    std::uint64_t fileBytes = 0;         // the file as written
+    std::uint64_t gpuBytes = 0;          // its texels as a GPU holds them: every level's images
+    double encodeSeconds = 0.0;          // time spent encoding texels (BC6H: the block encoder)
 };
 
 using Ktx2KeyValues = std::vector<std::pair<std::string, std::string>>;
@@ -43,6 +53,8 @@ enum class Ktx2Alpha { Straight, Premultiplied };
 // "KTXwriter" = "iblbake <version>" (the caller may not pass that key, nor an empty or duplicate key).
 // The file is written to a temporary name and renamed when complete (ibl::AtomicFile). Throws ibl::Error
 // "<file>: <problem>" on invalid input or any I/O failure; an existing file at `path` is then untouched.
+// BC6H stores unsigned finite halves: a negative or non-finite channel is such a problem (checked before
+// any block is encoded), levels below 4 x 4 are one block an image (docs/formats.md "BC6H").
 Ktx2WriteStats writeKtx2Cube(const std::filesystem::path& path, const CubeMapChain& chain, Ktx2Format format,
                              const Ktx2KeyValues& keyValues, Ktx2Alpha alpha = Ktx2Alpha::Straight);
 
@@ -78,9 +90,9 @@ struct Ktx2Image {
     std::vector<std::vector<ImageRGBA>> levels;
 };
 
-// Reads a file written by writeKtx2Cube/writeKtx2Image or any conforming writer using one of the four
-// formats above. Every structural field is validated against the specification and the file size before
-// use; damage of any kind gives ibl::Error "<file>: <problem>".
+// Reads a file written by writeKtx2Cube/writeKtx2Image or any conforming writer using one of the formats
+// above (BC6H decoded by our decoder, bc6h.h). Every structural field is validated against the specification
+// and the file size before use; damage of any kind gives ibl::Error "<file>: <problem>".
 Ktx2Image readKtx2(const std::filesystem::path& path);
 
 // The same for a file's bytes already in memory; `name` stands for the file in error messages.
