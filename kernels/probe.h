@@ -408,13 +408,23 @@ IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd
     return result;
 }
 
-// The distant probe's LD for the view's lobe: with IBL_RT_SPECULAR_TAPS the weighted taps of specular_taps.h
+// The taps were fitted for a chain of 256-px faces (tools/specular_taps); a chain of fewer levels holds their
+// narrower lobes on coarser faces (its level at r = 0.16 has 8-px faces at 32 px): there the single read (a
+// 32-px sky with its one-texel sun extracted read 5.5% mean column error with the taps,
+// SunInProbe.WarnsWithTheErrorItCausesAndTheFix, where it needs under half the 8.8% with the sun kept).
+#define IBL_SPECULAR_TAP_MIN_LEVELS 7u
+IBL_FN bool distantSpecularTaps(RuntimeParams p) {
+    return (p.flags & IBL_RT_SPECULAR_TAPS) != 0u &&
+           p.distant.shape.levelCount >= IBL_SPECULAR_TAP_MIN_LEVELS;
+}
+
+// The distant probe's LD for the view's lobe: with distantSpecularTaps the weighted taps of specular_taps.h
 // (directions normalize(lerp(N, R, t)), R the unit mirror direction), else one read at dominantR. Local
 // probes keep the single read at dominantR (parallax-corrected): their proxies bend each direction
 // differently, and the taps were fitted for a distant chain.
 IBL_FN vec3 distantSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd, vec3 N, vec3 R, vec3 dominantR,
                               float NoV, float perceptualRoughness) {
-    if ((p.flags & IBL_RT_SPECULAR_TAPS) == 0u)
+    if (!distantSpecularTaps(p))
         return sampleLdWithLayers(distantLd, p.distant, p.distantRoughLayers, dominantR, perceptualRoughness);
     vec3 sum = v3(0.0f, 0.0f, 0.0f);
     for (uint k = 0u; k < IBL_SPECULAR_TAP_COUNT; ++k) {
@@ -437,7 +447,7 @@ IBL_FN float distantLevel0Share(RuntimeParams p, float perceptualRoughness) {
 
 // Level 0's share of the distant specular as distantSpecularLd reads it.
 IBL_FN float distantSpecularLevel0Share(RuntimeParams p, float NoV, float perceptualRoughness) {
-    if ((p.flags & IBL_RT_SPECULAR_TAPS) == 0u) return distantLevel0Share(p, perceptualRoughness);
+    if (!distantSpecularTaps(p)) return distantLevel0Share(p, perceptualRoughness);
     float share = 0.0f;
     for (uint k = 0u; k < IBL_SPECULAR_TAP_COUNT; ++k) {
         SpecularTap tap = specularTap(NoV, perceptualRoughness, k);
