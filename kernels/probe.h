@@ -6,7 +6,8 @@
 //   energy         Filament 4.7.2 compensation 1 + f0 (1 / r - 1), r = DFG1 + DFG2
 //   diffuse        Filament irradianceSH * Lambert, or times the LUT's Disney term (Listing 24)
 //   directions     specular dominant direction (Listing 22 and the lobe's mean), optional diffuse one
-//                  (Listing 23)
+//                  (Listing 23); the distant probe's LD from fitted taps in the plane of incidence
+//                  (specular_taps.h, IBL_RT_SPECULAR_TAPS) instead of one read
 //   occlusion      specular occlusion (Listing 26), horizon occlusion (Filament 5.6.2.1)
 //   local probes   parallax correction and distance-based roughness (parallax.h, Appendix F), composed
 //                  with the distant probe by the alpha rule of Frostbite 4.9.5; alpha = influence weight
@@ -24,6 +25,7 @@
 #include "parallax.h"
 #include "sampling.h"
 #include "shading_point.h"
+#include "specular_taps.h"
 
 #ifdef __cplusplus
 IBL_BEGIN_NAMESPACE
@@ -373,30 +375,85 @@ IBL_FN ProbeSample localProbeSpecular(LocalProbe probe, IBL_FLOAT_BUFFER localLd
 }
 
 // Frostbite 4.9.5 medium and large range: local probes in order (smallest influence first) while alpha < 1,
-// each adding a = saturate(probe.alpha - alpha) of itself; then the distant probe with the remaining
-// 1 - alpha. As the text says, overlapping probes are taken to cover the same part of the lobe (ten probes
-// of alpha 0.1 give 0.1, not 1) and the result depends on the order.
+// each adding a = saturate(probe.alpha - alpha) of itself; the distant probe then gets the remaining
+// 1 - alpha (composeSpecularLd). As the text says, overlapping probes are taken to cover the same part of the
+// lobe (ten probes of alpha 0.1 give 0.1, not 1) and the result depends on the order.
+IBL_FN ProbeSample composeLocalSpecularLd(RuntimeParams p,
+                                          IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
+                                          IBL_FLOAT_BUFFER localLd, vec3 position, vec3 dominantR,
+                                          float perceptualRoughness) {
+    ProbeSample result;
+    result.radiance = v3(0.0f, 0.0f, 0.0f);
+    result.alpha = 0.0f;
+    for (uint i = 0u; i < p.localProbeCount && result.alpha < 1.0f; ++i) {
+        ProbeSample s =
+            localProbeSpecular(probes[i], localLd, position, dominantR, perceptualRoughness, p.flags);
+        float a = saturate(s.alpha - result.alpha);
+        result.radiance = v3madd(s.radiance, a, result.radiance);
+        result.alpha = saturate(a + result.alpha);
+    }
+    return result;
+}
+
+// The local probes, then the distant probe read once at dominantR.
 IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd,
                                      IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
                                      IBL_FLOAT_BUFFER localLd, vec3 position, vec3 dominantR,
                                      float perceptualRoughness) {
-    vec3 rgb = v3(0.0f, 0.0f, 0.0f);
-    float alpha = 0.0f;
-    for (uint i = 0u; i < p.localProbeCount && alpha < 1.0f; ++i) {
-        ProbeSample s =
-            localProbeSpecular(probes[i], localLd, position, dominantR, perceptualRoughness, p.flags);
-        float a = saturate(s.alpha - alpha);
-        rgb = v3madd(s.radiance, a, rgb);
-        alpha = saturate(a + alpha);
-    }
-    if (alpha < 1.0f)
-        rgb = v3madd(
+    ProbeSample result = composeLocalSpecularLd(p, probes, localLd, position, dominantR, perceptualRoughness);
+    if (result.alpha < 1.0f)
+        result.radiance = v3madd(
             sampleLdWithLayers(distantLd, p.distant, p.distantRoughLayers, dominantR, perceptualRoughness),
-            1.0f - alpha, rgb);
-    ProbeSample result;
-    result.radiance = rgb;
-    result.alpha = alpha;
+            1.0f - result.alpha, result.radiance);
     return result;
+}
+
+// The taps were fitted for a chain of 256-px faces (tools/specular_taps); a chain of fewer levels holds their
+// narrower lobes on coarser faces (its level at r = 0.16 has 8-px faces at 32 px): there the single read (a
+// 32-px sky with its one-texel sun extracted read 5.5% mean column error with the taps,
+// SunInProbe.WarnsWithTheErrorItCausesAndTheFix, where it needs under half the 8.8% with the sun kept).
+#define IBL_SPECULAR_TAP_MIN_LEVELS 7u
+IBL_FN bool distantSpecularTaps(RuntimeParams p) {
+    return (p.flags & IBL_RT_SPECULAR_TAPS) != 0u &&
+           p.distant.shape.levelCount >= IBL_SPECULAR_TAP_MIN_LEVELS;
+}
+
+// The distant probe's LD for the view's lobe: with distantSpecularTaps the weighted taps of specular_taps.h
+// (directions normalize(lerp(N, R, t)), R the unit mirror direction), else one read at dominantR. Local
+// probes keep the single read at dominantR (parallax-corrected): their proxies bend each direction
+// differently, and the taps were fitted for a distant chain.
+IBL_FN vec3 distantSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd, vec3 N, vec3 R, vec3 dominantR,
+                              float NoV, float perceptualRoughness) {
+    if (!distantSpecularTaps(p))
+        return sampleLdWithLayers(distantLd, p.distant, p.distantRoughLayers, dominantR, perceptualRoughness);
+    vec3 sum = v3(0.0f, 0.0f, 0.0f);
+    for (uint k = 0u; k < IBL_SPECULAR_TAP_COUNT; ++k) {
+        SpecularTap tap = specularTap(NoV, perceptualRoughness, k);
+        vec3 d = v3safeNormalize(v3lerp(N, R, tap.lerpFactor), N);
+        sum =
+            v3madd(sampleLdWithLayers(distantLd, p.distant, p.distantRoughLayers, d, tap.perceptualRoughness),
+                   tap.weight, sum);
+    }
+    return sum;
+}
+
+// The share of the distant lookup at perceptual roughness r that level 0 gives: its trilinear weight 1 - lod,
+// times the chain's share where rough layers (baked without the sun) take the rest.
+IBL_FN float distantLevel0Share(RuntimeParams p, float perceptualRoughness) {
+    float level0 = 1.0f - saturate(ldLodForRoughness(p.distant, perceptualRoughness));
+    return p.distantRoughLayers.layerCount != 0u ? (1.0f - roughLayerWeight(perceptualRoughness)) * level0
+                                                 : level0;
+}
+
+// Level 0's share of the distant specular as distantSpecularLd reads it.
+IBL_FN float distantSpecularLevel0Share(RuntimeParams p, float NoV, float perceptualRoughness) {
+    if (!distantSpecularTaps(p)) return distantLevel0Share(p, perceptualRoughness);
+    float share = 0.0f;
+    for (uint k = 0u; k < IBL_SPECULAR_TAP_COUNT; ++k) {
+        SpecularTap tap = specularTap(NoV, perceptualRoughness, k);
+        share += tap.weight * distantLevel0Share(p, tap.perceptualRoughness);
+    }
+    return share;
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -444,7 +501,11 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER
 
     if ((flags & IBL_RT_SPECULAR) != 0u) {
         ProbeSample ld =
-            composeSpecularLd(p, distantLd, probes, localLd, sp.position, dominantR, perceptualRoughness);
+            composeLocalSpecularLd(p, probes, localLd, sp.position, dominantR, perceptualRoughness);
+        if (ld.alpha < 1.0f)
+            ld.radiance = v3madd(distantSpecularLd(p, distantLd, N, v3safeNormalize(R, N), dominantR, NoV,
+                                                   perceptualRoughness),
+                                 1.0f - ld.alpha, ld.radiance);
         float occlusion =
             (flags & IBL_RT_SPECULAR_OCCLUSION) != 0u ? computeSpecOcclusion(NoV, ao, alpha) : 1.0f;
         if ((flags & IBL_RT_HORIZON_OCCLUSION) != 0u) occlusion *= horizonOcclusion(dominantR, N);
@@ -492,15 +553,9 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER
                                                                      flags & IBL_RT_SUN_NORMALIZATION),
                                       NoD);
             float sunWeight = p.sun.illuminance;
-            if ((flags & IBL_RT_SUN_IN_LEVEL0) != 0u) {
-                // The disk gets what level 0 does not: the chain reads it with weight 1 - lod, and the
-                // chain has 1 - w of the lookup where rough layers (baked without the sun) take w.
-                float beyondLevel0 = saturate(ldLodForRoughness(p.distant, perceptualRoughness));
-                sunWeight *=
-                    p.distantRoughLayers.layerCount != 0u
-                        ? 1.0f - (1.0f - roughLayerWeight(perceptualRoughness)) * (1.0f - beyondLevel0)
-                        : beyondLevel0;
-            }
+            // The disk gets what level 0 does not (level 0 holds the sun's pixels).
+            if ((flags & IBL_RT_SUN_IN_LEVEL0) != 0u)
+                sunWeight *= 1.0f - distantSpecularLevel0Share(p, NoV, perceptualRoughness);
             result.specular = v3add(result.specular, v3(spec.x * energy.x * p.sun.color.x * sunWeight,
                                                         spec.y * energy.y * p.sun.color.y * sunWeight,
                                                         spec.z * energy.z * p.sun.color.z * sunWeight));

@@ -27,6 +27,9 @@ IBL_BEGIN_NAMESPACE
 // from level 1 on): where the lookup reads level 0 with trilinear weight w0, the disk's specular gets 1 - w0,
 // so a mirror shows the sun's own pixels and every roughness counts the sun once.
 #define IBL_RT_SUN_IN_LEVEL0 (1u << 15)
+// The distant LD from the fitted taps of specular_taps.h (probe.h distantSpecularLd), else one read at the
+// dominant direction (the split sum's).
+#define IBL_RT_SPECULAR_TAPS (1u << 16)
 
 // A shading point. view points from the surface toward the eye (Filament's v); neither vector has to be
 // normalized (a zero normal becomes +Y, a zero view the normal).

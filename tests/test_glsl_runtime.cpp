@@ -275,6 +275,8 @@ TEST_F(GlslRuntime, ManifestOptionsAgreeWithTheCppRuntime) {
     ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba16f"));
     ASSERT_TRUE(loaded.set.sun().has_value());
     ASSERT_EQ(loaded.set.localProbes().size(), 1u);
+    ASSERT_TRUE(
+        loaded.options.specularTaps); // materials.specularLookup's default, as the manifest records it
     ASSERT_TRUE(loaded.set.hasIrradianceCube());
     // Rough layers after the irradiance cube in the distant buffer (what GLSL must read is the C++ read,
     // so any smooth data does): the spheres' roughness 0-1 crosses the chain, the blend and the layers.
@@ -296,7 +298,8 @@ TEST_F(GlslRuntime, ManifestOptionsAgreeWithTheCppRuntime) {
 }
 
 // The other branches: L2 SH diffuse, Lambert, Listing 23's diffuse direction, f90 from f0, Listing 6's
-// normalized representative point for the sun, no energy compensation.
+// normalized representative point for the sun, no energy compensation, the split sum's single LD read (the
+// manifest's options read the fitted taps).
 TEST_F(GlslRuntime, OtherOptionsAgreeWithTheCppRuntime) {
     const fs::path dir = testDir("other_options");
     const ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba16f"));
@@ -307,6 +310,7 @@ TEST_F(GlslRuntime, OtherOptionsAgreeWithTheCppRuntime) {
     options.f90FromF0 = true;
     options.sunQuadrature = false;
     options.energyCompensation = false;
+    options.specularTaps = false;
     expectAgreement(dir, loaded.set, options);
 }
 

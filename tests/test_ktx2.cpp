@@ -171,6 +171,8 @@ float tolerance(Ktx2Format format, int channel, const glm::vec4& v) {
         return std::ldexp(std::abs(v[channel]), channel == 2 ? -6 : -7);
     case Ktx2Format::E5B9G9R9:
         return std::max({v.r, v.g, v.b}) / 511.0f;
+    default: // the BC6H formats: blocks, not texels (test_bc6h.cpp)
+        break;
     }
     return 0.0f;
 }
@@ -282,6 +284,8 @@ std::vector<std::uint32_t> expectedDfd(Ktx2Format format) {
                 0,           0,           8448,
                 0x2204001Bu, 0,           15,
                 31};
+    default: // the BC6H formats: their descriptor is test_bc6h.cpp's
+        break;
     }
     return {};
 }

@@ -66,6 +66,16 @@ TEST(SceneParse, ExampleSceneValuesAndResolvedPaths) {
     EXPECT_EQ(s.outputs.runtimeProfile, "forward+ / mobile-hdr");
 }
 
+TEST(SceneParse, SpecularLookupIsTapsOrSingle) {
+    json single = minimalScene();
+    single["materials"] = {{"specularLookup", "single"}};
+    EXPECT_FALSE(parse(single).materials.specularTaps);
+    json wrong = minimalScene();
+    wrong["materials"] = {{"specularLookup", "three"}};
+    EXPECT_NE(errorOf(wrong.dump()).find("materials.specularLookup"), std::string::npos)
+        << errorOf(wrong.dump());
+}
+
 TEST(SceneParse, DefaultsOfAMinimalScene) {
     const ibl::Scene s = parse(minimalScene());
     EXPECT_EQ(s.environment.files.at(0), fs::path("/base/env.hdr"));
@@ -73,6 +83,7 @@ TEST(SceneParse, DefaultsOfAMinimalScene) {
     EXPECT_FALSE(s.environment.extractSun);
     EXPECT_TRUE(s.probes.empty());
     EXPECT_TRUE(s.materials.specular);
+    EXPECT_TRUE(s.materials.specularTaps);
     EXPECT_EQ(s.materials.diffuseModel, ibl::SceneDiffuseModel::Lambert);
     EXPECT_EQ(s.outputs.directory, fs::path("/base/out"));
     EXPECT_EQ(s.outputs.faceSize, 256);

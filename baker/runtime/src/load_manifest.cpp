@@ -125,6 +125,8 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
         out.lights.push_back(light(l, dir));
     out.options.specular = glossy;
     out.options.energyCompensation = materials.at("energyCompensation").get<bool>();
+    // Manifests written before the taps existed have no specularLookup: the runtime's default.
+    out.options.specularTaps = materials.value("specularLookup", "taps") != "single";
     out.options.diffuseModel =
         materials.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
     return out;

@@ -208,6 +208,7 @@ RuntimeParams makeRuntimeParams(const ProbeSet& set, const RuntimeOptions& o, st
     if (o.energyCompensation) f |= IBL_RT_ENERGY_COMPENSATION;
     if (o.diffuseModel == DiffuseModel::Disney) f |= IBL_RT_DISNEY_DIFFUSE;
     if (o.specularDominantDirection) f |= IBL_RT_SPECULAR_DOMINANT;
+    if (o.specularTaps) f |= IBL_RT_SPECULAR_TAPS;
     if (o.diffuseDominantDirection) f |= IBL_RT_DIFFUSE_DOMINANT;
     if (o.specularOcclusion) f |= IBL_RT_SPECULAR_OCCLUSION;
     if (o.horizonOcclusion) f |= IBL_RT_HORIZON_OCCLUSION;

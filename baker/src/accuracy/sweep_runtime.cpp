@@ -38,7 +38,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                              const Executor& executor) {
     const int size = source.faceSize;
     AccuracyStage stage =
-        namedStage("runtime", "Runtime shading (per roughness)", {"specularQuality", "sun"});
+        namedStage("runtime", "Runtime shading (per roughness)", {"specularQuality", "sun", "lookup"});
     stage.errorMetric = "mean over the roughness columns of the relative mean absolute error: sum |runtime - "
                         "reference| / sum |reference| over a column's points and RGB";
     stage.maxErrorMetric = "worst roughness column's relative mean absolute error";
@@ -96,6 +96,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         }
         s.energyError = total > 0.0 ? std::abs(signedError) / total : std::abs(signedError);
     };
+    std::optional<ProbeSet> productionProbe;
     for (Quality quality : {Quality::Draft, Quality::Production, Quality::Reference}) {
         SpecularSettings settings;
         settings.quality = quality;
@@ -104,10 +105,13 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.timesMs = timeRuns(repeats, [&] { bakeSpecularWithRoughLayers(residual, settings, executor); });
         s.timeMs = median(s.timesMs);
         s.label = std::string(qualityName(quality)) + " LD chain";
-        s.knobs = {{"specularQuality", qualityName(quality)}, {"sun", sun ? "extracted" : "none"}};
+        s.knobs = {{"specularQuality", qualityName(quality)},
+                   {"sun", sun ? "extracted" : "none"},
+                   {"lookup", "taps"}};
         s.preset = qualityName(quality);
-        measure(s,
-                evaluateCpu(shippedProbe(residual, source, sun, settings, dfg, executor), c.points, options));
+        ProbeSet probe = shippedProbe(residual, source, sun, settings, dfg, executor);
+        measure(s, evaluateCpu(probe, c.points, options));
+        if (quality == Quality::Production) productionProbe = std::move(probe);
         stage.settings.push_back(std::move(s));
     }
     if (sun) { // the same production bake with the sun left in the probe: what the warning measures
@@ -116,7 +120,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.timesMs = timeRuns(repeats, [&] { bakeSpecularWithRoughLayers(source, production, executor); });
         s.timeMs = median(s.timesMs);
         s.label = "production LD chain, sun left in the probe";
-        s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}};
+        s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}, {"lookup", "taps"}};
         measure(s,
                 evaluateCpu(shippedProbe(source, source, {}, production, dfg, executor), c.points, options));
         const std::size_t k = worstColumn(s);
@@ -136,15 +140,28 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                       "(--sun-max-solid-angle %g)",
                       compactLight->angularRadiusDegrees(), kCompactLightMaxSolidAngle);
         s.label = label;
-        s.knobs = {{"specularQuality", "production"}, {"sun", "compact light extracted"}};
-        measure(s, evaluateCpu(shippedProbe(compactResidual, source, sunDiskFrom(*compactLight), production,
-                                            dfg, executor),
-                               c.points, options));
+        s.knobs = {{"specularQuality", "production"}, {"sun", "compact light extracted"}, {"lookup", "taps"}};
+        productionProbe =
+            shippedProbe(compactResidual, source, sunDiskFrom(*compactLight), production, dfg, executor);
+        measure(s, evaluateCpu(*productionProbe, c.points, options));
         const MeasuredSetting& kept = stage.settings[1]; // production, the light in the probe
         const std::size_t k = worstColumn(kept);
         stage.warnings.push_back(
             compactLightInProbeWarning(compactLight->angularRadiusDegrees(), kept.partErrors[k].second,
                                        plan.runtimeRoughness[k], s.partErrors[k].second));
+        stage.settings.push_back(std::move(s));
+    }
+    { // the shipped production probe (a compact light extracted where there is one) read as the split sum
+      // reads it: one LD read per point (RuntimeOptions::specularTaps off), against the same reference
+        MeasuredSetting s = stage.settings[compactLight ? stage.settings.size() - 1 : 1];
+        s.label += ", split sum's single read (no taps)";
+        s.knobs.back() = {"lookup", "single"};
+        s.preset.clear();
+        s.partErrors.clear();
+        s.error = s.maxError = 0.0;
+        RuntimeOptions single = options;
+        single.specularTaps = false;
+        measure(s, evaluateCpu(*productionProbe, c.points, single));
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);

@@ -37,6 +37,7 @@ RuntimeOptions previewOptions(const json& s) {
     RuntimeOptions options;
     options.energyCompensation = s.at("energyCompensation").get<bool>();
     options.diffuseModel = s.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
+    options.specularTaps = s.at("specularLookup") == "taps";
     return options;
 }
 

@@ -265,6 +265,7 @@ json buildManifest(const ManifestInputs& in) {
           {"diffuseModel", m.diffuseModel == SceneDiffuseModel::Disney ? "disney" : "lambert"},
           {"specular", m.specular},
           {"energyCompensation", m.energyCompensation},
+          {"specularLookup", m.specularTaps ? "taps" : "single"},
           {"clearCoat", m.clearCoat}}},
         {"products", products},
         {"warnings", warnings},

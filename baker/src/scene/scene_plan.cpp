@@ -63,7 +63,8 @@ json previewBallSettings(const Scene& scene) {
     const SceneMaterials& m = scene.materials;
     return {{"sphereSize", scene.outputs.preview->sphereSize},
             {"diffuseModel", m.diffuseModel == SceneDiffuseModel::Disney ? "disney" : "lambert"},
-            {"energyCompensation", m.energyCompensation}};
+            {"energyCompensation", m.energyCompensation},
+            {"specularLookup", m.specularTaps ? "taps" : "single"}};
 }
 
 // outputs.gltf and outputs.preview: made from the products above, after them, only when the scene asks.
