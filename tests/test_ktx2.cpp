@@ -367,6 +367,8 @@ TEST_P(Ktx2Formats, ClampsToTheFormatRangeAndCountsClampedTexels) {
         EXPECT_EQ(px[1].b, 65408.0f);
         EXPECT_EQ(px[3].r, 0.0f);
         break;
+    default: // the BC6H formats refuse negative texels (test_bc6h.cpp)
+        break;
     }
     EXPECT_EQ(px[2].g, 5.0f); // representable in every format: untouched
 }
