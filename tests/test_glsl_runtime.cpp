@@ -275,8 +275,9 @@ TEST_F(GlslRuntime, ManifestOptionsAgreeWithTheCppRuntime) {
     ibl::ManifestProbeSet loaded = ibl::loadProbeSetFromManifest(bakeScene(dir, "rgba16f"));
     ASSERT_TRUE(loaded.set.sun().has_value());
     ASSERT_EQ(loaded.set.localProbes().size(), 1u);
-    ASSERT_TRUE(
-        loaded.options.specularTaps); // materials.specularLookup's default, as the manifest records it
+    ASSERT_FALSE(
+        loaded.options.specularTaps);   // materials.specularLookup's default, as the manifest records it
+    loaded.options.specularTaps = true; // the selectable taps: GLSL must read what C++ reads
     ASSERT_TRUE(loaded.set.hasIrradianceCube());
     // Rough layers after the irradiance cube in the distant buffer (what GLSL must read is the C++ read,
     // so any smooth data does): the spheres' roughness 0-1 crosses the chain, the blend and the layers.

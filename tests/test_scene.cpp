@@ -67,9 +67,9 @@ TEST(SceneParse, ExampleSceneValuesAndResolvedPaths) {
 }
 
 TEST(SceneParse, SpecularLookupIsTapsOrSingle) {
-    json single = minimalScene();
-    single["materials"] = {{"specularLookup", "single"}};
-    EXPECT_FALSE(parse(single).materials.specularTaps);
+    json taps = minimalScene();
+    taps["materials"] = {{"specularLookup", "taps"}};
+    EXPECT_TRUE(parse(taps).materials.specularTaps);
     json wrong = minimalScene();
     wrong["materials"] = {{"specularLookup", "three"}};
     EXPECT_NE(errorOf(wrong.dump()).find("materials.specularLookup"), std::string::npos)
@@ -83,7 +83,7 @@ TEST(SceneParse, DefaultsOfAMinimalScene) {
     EXPECT_FALSE(s.environment.extractSun);
     EXPECT_TRUE(s.probes.empty());
     EXPECT_TRUE(s.materials.specular);
-    EXPECT_TRUE(s.materials.specularTaps);
+    EXPECT_FALSE(s.materials.specularTaps);
     EXPECT_EQ(s.materials.diffuseModel, ibl::SceneDiffuseModel::Lambert);
     EXPECT_EQ(s.outputs.directory, fs::path("/base/out"));
     EXPECT_EQ(s.outputs.faceSize, 256);

@@ -126,7 +126,7 @@ ManifestProbeSet load(const json& m, const fs::path& dir) {
     out.options.specular = glossy;
     out.options.energyCompensation = materials.at("energyCompensation").get<bool>();
     // Manifests written before the taps existed have no specularLookup: the runtime's default.
-    out.options.specularTaps = materials.value("specularLookup", "taps") != "single";
+    out.options.specularTaps = materials.value("specularLookup", "single") == "taps";
     out.options.diffuseModel =
         materials.at("diffuseModel") == "disney" ? DiffuseModel::Disney : DiffuseModel::Lambert;
     return out;

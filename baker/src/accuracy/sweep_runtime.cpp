@@ -107,7 +107,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.label = std::string(qualityName(quality)) + " LD chain";
         s.knobs = {{"specularQuality", qualityName(quality)},
                    {"sun", sun ? "extracted" : "none"},
-                   {"lookup", "taps"}};
+                   {"lookup", "single"}};
         s.preset = qualityName(quality);
         ProbeSet probe = shippedProbe(residual, source, sun, settings, dfg, executor);
         measure(s, evaluateCpu(probe, c.points, options));
@@ -120,7 +120,7 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
         s.timesMs = timeRuns(repeats, [&] { bakeSpecularWithRoughLayers(source, production, executor); });
         s.timeMs = median(s.timesMs);
         s.label = "production LD chain, sun left in the probe";
-        s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}, {"lookup", "taps"}};
+        s.knobs = {{"specularQuality", "production"}, {"sun", "kept"}, {"lookup", "single"}};
         measure(s,
                 evaluateCpu(shippedProbe(source, source, {}, production, dfg, executor), c.points, options));
         const std::size_t k = worstColumn(s);
@@ -140,7 +140,8 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                       "(--sun-max-solid-angle %g)",
                       compactLight->angularRadiusDegrees(), kCompactLightMaxSolidAngle);
         s.label = label;
-        s.knobs = {{"specularQuality", "production"}, {"sun", "compact light extracted"}, {"lookup", "taps"}};
+        s.knobs = {
+            {"specularQuality", "production"}, {"sun", "compact light extracted"}, {"lookup", "single"}};
         productionProbe =
             shippedProbe(compactResidual, source, sunDiskFrom(*compactLight), production, dfg, executor);
         measure(s, evaluateCpu(*productionProbe, c.points, options));
@@ -151,17 +152,17 @@ AccuracyStage measureRuntime(const SweepPlan& plan, const CubeMap& source, int r
                                        plan.runtimeRoughness[k], s.partErrors[k].second));
         stage.settings.push_back(std::move(s));
     }
-    { // the shipped production probe (a compact light extracted where there is one) read as the split sum
-      // reads it: one LD read per point (RuntimeOptions::specularTaps off), against the same reference
+    { // the shipped production probe (a compact light extracted where there is one) read through the fitted
+      // taps (RuntimeOptions::specularTaps, materials.specularLookup "taps"), against the same reference
         MeasuredSetting s = stage.settings[compactLight ? stage.settings.size() - 1 : 1];
-        s.label += ", split sum's single read (no taps)";
-        s.knobs.back() = {"lookup", "single"};
+        s.label += ", fitted taps";
+        s.knobs.back() = {"lookup", "taps"};
         s.preset.clear();
         s.partErrors.clear();
         s.error = s.maxError = 0.0;
-        RuntimeOptions single = options;
-        single.specularTaps = false;
-        measure(s, evaluateCpu(*productionProbe, c.points, single));
+        RuntimeOptions taps = options;
+        taps.specularTaps = true;
+        measure(s, evaluateCpu(*productionProbe, c.points, taps));
         stage.settings.push_back(std::move(s));
     }
     markParetoFront(stage);

@@ -328,7 +328,7 @@ SceneMaterials materials(const json& v, const Fail& fail) {
                          : SceneDiffuseModel::Lambert;
     m.specular = r.boolean("specular", true);
     m.energyCompensation = r.boolean("energyCompensation", true);
-    m.specularTaps = r.choice("specularLookup", "taps", {"taps", "single"}) == "taps";
+    m.specularTaps = r.choice("specularLookup", "single", {"single", "taps"}) == "taps";
     m.clearCoat = r.boolean("clearCoat", false);
     r.finish();
     return m;

@@ -88,7 +88,7 @@ struct SceneMaterials {
     SceneDiffuseModel diffuseModel = SceneDiffuseModel::Lambert;
     bool specular = true;
     bool energyCompensation = true;
-    bool specularTaps = true; // materials.specularLookup "taps" (else "single": the split sum's one read)
+    bool specularTaps = false; // materials.specularLookup "taps" (else "single": the split sum's one read)
     bool clearCoat = false;
 };
 

@@ -216,7 +216,7 @@ struct RuntimeOptions {
     bool sunEnergyNormalization = true;
     // The distant probe's LD from the fitted taps (kernels/specular_taps.h), else one read in the dominant
     // direction (the split sum's lookup).
-    bool specularTaps = true;
+    bool specularTaps = false;
     bool f90FromF0 = false; // Filament 5.6.2 pre-baked specular occlusion; else f90 = 1
     float dielectricF0 = 0.04f;
 };
