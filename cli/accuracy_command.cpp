@@ -48,7 +48,7 @@ Action addAccuracyCommand(CLI::App& app) {
     cmd->add_flag("--quick", o->quick, "a small sweep at tiny sizes (seconds; what the tests run)");
     o->backend.addTo(*cmd);
 
-    return [o] {
+    return [o = o] {
         const auto start = std::chrono::steady_clock::now();
         if (fs::exists(o->output) && !fs::is_directory(o->output))
             throw Error(o->output + ": exists and is not a directory");

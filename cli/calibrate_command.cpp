@@ -40,7 +40,7 @@ Action addCalibrateCommand(CLI::App& app) {
         ->required();
     o->calibration.addTo(*cmd);
 
-    return [o] {
+    return [o = o] {
         if (!o->calibration.anySource())
             throw Error("give one calibration source: --scale, --ev100, --illuminance, --sun-illuminance, "
                         "--sky-luminance or --radiometric (--scale 1 keeps the values)");

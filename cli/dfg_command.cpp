@@ -33,7 +33,7 @@ Action addDfgCommand(CLI::App& app) {
     cmd->add_flag("--float,!--no-half", opts->half, "store 32-bit floats (default)")->excludes(half);
     opts->backend.addTo(*cmd);
 
-    return [opts] {
+    return [opts = opts] {
         const Backend backend =
             standaloneDfgBackend(parseBackend(opts->backend.backend), !opts->backend.device.empty());
         std::optional<Executor> executor;

@@ -87,7 +87,7 @@ Action addDiffuseCommand(CLI::App& app) {
     o->backend.addTo(*cmd);
     o->calibration.addTo(*cmd);
 
-    return [o] {
+    return [o = o] {
         auto start = std::chrono::steady_clock::now();
         const DiffuseJob job = o->job();
         // Only the sampled irradiance cube runs on the backend; the SH are projected on the CPU.

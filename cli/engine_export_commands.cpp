@@ -63,7 +63,7 @@ Action addGltfCommand(CLI::App& app) {
         "export a bake as glTF 2.0: EXT_lights_image_based (RGBD PNG) and the sun as KHR_lights_punctual");
     o->addTo(*cmd, "output .gltf; its images are written beside it",
              "face size of the roughness-1 level when the chain is re-filtered (the extension suggests 16)");
-    return [o] {
+    return [o = o] {
         if (std::filesystem::path(o->output).extension() != ".gltf")
             throw Error(o->output + ": the glTF is written as .gltf (JSON)");
         return o->run(
@@ -86,7 +86,7 @@ Action addExportFilamentCommand(CLI::App& app) {
     cmd->add_option("--intensity", o->intensity,
                     "the IndirectLight intensity you set in Filament: the files hold radiance / intensity")
         ->capture_default_str();
-    return [o] {
+    return [o = o] {
         return o->run(
             [&](const auto& executor) {
                 return exportFilament(o->bakeDir, {o->minFaceSize, o->quality, o->intensity}, o->output,

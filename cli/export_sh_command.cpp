@@ -27,7 +27,7 @@ Action addExportShCommand(CLI::App& app) {
         ->required()
         ->check(CLI::IsMember({"filament"}));
 
-    return [o] {
+    return [o = o] {
         const std::filesystem::path diffuse = exportFilamentSh(o->bakeDir, o->output);
         std::printf("wrote   %s (Filament sh.txt from %s)\n", o->output.c_str(), diffuse.c_str());
         return 0;

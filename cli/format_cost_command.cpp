@@ -29,7 +29,7 @@ Action addFormatCostCommand(CLI::App& app) {
         ->check(CLI::IsMember(kKtx2FormatNames));
     cmd->add_flag("--json", o->json, "one JSON document instead of text");
 
-    return [o] {
+    return [o = o] {
         const std::vector<FormatCost> costs = measureChainFormatCosts(o->chain, o->formats);
         std::printf("%s", o->json ? (formatCostsJson(o->chain, costs).dump(2) + "\n").c_str()
                                   : formatCostText(costs, true).c_str());

@@ -26,7 +26,7 @@ Action addInspectCommand(CLI::App& app) {
     o->input.addTo(*cmd, "face size of the source cube measured (default: from the input)");
     cmd->add_flag("--json", o->json, "print one JSON object (schema in iblbake/baker/inspect.h)");
 
-    return [o] {
+    return [o = o] {
         const EnvironmentInspection inspection = inspectEnvironment(o->input.input, o->input.settings());
         std::printf("%s", o->json ? (inspectionJson(inspection).dump(2) + "\n").c_str()
                                   : inspectionText(inspection).c_str());

@@ -32,7 +32,7 @@ Action addLightCardCommand(CLI::App& app) {
     cmd->add_option("--format", opts->format, "rgba16f, rgba32f, b10g11r11, e5b9g9r9")->capture_default_str();
     opts->backend.addTo(*cmd);
 
-    return [opts] {
+    return [opts = opts] {
         opts->settings.format = parseKtx2Format(opts->format);
         Executor executor = opts->backend.makeExecutor();
         auto start = std::chrono::steady_clock::now();

@@ -57,7 +57,7 @@ Action addPreviewCommand(CLI::App& app) {
         ->check(CLI::Range(8, 512));
     o->backend.addTo(*cmd);
 
-    return [o] {
+    return [o = o] {
         auto start = std::chrono::steady_clock::now();
         if (fs::path(o->output).extension() != ".png")
             throw Error(o->output + ": the preview is written as .png");

@@ -75,7 +75,7 @@ Action addSpecularCommand(CLI::App& app) {
     o->backend.addTo(*cmd);
     o->calibration.addTo(*cmd);
 
-    return [o] {
+    return [o = o] {
         auto start = std::chrono::steady_clock::now();
         const SpecularJob job = specularJob(*o);
         validateSpecularSettings(job.settings, o->size);
