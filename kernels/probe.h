@@ -395,19 +395,6 @@ IBL_FN ProbeSample composeLocalSpecularLd(RuntimeParams p,
     return result;
 }
 
-// The local probes, then the distant probe read once at dominantR.
-IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd,
-                                     IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
-                                     IBL_FLOAT_BUFFER localLd, vec3 position, vec3 dominantR,
-                                     float perceptualRoughness) {
-    ProbeSample result = composeLocalSpecularLd(p, probes, localLd, position, dominantR, perceptualRoughness);
-    if (result.alpha < 1.0f)
-        result.radiance = v3madd(
-            sampleLdWithLayers(distantLd, p.distant, p.distantRoughLayers, dominantR, perceptualRoughness),
-            1.0f - result.alpha, result.radiance);
-    return result;
-}
-
 // The taps were fitted for a chain of 256-px faces (tools/specular_taps); a chain of fewer levels holds their
 // narrower lobes on coarser faces (its level at r = 0.16 has 8-px faces at 32 px): there the single read (a
 // 32-px sky with its one-texel sun extracted read 5.5% mean column error with the taps,
@@ -435,6 +422,18 @@ IBL_FN vec3 distantSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd, vec3 
                    tap.weight, sum);
     }
     return sum;
+}
+
+// The local probes, then the distant probe as distantSpecularLd reads it with the remaining 1 - alpha.
+IBL_FN ProbeSample composeSpecularLd(RuntimeParams p, IBL_FLOAT_BUFFER distantLd,
+                                     IBL_ARRAY_PARAM(LocalProbe, probes, IBL_MAX_LOCAL_PROBES),
+                                     IBL_FLOAT_BUFFER localLd, vec3 position, vec3 N, vec3 R, vec3 dominantR,
+                                     float NoV, float perceptualRoughness) {
+    ProbeSample result = composeLocalSpecularLd(p, probes, localLd, position, dominantR, perceptualRoughness);
+    if (result.alpha < 1.0f)
+        result.radiance = v3madd(distantSpecularLd(p, distantLd, N, R, dominantR, NoV, perceptualRoughness),
+                                 1.0f - result.alpha, result.radiance);
+    return result;
 }
 
 // The share of the distant lookup at perceptual roughness r that level 0 gives: its trilinear weight 1 - lod,
@@ -500,12 +499,8 @@ IBL_FN ShadeResult shadePoint(ShadingPoint sp, RuntimeParams p, IBL_FLOAT_BUFFER
     result.localAlpha = 0.0f;
 
     if ((flags & IBL_RT_SPECULAR) != 0u) {
-        ProbeSample ld =
-            composeLocalSpecularLd(p, probes, localLd, sp.position, dominantR, perceptualRoughness);
-        if (ld.alpha < 1.0f)
-            ld.radiance = v3madd(distantSpecularLd(p, distantLd, N, v3safeNormalize(R, N), dominantR, NoV,
-                                                   perceptualRoughness),
-                                 1.0f - ld.alpha, ld.radiance);
+        ProbeSample ld = composeSpecularLd(p, distantLd, probes, localLd, sp.position, N,
+                                           v3safeNormalize(R, N), dominantR, NoV, perceptualRoughness);
         float occlusion =
             (flags & IBL_RT_SPECULAR_OCCLUSION) != 0u ? computeSpecOcclusion(NoV, ao, alpha) : 1.0f;
         if ((flags & IBL_RT_HORIZON_OCCLUSION) != 0u) occlusion *= horizonOcclusion(dominantR, N);

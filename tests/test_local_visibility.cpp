@@ -68,7 +68,8 @@ ProbeSet setOf(const std::vector<Layer>& layers, glm::vec3 distant) {
 glm::vec4 composedMirrorLd(const ProbeSet& set, glm::vec3 position) {
     RuntimeParams params = makeRuntimeParams(set, RuntimeOptions{}, 1);
     ProbeSample s = composeSpecularLd(params, set.distantData().data(), set.localProbes().data(),
-                                      set.localLdData().data(), position, glm::vec3(0, 0, 1), 0.0f);
+                                      set.localLdData().data(), position, glm::vec3(0, 0, 1),
+                                      glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), 1.0f, 0.0f);
     return glm::vec4(glm::vec3(s.radiance), s.alpha);
 }
 
@@ -229,7 +230,7 @@ TEST(VisibilityRoom, MirrorsSeeTheDistantProbeThroughTheWindowAndTheWallsElsewhe
         int wall = wallOf(kRoom, hit);
         if (!tapsAllSee(n, lookup, window, wall)) continue; // at the window's frame or a wall's edge
         ProbeSample s = composeSpecularLd(params, set.distantData().data(), set.localProbes().data(),
-                                          set.localLdData().data(), p, R, 0.0f);
+                                          set.localLdData().data(), p, R, R, R, 1.0f, 0.0f);
         if (window) {
             ++throughWindow;
             glm::vec3 sky = sampleLd(set.distantData().data(), params.distant, R, 0.0f);
